@@ -1,0 +1,28 @@
+"""sdfgl: signed-distance-function scenes in Python, rendered by generated GLSL.
+
+    import sdfgl as sg
+    s = sg.sphere(1) & sg.box(1.5)
+    sg.render(s, camera=sg.OrbitCamera(distance=5), size=(800, 600), aa=2).save("out.png")
+"""
+import numpy as _np
+
+from .camera import Camera, OrbitCamera
+from .codegen import compile
+from .errors import ContextError, ParameterError, SceneFileError, SdfglError, ShaderCompileError
+from .nodes import (BOUND, EXACT, IMPLICIT, Node, box, capsule, cone, cylinder, difference, ellipsoid,
+                    hex_prism, intersection, octahedron, plane, rounded_box, sphere, torus, union)
+from .render import RenderResult, Renderer, render
+
+X = _np.array([1.0, 0.0, 0.0])
+Y = _np.array([0.0, 1.0, 0.0])
+Z = _np.array([0.0, 0.0, 1.0])
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "Camera", "OrbitCamera", "compile", "render", "Renderer", "RenderResult", "Node",
+    "sphere", "box", "rounded_box", "plane", "torus", "capsule", "cylinder", "cone", "ellipsoid",
+    "octahedron", "hex_prism", "union", "intersection", "difference", "X", "Y", "Z",
+    "EXACT", "BOUND", "IMPLICIT", "SdfglError", "ParameterError", "ShaderCompileError", "ContextError",
+    "SceneFileError",
+]

@@ -1,0 +1,251 @@
+"""Scene graph -> GLSL fragment shader.
+
+map() is straight-line code with every parameter baked in as a float32 constant; only
+the library functions the scene uses are included; settings become #defines, and the
+code of a feature that is off (shadows, AO, ground, extra outputs) is not in the source.
+Every generated line remembers which node wrote it, so a compile error can name it.
+"""
+from __future__ import annotations
+
+import contextlib
+from dataclasses import dataclass
+from typing import Iterator, Sequence
+
+import numpy as np
+
+from . import shaderlib
+from .errors import ParameterError
+from .nodes.base import Node
+from .settings import Settings
+
+DEFAULT_COLOR = (0.7, 0.68, 0.64)
+GLSL_VERSION = "#version 330 core"
+FLOAT32_MAX = float(np.finfo(np.float32).max)
+# Stand-in for an infinite bound inside GLSL: finite in float32, so no inf*0 arises.
+GLSL_FAR = 1e30
+
+
+def glsl_float(x: float) -> str:
+    """A GLSL float literal that round-trips the float32 value of ``x``."""
+    f = float(np.float32(x))
+    s = f"{f:.9g}"
+    if not any(ch in s for ch in ".e"):
+        s += ".0"
+    return s
+
+
+class Emitter:
+    """Collects the straight-line GLSL of one map()-like function.
+
+    Point variables may carry a pending float64 offset (from translations and from the
+    shader origin); it is folded in float64 and written out once, when a node needs
+    the point itself. This keeps scenes far from the origin exact to float32 rounding.
+    """
+
+    def __init__(self, mode: str, default_color: Sequence[float] = DEFAULT_COLOR) -> None:
+        if mode not in ("dist", "color"):
+            raise ValueError(mode)
+        self.mode = mode
+        self.lines: list[tuple[str, str]] = []  # (code, owner path)
+        self.libs: list[str] = []
+        self._path: list[str] = []
+        self._colors: list[tuple[float, float, float]] = [tuple(default_color)]  # type: ignore[list-item]
+        self._count = 0
+        self._shifts: dict[str, tuple[str, np.ndarray]] = {}
+        self._materialized: dict[str, str] = {}
+
+    # -- bookkeeping -------------------------------------------------------------------
+    def enter(self, node: Node) -> None:
+        self._path.append(node.label())
+
+    def leave(self) -> None:
+        self._path.pop()
+
+    @property
+    def owner(self) -> str:
+        return " > ".join(self._path) if self._path else "(scene)"
+
+    def require(self, *libs: str) -> None:
+        """Include ``shaders/lib/<name>.glsl`` (and what it requires) once."""
+        for name in libs:
+            if name in self.libs:
+                continue
+            self.require(*shaderlib.requires(name))
+            self.libs.append(name)
+
+    def assign(self, glsl_type: str, expr: str) -> str:
+        """Emit ``type vN = expr;`` and return ``vN``."""
+        name = f"v{self._count}"
+        self._count += 1
+        self.lines.append((f"    {glsl_type} {name} = {expr};", self.owner))
+        return name
+
+    # -- literals ----------------------------------------------------------------------
+    def num(self, x: float) -> str:
+        if not abs(float(x)) <= FLOAT32_MAX:
+            raise ParameterError(f"{self.owner}: value {x!r} does not fit in a float32 shader constant")
+        return glsl_float(x)
+
+    def vec(self, v: Sequence[float]) -> str:
+        vals = list(v)
+        return f"vec{len(vals)}({', '.join(self.num(x) for x in vals)})"
+
+    # -- points with a pending float64 offset ------------------------------------------
+    def shift(self, p: str, delta: np.ndarray) -> str:
+        """A point name standing for ``p + delta``; nothing is emitted yet."""
+        base, off = self._shifts.get(p, (p, np.zeros(3)))
+        name = f"{base}@{len(self._shifts)}"
+        self._shifts[name] = (base, off + np.asarray(delta, dtype=np.float64))
+        return name
+
+    def point(self, p: str) -> str:
+        """A GLSL expression for point ``p``, writing out a pending offset once."""
+        if p not in self._shifts:
+            return p
+        if p not in self._materialized:
+            base, off = self._shifts[p]
+            self._materialized[p] = base if not off.any() else self.assign("vec3", f"{base} + {self.vec(off)}")
+        return self._materialized[p]
+
+    # -- colour ------------------------------------------------------------------------
+    @contextlib.contextmanager
+    def colored(self, rgb: tuple[float, float, float]) -> Iterator[None]:
+        self._colors.append(rgb)
+        try:
+            yield
+        finally:
+            self._colors.pop()
+
+    def with_color(self, d: str) -> str:
+        """In colour mode pair distance ``d`` with the current colour; else return ``d``."""
+        if self.mode == "dist":
+            return d
+        return self.assign("vec4", f"vec4({self.vec(self._colors[-1])}, {d})")
+
+    def scale_distance(self, r: str, factor: str) -> str:
+        """Multiply a result's distance by ``factor`` (keeping its colour)."""
+        if self.mode == "dist":
+            return self.assign("float", f"{r} * {factor}")
+        return self.assign("vec4", f"vec4({r}.rgb, {r}.w * {factor})")
+
+
+@dataclass(frozen=True)
+class ShaderSource:
+    """A generated fragment shader plus the owner (node path or file) of every line."""
+
+    text: str
+    owners: tuple[str, ...]
+
+    def owner_of(self, line: int) -> str:
+        """Who wrote 1-based source line ``line``."""
+        return self.owners[line - 1] if 1 <= line <= len(self.owners) else "(unknown line)"
+
+
+class _Builder:
+    def __init__(self) -> None:
+        self.lines: list[str] = []
+        self.owners: list[str] = []
+
+    def add(self, text: str, owner: str) -> None:
+        for line in text.rstrip("\n").split("\n"):
+            self.lines.append(line)
+            self.owners.append(owner)
+
+    def add_file(self, name: str) -> None:
+        self.add(shaderlib.read(name), f"shaders/{name}.glsl")
+
+    def build(self) -> ShaderSource:
+        return ShaderSource("\n".join(self.lines) + "\n", tuple(self.owners))
+
+
+def _function(b: _Builder, signature: str, em: Emitter, result: str, ret: str) -> None:
+    b.add(signature + " {", "(codegen)")
+    for code, owner in em.lines:
+        b.add(code, owner)
+    b.add(f"    return {ret.format(result)};\n}}", "(codegen)")
+
+
+def scene_frame(scene: Node) -> tuple[np.ndarray, np.ndarray, float]:
+    """Finite stand-ins for the scene bounds (inf -> GLSL_FAR) and a length scale."""
+    lo, hi = scene.bounds
+    finite = np.isfinite(lo) & np.isfinite(hi)
+    ext = (hi - lo)[finite]
+    scale = float(ext.max()) if ext.size and ext.max() > 0 else 1.0
+    return np.where(np.isfinite(lo), lo, -GLSL_FAR), np.where(np.isfinite(hi), hi, GLSL_FAR), scale
+
+
+def _defines(scene: Node, settings: Settings, origin: np.ndarray) -> list[str]:
+    lo, hi, scale = scene_frame(scene)
+    pad = 1e-3 * scale
+    d = [
+        f"#define AA {settings.aa}",
+        f"#define MAX_STEPS {settings.max_steps}",
+        f"#define HIT_{settings.hit.upper()}",
+        f"#define HIT_SCALE {glsl_float(settings.hit_scale)}",
+        f"#define MAX_DIST {glsl_float(settings.max_dist)}",
+        f"#define SCENE_SCALE {glsl_float(scale)}",
+        f"#define BOUNDS_LO vec3({', '.join(glsl_float(x) for x in lo - pad - origin)})",
+        f"#define BOUNDS_HI vec3({', '.join(glsl_float(x) for x in hi + pad - origin)})",
+    ]
+    if settings.shadows:
+        d += ["#define SHADOWS", f"#define SHADOWS_{settings.shadows.upper()}"]
+    if settings.ao:
+        d.append("#define AO")
+    if settings.ground:
+        ground_y = lo[1] if lo[1] > -GLSL_FAR else 0.0
+        d += ["#define GROUND", f"#define GROUND_Y {glsl_float(ground_y - origin[1])}"]
+    aux = [o for o in settings.outputs if o != "color"]
+    if aux:
+        d.append("#define AUX_OUTPUTS")
+    for loc, name in enumerate(aux, start=1):
+        d += [f"#define OUT_{name.upper()}", f"#define LOC_{name.upper()} {loc}"]
+    return d
+
+
+def _emit_map(scene: Node, mode: str, origin: np.ndarray) -> tuple[Emitter, str]:
+    em = Emitter(mode)
+    p = em.shift("p", origin) if origin.any() else "p"
+    return em, scene.emit(em, p)
+
+
+def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.0, 0.0),
+             target: str = "render") -> ShaderSource:
+    """Build the fragment shader for ``scene``.
+
+    ``origin`` (float64) is the world point that the shader's coordinates are relative
+    to; ``target`` is ``"render"`` (the image) or ``"evaluate"`` (map() at given points).
+    """
+    if not isinstance(scene, Node):
+        raise ParameterError(f"scene must be an sdfgl node, got {type(scene).__name__} {scene!r}")
+    org = np.asarray(origin, dtype=np.float64)
+    dist, dist_result = _emit_map(scene, "dist", org)
+    color, color_result = _emit_map(scene, "color", org) if target == "render" else (None, "")
+    libs = list(dist.libs) + [n for n in (color.libs if color else []) if n not in dist.libs]
+
+    b = _Builder()
+    b.add(GLSL_VERSION, "(codegen)")
+    b.add(f"// sdfgl scene: {scene.label()}  [{scene.exactness}, L={scene.lipschitz:g}]", "(codegen)")
+    b.add("\n".join(_defines(scene, settings, org)), "(settings)")
+    b.add_file("common")
+    for name in libs:
+        b.add_file(f"lib/{name}")
+    _function(b, "float map(vec3 p)", dist, dist_result, "{}")
+    if target == "evaluate":
+        b.add_file("evaluate_main")
+        return b.build()
+    assert color is not None
+    _function(b, "vec3 mapColor(vec3 p)", color, color_result, "{}.rgb")
+    b.add_file(f"march_{settings.method}")
+    b.add_file("normal")
+    if settings.shadows:
+        b.add_file(f"shadow_{settings.shadows}")
+    if settings.ao:
+        b.add_file("ao")
+    b.add_file("shade")
+    b.add_file("render_main")
+    return b.build()
+
+
+def compile(scene: Node, **settings: object) -> str:  # noqa: A001 - public API name
+    """The complete GLSL fragment shader that ``render(scene, **settings)`` runs."""
+    return generate(scene, Settings.build(**settings)).text

@@ -1,0 +1,1 @@
+"""OpenGL plumbing: contexts, the program cache and render targets."""

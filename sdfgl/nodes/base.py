@@ -1,0 +1,178 @@
+"""The scene-graph node: parameters, GLSL emission, float64 twin, Lipschitz factor, bounds.
+
+Every concrete node keeps these five things together in one class, so the GPU code and
+the numpy reference cannot drift apart unnoticed (the parity tests hold them equal).
+"""
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, ClassVar, Sequence
+
+import numpy as np
+
+from ..errors import ParameterError
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ..codegen import Emitter
+
+EXACT = "exact"        # |f| is the Euclidean distance to the surface (outside, at least)
+BOUND = "bound"        # |f| <= distance and the gradient norm is <= lipschitz
+IMPLICIT = "implicit"  # a level set with no distance guarantee (e.g. product union)
+
+INF = float("inf")
+
+
+def as_points(points: object) -> np.ndarray:
+    """Return points as a float64 array of shape (..., 3)."""
+    p = np.asarray(points, dtype=np.float64)
+    if p.ndim == 0 or p.shape[-1] != 3:
+        raise ParameterError(f"points must have shape (..., 3), got {p.shape}")
+    return p
+
+
+class Node:
+    """Base class of every scene-graph node. Nodes are immutable after construction."""
+
+    kind: ClassVar[str] = "node"
+
+    def __init__(self, children: Sequence["Node"] = (), **params: object) -> None:
+        for i, c in enumerate(children):
+            if not isinstance(c, Node):
+                raise ParameterError(f"{self.kind}: operand {i} must be an sdfgl node, got {type(c).__name__} {c!r}")
+        self.children: tuple[Node, ...] = tuple(children)
+        self.params: dict[str, object] = params
+
+    # -- identity -----------------------------------------------------------------------
+    @property
+    def key(self) -> tuple:
+        """Structural key: equal keys mean equal fields (used to share code and caches)."""
+        def freeze(v: object) -> object:
+            if isinstance(v, np.ndarray):
+                return tuple(v.ravel().tolist())
+            if isinstance(v, (list, tuple)):
+                return tuple(freeze(x) for x in v)
+            return v
+        return (self.kind, tuple((k, freeze(v)) for k, v in sorted(self.params.items())),
+                tuple(c.key for c in self.children))
+
+    def label(self) -> str:
+        """Short human-readable name used in error messages and shader comments."""
+        def fmt(v: object) -> str:
+            if isinstance(v, np.ndarray):
+                return "(" + ", ".join(f"{x:g}" for x in v.ravel()) + ")"
+            if isinstance(v, float):
+                return f"{v:g}"
+            return str(v)
+        args = ", ".join(f"{k}={fmt(v)}" for k, v in self.params.items())
+        return f"{self.kind}({args})"
+
+    def __repr__(self) -> str:
+        if not self.children:
+            return self.label()
+        return f"{self.label()}[{', '.join(repr(c) for c in self.children)}]"
+
+    # -- the five things every node provides ----------------------------------------------
+    def emit(self, em: "Emitter", p: str) -> str:
+        """Append GLSL for this node's field at point variable ``p``; return the result variable.
+
+        In ``em.mode == "dist"`` the result is a float distance; in ``"color"`` mode it is a
+        vec4 (rgb, distance).
+        """
+        em.enter(self)
+        try:
+            return self._emit(em, p)
+        finally:
+            em.leave()
+
+    def _emit(self, em: "Emitter", p: str) -> str:
+        raise NotImplementedError
+
+    def distance(self, points: object) -> np.ndarray:
+        """The float64 twin of the generated map(): field values at (..., 3) points."""
+        return self._distance(as_points(points))
+
+    def _distance(self, p: np.ndarray) -> np.ndarray:
+        raise NotImplementedError
+
+    @property
+    def exactness(self) -> str:
+        """``"exact"``, ``"bound"`` or ``"implicit"``: what kind of field distance() is."""
+        raise NotImplementedError
+
+    @property
+    def lipschitz(self) -> float:
+        """Upper bound of the gradient norm of distance() (1 for exact and bound fields)."""
+        return 1.0 if self.exactness != IMPLICIT else INF
+
+    @property
+    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        """Conservative axis-aligned box (lo, hi) holding the solid; components may be inf."""
+        raise NotImplementedError
+
+    # -- modelling API (fogleman/sdf style) ---------------------------------------------
+    def __or__(self, other: "Node") -> "Node":
+        from .booleans import union
+        return union(self, other)
+
+    def __and__(self, other: "Node") -> "Node":
+        from .booleans import intersection
+        return intersection(self, other)
+
+    def __sub__(self, other: "Node") -> "Node":
+        from .booleans import difference
+        return difference(self, other)
+
+    def union(self, *others: "Node", k: float = 0.0) -> "Node":
+        from .booleans import union
+        return union(self, *others, k=k)
+
+    def intersection(self, *others: "Node", k: float = 0.0) -> "Node":
+        from .booleans import intersection
+        return intersection(self, *others, k=k)
+
+    def difference(self, *others: "Node", k: float = 0.0) -> "Node":
+        from .booleans import difference
+        return difference(self, *others, k=k)
+
+    def translate(self, offset: Sequence[float]) -> "Node":
+        from .transforms import Translate
+        return Translate(self, offset)
+
+    def rotate(self, angle: float, axis: Sequence[float] = (0.0, 0.0, 1.0)) -> "Node":
+        """Rotate by ``angle`` degrees about ``axis`` (through the origin)."""
+        from .transforms import Rotate
+        return Rotate.axis_angle(self, angle, axis)
+
+    def orient(self, axis: Sequence[float]) -> "Node":
+        """Rotate so that the node's Y axis points along ``axis``."""
+        from .transforms import Rotate
+        return Rotate.orient(self, axis)
+
+    def scale(self, factor: float | Sequence[float]) -> "Node":
+        """Scale uniformly (exactness kept) or per axis (the result is a bound)."""
+        from .transforms import scale
+        return scale(self, factor)
+
+    def color(self, r: float | Sequence[float], g: float | None = None, b: float | None = None) -> "Node":
+        """Give every part of this node that has no colour of its own the colour (r, g, b)."""
+        from .transforms import Material
+        rgb = r if g is None and b is None else (r, g, b)
+        return Material(self, rgb)
+
+
+class Primitive(Node):
+    """A leaf: a closed-form field. Subclasses give ``_expr`` (GLSL) and ``_distance`` (numpy)."""
+
+    lib: ClassVar[tuple[str, ...]] = ()
+    exact: ClassVar[bool] = True
+
+    @property
+    def exactness(self) -> str:
+        return EXACT if self.exact else BOUND
+
+    def _expr(self, em: "Emitter", p: str) -> str:
+        raise NotImplementedError
+
+    def _emit(self, em: "Emitter", p: str) -> str:
+        em.require(*self.lib)
+        d = em.assign("float", self._expr(em, em.point(p)))
+        return em.with_color(d)

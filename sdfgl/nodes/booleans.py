@@ -1,0 +1,166 @@
+"""Union, intersection and difference, hard or smooth (quadratic smooth min, IQ, MIT).
+
+A smoothing radius ``k`` of 0 gives the hard operator; a ``k`` too small to be
+represented in float32 (< 1e-30) is treated as 0, so the generated code never divides
+by zero.
+"""
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from ..errors import ParameterError
+from . import validate as v
+from .base import BOUND, EXACT, IMPLICIT, Node
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ..codegen import Emitter
+
+K_MIN = 1e-30
+
+
+def _smin(a: np.ndarray, b: np.ndarray, k: float) -> np.ndarray:
+    h = np.maximum(k - np.abs(a - b), 0.0) / k
+    return np.minimum(a, b) - h * h * k * 0.25
+
+
+def _smax(a: np.ndarray, b: np.ndarray, k: float) -> np.ndarray:
+    h = np.maximum(k - np.abs(a - b), 0.0) / k
+    return np.maximum(a, b) + h * h * k * 0.25
+
+
+class _Boolean(Node):
+    """N-ary boolean folded left to right."""
+
+    def __init__(self, *children: Node, k: float = 0.0) -> None:
+        if len(children) < 2:
+            raise ParameterError(f"{self.kind}: needs at least two operands, got {len(children)}")
+        kk = v.scalar(self.kind, "k", k, nonnegative=True)
+        super().__init__(children, k=0.0 if kk < K_MIN else kk)
+        self.k = float(self.params["k"])  # type: ignore[arg-type]
+
+    @property
+    def exactness(self) -> str:
+        kinds = {c.exactness for c in self.children}
+        if IMPLICIT in kinds:
+            return IMPLICIT
+        return BOUND
+
+    @property
+    def lipschitz(self) -> float:
+        return max(c.lipschitz for c in self.children)
+
+    def _emit(self, em: "Emitter", p: str) -> str:
+        acc = self.children[0].emit(em, p)
+        for c in self.children[1:]:
+            acc = self._combine(em, acc, c.emit(em, p))
+        return acc
+
+    def _combine(self, em: "Emitter", a: str, b: str) -> str:
+        raise NotImplementedError
+
+    def _distance(self, p: np.ndarray) -> np.ndarray:
+        acc = self.children[0]._distance(p)
+        for c in self.children[1:]:
+            acc = self._fold(acc, c._distance(p))
+        return acc
+
+    def _fold(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+        raise NotImplementedError
+
+
+class Union(_Boolean):
+    kind = "union"
+
+    @property
+    def exactness(self) -> str:
+        # min() of exact fields is exact outside the solid (a bound inside); smoothing breaks it
+        if self.k == 0 and all(c.exactness == EXACT for c in self.children):
+            return EXACT
+        return super().exactness
+
+    def _combine(self, em: "Emitter", a: str, b: str) -> str:
+        if em.mode == "dist":
+            if self.k == 0:
+                return em.assign("float", f"min({a}, {b})")
+            em.require("op_smin")
+            return em.assign("float", f"opSmin({a}, {b}, {em.num(self.k)})")
+        if self.k == 0:
+            return em.assign("vec4", f"({a}.w < {b}.w) ? {a} : {b}")
+        em.require("op_smin_color")
+        return em.assign("vec4", f"opSminColor({a}, {b}, {em.num(self.k)})")
+
+    def _fold(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+        return np.minimum(a, b) if self.k == 0 else _smin(a, b, self.k)
+
+    @property
+    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        lo = np.min([c.bounds[0] for c in self.children], axis=0)
+        hi = np.max([c.bounds[1] for c in self.children], axis=0)
+        grow = self.k * 0.25  # the smooth min lowers the field by at most k/4
+        return lo - grow, hi + grow
+
+
+class Intersection(_Boolean):
+    kind = "intersection"
+
+    def _combine(self, em: "Emitter", a: str, b: str) -> str:
+        if em.mode == "dist":
+            if self.k == 0:
+                return em.assign("float", f"max({a}, {b})")
+            em.require("op_smax")
+            return em.assign("float", f"opSmax({a}, {b}, {em.num(self.k)})")
+        if self.k == 0:
+            return em.assign("vec4", f"({a}.w > {b}.w) ? {a} : {b}")
+        em.require("op_smax_color")
+        return em.assign("vec4", f"opSmaxColor({a}, {b}, {em.num(self.k)})")
+
+    def _fold(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+        return np.maximum(a, b) if self.k == 0 else _smax(a, b, self.k)
+
+    @property
+    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        lo = np.max([c.bounds[0] for c in self.children], axis=0)
+        hi = np.min([c.bounds[1] for c in self.children], axis=0)
+        return lo, np.maximum(hi, lo)
+
+
+class Difference(_Boolean):
+    """The first operand minus all the others."""
+
+    kind = "difference"
+
+    def _combine(self, em: "Emitter", a: str, b: str) -> str:
+        if em.mode == "dist":
+            if self.k == 0:
+                return em.assign("float", f"max({a}, -{b})")
+            em.require("op_smax")
+            return em.assign("float", f"opSmax({a}, -{b}, {em.num(self.k)})")
+        neg = f"vec4({b}.rgb, -{b}.w)"
+        if self.k == 0:
+            return em.assign("vec4", f"({a}.w > -{b}.w) ? {a} : {neg}")
+        em.require("op_smax_color")
+        return em.assign("vec4", f"opSmaxColor({a}, {neg}, {em.num(self.k)})")
+
+    def _fold(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+        return np.maximum(a, -b) if self.k == 0 else _smax(a, -b, self.k)
+
+    @property
+    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        return self.children[0].bounds
+
+
+def union(*nodes: Node, k: float = 0.0) -> Node:
+    """Union of two or more nodes; ``k`` > 0 blends them smoothly over that distance."""
+    return Union(*nodes, k=k)
+
+
+def intersection(*nodes: Node, k: float = 0.0) -> Node:
+    """Intersection of two or more nodes; ``k`` > 0 rounds the seam."""
+    return Intersection(*nodes, k=k)
+
+
+def difference(*nodes: Node, k: float = 0.0) -> Node:
+    """The first node minus the others; ``k`` > 0 rounds the cut."""
+    return Difference(*nodes, k=k)

@@ -1,0 +1,372 @@
+"""Primitive solids. Formulas after Inigo Quilez's distance-function article (MIT).
+
+Conventions: Y is up, sizes are full edge lengths (as in fogleman/sdf), cylinders,
+cones, capsules and prisms run along Y, the torus lies in the XZ plane.
+"""
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Sequence
+
+import numpy as np
+
+from ..errors import ParameterError
+from . import validate as v
+from .base import INF, Primitive
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ..codegen import Emitter
+
+
+def _len(a: np.ndarray) -> np.ndarray:
+    return np.sqrt(np.sum(a * a, axis=-1))
+
+
+def _box_of(half: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    return -half.copy(), half.copy()
+
+
+class Sphere(Primitive):
+    kind = "sphere"
+    lib = ("sd_sphere",)
+
+    def __init__(self, radius: float = 1.0, center: Sequence[float] = (0.0, 0.0, 0.0)) -> None:
+        r = v.scalar(self.kind, "radius", radius, positive=True)
+        c = v.vector(self.kind, "center", center)
+        super().__init__(radius=r, center=c)
+        self.r, self.c = r, c
+
+    def _expr(self, em: "Emitter", p: str) -> str:
+        q = p if not self.c.any() else f"({p} - {em.vec(self.c)})"
+        return f"sdSphere({q}, {em.num(self.r)})"
+
+    def _distance(self, p: np.ndarray) -> np.ndarray:
+        return _len(p - self.c) - self.r
+
+    @property
+    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        return self.c - self.r, self.c + self.r
+
+
+class Box(Primitive):
+    kind = "box"
+    lib = ("sd_box",)
+
+    def __init__(self, size: float | Sequence[float] = 1.0) -> None:
+        s = v.vector(self.kind, "size", size, positive=True)
+        super().__init__(size=s)
+        self.half = s / 2
+
+    def _expr(self, em: "Emitter", p: str) -> str:
+        return f"sdBox({p}, {em.vec(self.half)})"
+
+    def _distance(self, p: np.ndarray) -> np.ndarray:
+        q = np.abs(p) - self.half
+        return _len(np.maximum(q, 0.0)) + np.minimum(q.max(axis=-1), 0.0)
+
+    @property
+    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        return _box_of(self.half)
+
+
+class RoundedBox(Primitive):
+    kind = "rounded_box"
+    lib = ("sd_round_box",)
+
+    def __init__(self, size: float | Sequence[float] = 1.0, radius: float = 0.1) -> None:
+        s = v.vector(self.kind, "size", size, positive=True)
+        r = v.scalar(self.kind, "radius", radius, nonnegative=True)
+        if r > s.min() / 2:
+            raise ParameterError(f"{self.kind}: parameter 'radius' ({r:g}) must be at most half the "
+                                 f"smallest edge ({s.min() / 2:g})")
+        super().__init__(size=s, radius=r)
+        self.half, self.r = s / 2, r
+
+    def _expr(self, em: "Emitter", p: str) -> str:
+        return f"sdRoundBox({p}, {em.vec(self.half)}, {em.num(self.r)})"
+
+    def _distance(self, p: np.ndarray) -> np.ndarray:
+        q = np.abs(p) - self.half + self.r
+        return _len(np.maximum(q, 0.0)) + np.minimum(q.max(axis=-1), 0.0) - self.r
+
+    @property
+    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        return _box_of(self.half)
+
+
+class Plane(Primitive):
+    """Half-space below the plane through ``point`` with normal ``normal`` (solid side opposite the normal)."""
+
+    kind = "plane"
+    lib = ("sd_plane",)
+
+    def __init__(self, normal: Sequence[float] = (0.0, 1.0, 0.0), point: Sequence[float] = (0.0, 0.0, 0.0)) -> None:
+        n = v.vector(self.kind, "normal", normal, nonzero=True)
+        o = v.vector(self.kind, "point", point)
+        n = n / np.linalg.norm(n)
+        super().__init__(normal=n, point=o)
+        self.n, self.o = n, o
+
+    def _expr(self, em: "Emitter", p: str) -> str:
+        return f"sdPlane({p}, {em.vec(self.n)}, {em.vec(self.o)})"
+
+    def _distance(self, p: np.ndarray) -> np.ndarray:
+        return (p - self.o) @ self.n
+
+    @property
+    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        lo, hi = np.full(3, -INF), np.full(3, INF)
+        axis = int(np.argmax(np.abs(self.n)))
+        if abs(self.n[axis]) == 1.0:  # axis-aligned: one side of the box is finite
+            if self.n[axis] > 0:
+                hi[axis] = self.o[axis]
+            else:
+                lo[axis] = self.o[axis]
+        return lo, hi
+
+
+class Torus(Primitive):
+    kind = "torus"
+    lib = ("sd_torus",)
+
+    def __init__(self, r1: float = 1.0, r2: float = 0.25) -> None:
+        a = v.scalar(self.kind, "r1", r1, positive=True)
+        b = v.scalar(self.kind, "r2", r2, positive=True)
+        super().__init__(r1=a, r2=b)
+        self.r1, self.r2 = a, b
+
+    def _expr(self, em: "Emitter", p: str) -> str:
+        return f"sdTorus({p}, vec2({em.num(self.r1)}, {em.num(self.r2)}))"
+
+    def _distance(self, p: np.ndarray) -> np.ndarray:
+        qx = np.hypot(p[..., 0], p[..., 2]) - self.r1
+        return np.hypot(qx, p[..., 1]) - self.r2
+
+    @property
+    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        e = self.r1 + self.r2
+        return _box_of(np.array([e, self.r2, e]))
+
+
+class Capsule(Primitive):
+    kind = "capsule"
+    lib = ("sd_capsule",)
+
+    def __init__(self, a: Sequence[float] = (0.0, -0.5, 0.0), b: Sequence[float] = (0.0, 0.5, 0.0),
+                 radius: float = 0.25) -> None:
+        pa = v.vector(self.kind, "a", a)
+        pb = v.vector(self.kind, "b", b)
+        r = v.scalar(self.kind, "radius", radius, positive=True)
+        if np.array_equal(pa, pb):
+            raise ParameterError(f"{self.kind}: end points 'a' and 'b' coincide at {tuple(pa)}; use sphere()")
+        super().__init__(a=pa, b=pb, radius=r)
+        self.a, self.b, self.r = pa, pb, r
+
+    def _expr(self, em: "Emitter", p: str) -> str:
+        return f"sdCapsule({p}, {em.vec(self.a)}, {em.vec(self.b)}, {em.num(self.r)})"
+
+    def _distance(self, p: np.ndarray) -> np.ndarray:
+        pa, ba = p - self.a, self.b - self.a
+        h = np.clip((pa @ ba) / (ba @ ba), 0.0, 1.0)
+        return _len(pa - h[..., None] * ba) - self.r
+
+    @property
+    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        return np.minimum(self.a, self.b) - self.r, np.maximum(self.a, self.b) + self.r
+
+
+class Cylinder(Primitive):
+    kind = "cylinder"
+    lib = ("sd_cylinder",)
+
+    def __init__(self, radius: float = 0.5, height: float = 1.0) -> None:
+        r = v.scalar(self.kind, "radius", radius, positive=True)
+        h = v.scalar(self.kind, "height", height, positive=True)
+        super().__init__(radius=r, height=h)
+        self.r, self.h = r, h / 2
+
+    def _expr(self, em: "Emitter", p: str) -> str:
+        return f"sdCylinder({p}, {em.num(self.r)}, {em.num(self.h)})"
+
+    def _distance(self, p: np.ndarray) -> np.ndarray:
+        dx = np.hypot(p[..., 0], p[..., 2]) - self.r
+        dy = np.abs(p[..., 1]) - self.h
+        return np.minimum(np.maximum(dx, dy), 0.0) + np.hypot(np.maximum(dx, 0.0), np.maximum(dy, 0.0))
+
+    @property
+    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        return _box_of(np.array([self.r, self.h, self.r]))
+
+
+class Cone(Primitive):
+    kind = "cone"
+    lib = ("sd_cone",)
+
+    def __init__(self, height: float = 1.0, r1: float = 0.5, r2: float = 0.0) -> None:
+        h = v.scalar(self.kind, "height", height, positive=True)
+        a = v.scalar(self.kind, "r1", r1, nonnegative=True)
+        b = v.scalar(self.kind, "r2", r2, nonnegative=True)
+        if a == 0 and b == 0:
+            raise ParameterError(f"{self.kind}: radii 'r1' and 'r2' are both 0; the cone is empty")
+        super().__init__(height=h, r1=a, r2=b)
+        self.h, self.r1, self.r2 = h / 2, a, b
+
+    def _expr(self, em: "Emitter", p: str) -> str:
+        return f"sdCone({p}, {em.num(self.h)}, {em.num(self.r1)}, {em.num(self.r2)})"
+
+    def _distance(self, p: np.ndarray) -> np.ndarray:
+        qx, qy = np.hypot(p[..., 0], p[..., 2]), p[..., 1]
+        k1 = np.array([self.r2, self.h])
+        k2 = np.array([self.r2 - self.r1, 2 * self.h])
+        rr = np.where(qy < 0, self.r1, self.r2)
+        cax, cay = qx - np.minimum(qx, rr), np.abs(qy) - self.h
+        q = np.stack([qx, qy], axis=-1)
+        t = np.clip(((k1 - q) @ k2) / (k2 @ k2), 0.0, 1.0)
+        cb = q - k1 + t[..., None] * k2
+        s = np.where((cb[..., 0] < 0) & (cay < 0), -1.0, 1.0)
+        return s * np.sqrt(np.minimum(cax * cax + cay * cay, np.sum(cb * cb, axis=-1)))
+
+    @property
+    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        r = max(self.r1, self.r2)
+        return _box_of(np.array([r, self.h, r]))
+
+
+class Ellipsoid(Primitive):
+    """Ellipsoid with semi-axes ``radii``: a distance bound (1-Lipschitz), not exact."""
+
+    kind = "ellipsoid"
+    lib = ("sd_ellipsoid",)
+    exact = False
+
+    def __init__(self, radii: float | Sequence[float] = (1.0, 0.5, 0.75)) -> None:
+        r = v.vector(self.kind, "radii", radii, positive=True)
+        super().__init__(radii=r)
+        self.r = r
+
+    def _expr(self, em: "Emitter", p: str) -> str:
+        return f"sdEllipsoid({p}, {em.vec(self.r)})"
+
+    def _distance(self, p: np.ndarray) -> np.ndarray:
+        near = (_len(p / self.r) - 1.0) * self.r.min()
+        far = _len(p) - self.r.max()
+        return np.maximum(near, far)
+
+    @property
+    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        return _box_of(self.r)
+
+
+class Octahedron(Primitive):
+    kind = "octahedron"
+    lib = ("sd_octahedron",)
+
+    def __init__(self, size: float = 1.0) -> None:
+        s = v.scalar(self.kind, "size", size, positive=True)
+        super().__init__(size=s)
+        self.s = s
+
+    def _expr(self, em: "Emitter", p: str) -> str:
+        return f"sdOctahedron({p}, {em.num(self.s)})"
+
+    def _distance(self, p: np.ndarray) -> np.ndarray:
+        s = self.s
+        a = np.abs(p)
+        m = a.sum(axis=-1) - s
+        x, y, z = a[..., 0], a[..., 1], a[..., 2]
+        cx, cy, cz = 3 * x < m, 3 * y < m, 3 * z < m
+        q = np.where(cx[..., None], a, np.where(cy[..., None], np.stack([y, z, x], -1),
+                                                  np.stack([z, x, y], -1)))
+        k = np.clip(0.5 * (q[..., 2] - q[..., 1] + s), 0.0, s)
+        edge = np.sqrt(q[..., 0] ** 2 + (q[..., 1] - s + k) ** 2 + (q[..., 2] - k) ** 2)
+        return np.where(cx | cy | cz, edge, m * 0.57735027)
+
+    @property
+    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        return _box_of(np.full(3, self.s))
+
+
+class HexPrism(Primitive):
+    """Hexagonal prism along Y; ``radius`` is the inradius (centre to a flat side)."""
+
+    kind = "hex_prism"
+    lib = ("sd_hex_prism",)
+
+    def __init__(self, radius: float = 0.5, height: float = 1.0) -> None:
+        r = v.scalar(self.kind, "radius", radius, positive=True)
+        h = v.scalar(self.kind, "height", height, positive=True)
+        super().__init__(radius=r, height=h)
+        self.r, self.h = r, h / 2
+
+    def _expr(self, em: "Emitter", p: str) -> str:
+        return f"sdHexPrism({p}, {em.num(self.r)}, {em.num(self.h)})"
+
+    def _distance(self, p: np.ndarray) -> np.ndarray:
+        kx, ky, kz = -0.8660254, 0.5, 0.57735027
+        x, y, z = np.abs(p[..., 0]), np.abs(p[..., 2]), np.abs(p[..., 1])
+        dk = np.minimum(kx * x + ky * y, 0.0)
+        x, y = x - 2 * dk * kx, y - 2 * dk * ky
+        cx = np.clip(x, -kz * self.r, kz * self.r)
+        dx = np.hypot(x - cx, y - self.r) * np.sign(y - self.r)
+        dy = z - self.h
+        return np.minimum(np.maximum(dx, dy), 0.0) + np.hypot(np.maximum(dx, 0.0), np.maximum(dy, 0.0))
+
+    @property
+    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        rc = self.r / 0.8660254037844386
+        return _box_of(np.array([rc, self.h, rc]))
+
+
+def sphere(radius: float = 1.0, center: Sequence[float] = (0.0, 0.0, 0.0)) -> Sphere:
+    """Sphere of ``radius`` centred at ``center``. Exact."""
+    return Sphere(radius, center)
+
+
+def box(size: float | Sequence[float] = 1.0) -> Box:
+    """Axis-aligned box centred at the origin; ``size`` is the full edge length(s). Exact."""
+    return Box(size)
+
+
+def rounded_box(size: float | Sequence[float] = 1.0, radius: float = 0.1) -> RoundedBox:
+    """Box of full edge lengths ``size`` with edges rounded by ``radius``. Exact."""
+    return RoundedBox(size, radius)
+
+
+def plane(normal: Sequence[float] = (0.0, 1.0, 0.0), point: Sequence[float] = (0.0, 0.0, 0.0)) -> Plane:
+    """Half-space behind the plane through ``point`` facing ``normal``. Exact."""
+    return Plane(normal, point)
+
+
+def torus(r1: float = 1.0, r2: float = 0.25) -> Torus:
+    """Torus in the XZ plane with major radius ``r1`` and tube radius ``r2``. Exact."""
+    return Torus(r1, r2)
+
+
+def capsule(a: Sequence[float] = (0.0, -0.5, 0.0), b: Sequence[float] = (0.0, 0.5, 0.0),
+            radius: float = 0.25) -> Capsule:
+    """Capsule (swept sphere) from point ``a`` to point ``b``. Exact."""
+    return Capsule(a, b, radius)
+
+
+def cylinder(radius: float = 0.5, height: float = 1.0) -> Cylinder:
+    """Capped cylinder along Y centred at the origin. Exact."""
+    return Cylinder(radius, height)
+
+
+def cone(height: float = 1.0, r1: float = 0.5, r2: float = 0.0) -> Cone:
+    """Capped cone along Y centred at the origin: radius ``r1`` at the bottom, ``r2`` at the top. Exact."""
+    return Cone(height, r1, r2)
+
+
+def ellipsoid(radii: float | Sequence[float] = (1.0, 0.5, 0.75)) -> Ellipsoid:
+    """Ellipsoid with semi-axes ``radii``. A distance bound, not exact."""
+    return Ellipsoid(radii)
+
+
+def octahedron(size: float = 1.0) -> Octahedron:
+    """Regular octahedron with vertices at distance ``size`` on each axis. Exact."""
+    return Octahedron(size)
+
+
+def hex_prism(radius: float = 0.5, height: float = 1.0) -> HexPrism:
+    """Hexagonal prism along Y with inradius ``radius`` and full ``height``. Exact."""
+    return HexPrism(radius, height)

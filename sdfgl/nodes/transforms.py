@@ -1,0 +1,197 @@
+"""Rigid transforms, scaling and colour: nodes that wrap exactly one child."""
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING, Sequence
+
+import numpy as np
+
+from ..errors import ParameterError
+from . import validate as v
+from .base import BOUND, IMPLICIT, Node
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ..codegen import Emitter
+
+
+class _Unary(Node):
+    """A node with one child whose exactness, Lipschitz factor and colour it keeps."""
+
+    def __init__(self, child: Node, **params: object) -> None:
+        super().__init__((child,), **params)
+        self.child = child
+
+    @property
+    def exactness(self) -> str:
+        return self.child.exactness
+
+    @property
+    def lipschitz(self) -> float:
+        return self.child.lipschitz
+
+
+class Translate(_Unary):
+    kind = "translate"
+
+    def __init__(self, child: Node, offset: Sequence[float]) -> None:
+        off = v.vector(self.kind, "offset", offset)
+        super().__init__(child, offset=off)
+        self.offset = off
+
+    def _emit(self, em: "Emitter", p: str) -> str:
+        return self.child.emit(em, em.shift(p, -self.offset))
+
+    def _distance(self, p: np.ndarray) -> np.ndarray:
+        return self.child._distance(p - self.offset)
+
+    @property
+    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        lo, hi = self.child.bounds
+        return lo + self.offset, hi + self.offset
+
+
+def _axis_angle_matrix(axis: np.ndarray, degrees: float) -> np.ndarray:
+    a = axis / np.linalg.norm(axis)
+    t = math.radians(degrees)
+    c, s = math.cos(t), math.sin(t)
+    k = np.array([[0, -a[2], a[1]], [a[2], 0, -a[0]], [-a[1], a[0], 0]])
+    return np.eye(3) * c + s * k + (1 - c) * np.outer(a, a)
+
+
+class Rotate(_Unary):
+    """Rotation by the orthonormal matrix ``matrix`` (world = matrix @ local)."""
+
+    kind = "rotate"
+
+    def __init__(self, child: Node, matrix: np.ndarray) -> None:
+        m = np.asarray(matrix, dtype=np.float64)
+        if m.shape != (3, 3) or not np.all(np.isfinite(m)) or not np.allclose(m @ m.T, np.eye(3), atol=1e-9):
+            raise ParameterError(f"{self.kind}: 'matrix' must be a finite 3x3 rotation, got {m.tolist()}")
+        super().__init__(child, matrix=m)
+        self.m = m
+
+    @classmethod
+    def axis_angle(cls, child: Node, angle: float, axis: Sequence[float]) -> "Rotate":
+        """Rotate ``child`` by ``angle`` degrees about ``axis``."""
+        deg = v.scalar(cls.kind, "angle", angle)
+        ax = v.vector(cls.kind, "axis", axis, nonzero=True)
+        return cls(child, _axis_angle_matrix(ax, deg))
+
+    @classmethod
+    def orient(cls, child: Node, axis: Sequence[float]) -> "Rotate":
+        """Rotate ``child`` so that its +Y axis points along ``axis``."""
+        a = v.vector("orient", "axis", axis, nonzero=True)
+        a = a / np.linalg.norm(a)
+        y = np.array([0.0, 1.0, 0.0])
+        c = float(np.clip(a @ y, -1.0, 1.0))
+        if c > 1 - 1e-12:
+            return cls(child, np.eye(3))
+        if c < -1 + 1e-12:
+            return cls(child, _axis_angle_matrix(np.array([1.0, 0.0, 0.0]), 180.0))
+        return cls(child, _axis_angle_matrix(np.cross(y, a), math.degrees(math.acos(c))))
+
+    def _emit(self, em: "Emitter", p: str) -> str:
+        # GLSL's mat3 constructor is column-major, so the row-major entries of m build m^T.
+        entries = ", ".join(em.num(x) for x in self.m.ravel())
+        q = em.assign("vec3", f"mat3({entries}) * {em.point(p)}")
+        return self.child.emit(em, q)
+
+    def _distance(self, p: np.ndarray) -> np.ndarray:
+        return self.child._distance(p @ self.m)
+
+    @property
+    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        lo, hi = self.child.bounds
+        finite = np.isfinite(lo) & np.isfinite(hi)
+        centre = np.where(finite, (lo + hi) / 2, 0.0)
+        half = np.where(finite, (hi - lo) / 2, np.inf)
+        a = np.abs(self.m)
+        contrib = np.where(a > 1e-12, a * half[None, :], 0.0)
+        h = contrib.sum(axis=1)
+        c = self.m @ centre
+        return c - h, c + h
+
+
+class Scale(_Unary):
+    """Uniform scale: f(p / s) * s, exactness kept."""
+
+    kind = "scale"
+
+    def __init__(self, child: Node, factor: float) -> None:
+        s = v.scalar(self.kind, "factor", factor, positive=True)
+        super().__init__(child, factor=s)
+        self.s = s
+
+    def _emit(self, em: "Emitter", p: str) -> str:
+        q = em.assign("vec3", f"{em.point(p)} * {em.num(1.0 / self.s)}")
+        return em.scale_distance(self.child.emit(em, q), em.num(self.s))
+
+    def _distance(self, p: np.ndarray) -> np.ndarray:
+        return self.child._distance(p * (1.0 / self.s)) * self.s
+
+    @property
+    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        lo, hi = self.child.bounds
+        return lo * self.s, hi * self.s
+
+
+class ScaleAxes(_Unary):
+    """Non-uniform scale: f(p / s) * min(s). A distance bound (1-Lipschitz), never exact."""
+
+    kind = "scale_axes"
+
+    def __init__(self, child: Node, factors: Sequence[float]) -> None:
+        s = v.vector(self.kind, "factors", factors, positive=True)
+        super().__init__(child, factors=s)
+        self.s = s
+
+    @property
+    def exactness(self) -> str:
+        return IMPLICIT if self.child.exactness == IMPLICIT else BOUND
+
+    def _emit(self, em: "Emitter", p: str) -> str:
+        q = em.assign("vec3", f"{em.point(p)} * {em.vec(1.0 / self.s)}")
+        return em.scale_distance(self.child.emit(em, q), em.num(self.s.min()))
+
+    def _distance(self, p: np.ndarray) -> np.ndarray:
+        return self.child._distance(p * (1.0 / self.s)) * self.s.min()
+
+    @property
+    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        lo, hi = self.child.bounds
+        return lo * self.s, hi * self.s
+
+
+def scale(node: Node, factor: float | Sequence[float]) -> Node:
+    """Scale ``node`` by a positive factor, or by one positive factor per axis."""
+    if isinstance(factor, (int, float, np.floating, np.integer)) and not isinstance(factor, bool):
+        return Scale(node, factor)
+    s = v.vector("scale", "factor", factor, positive=True)
+    if np.all(s == s[0]):
+        return Scale(node, float(s[0]))
+    return ScaleAxes(node, s)
+
+
+class Material(_Unary):
+    """Colour for every part of the child that has no colour of its own. Free in map()."""
+
+    kind = "color"
+
+    def __init__(self, child: Node, rgb: object) -> None:
+        c = v.color(self.kind, rgb)
+        super().__init__(child, rgb=c)
+        self.rgb = c
+
+    def _emit(self, em: "Emitter", p: str) -> str:
+        with em.colored(self.rgb):
+            return self.child.emit(em, p)
+
+    def _distance(self, p: np.ndarray) -> np.ndarray:
+        return self.child._distance(p)
+
+    @property
+    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        return self.child.bounds
+
+
+__all__ = ["Translate", "Rotate", "Scale", "ScaleAxes", "Material", "scale"]

@@ -1,0 +1,79 @@
+"""Render settings: validated once, turned into #defines by the code generator."""
+from __future__ import annotations
+
+from dataclasses import dataclass, field, fields
+from typing import Any
+
+from .errors import ParameterError
+
+OUTPUTS = ("color", "depth", "normal", "steps")
+SHADOWS = (False, "hard", "soft")
+METHODS = ("sphere",)
+HIT_MODES = ("cone", "relative", "absolute")
+
+
+@dataclass(frozen=True)
+class Settings:
+    """Everything that changes the generated shader besides the scene itself.
+
+    aa: samples per pixel side (1..4, so 1 to 16 rays a pixel).
+    shadows: False, "hard" or "soft" (Inigo Quilez's improved penumbra).
+    ao: 5-tap ambient occlusion along the normal.
+    ground: an analytic ground plane under the scene (intersected, not marched).
+    method: the marching algorithm.
+    max_steps: map() evaluations a primary ray may spend.
+    hit: "cone" (distance below hit_scale pixel footprints), "relative" (below
+        hit_scale * t) or "absolute" (below hit_scale).
+    hit_scale: the factor of the hit test.
+    max_dist: far limit along a ray where the scene is unbounded.
+    outputs: which images the draw writes (color always).
+    """
+
+    aa: int = 1
+    shadows: Any = "soft"
+    ao: bool = True
+    ground: bool = False
+    method: str = "sphere"
+    max_steps: int = 256
+    hit: str = "cone"
+    hit_scale: float = 0.5
+    max_dist: float = 1000.0
+    outputs: tuple[str, ...] = field(default=("color",))
+
+    def __post_init__(self) -> None:
+        if isinstance(self.aa, bool) or not isinstance(self.aa, int) or not 1 <= self.aa <= 4:
+            raise ParameterError(f"setting 'aa' must be an integer 1..4, got {self.aa!r}")
+        if self.shadows is True:
+            object.__setattr__(self, "shadows", "soft")
+        if self.shadows is None:
+            object.__setattr__(self, "shadows", False)
+        if self.shadows not in SHADOWS:
+            raise ParameterError(f"setting 'shadows' must be False, 'hard' or 'soft', got {self.shadows!r}")
+        for name in ("ao", "ground"):
+            if not isinstance(getattr(self, name), bool):
+                raise ParameterError(f"setting '{name}' must be True or False, got {getattr(self, name)!r}")
+        if self.method not in METHODS:
+            raise ParameterError(f"setting 'method' must be one of {', '.join(METHODS)}, got {self.method!r}")
+        if isinstance(self.max_steps, bool) or not isinstance(self.max_steps, int) or not 1 <= self.max_steps <= 100000:
+            raise ParameterError(f"setting 'max_steps' must be an integer 1..100000, got {self.max_steps!r}")
+        if self.hit not in HIT_MODES:
+            raise ParameterError(f"setting 'hit' must be one of {', '.join(HIT_MODES)}, got {self.hit!r}")
+        for name in ("hit_scale", "max_dist"):
+            val = getattr(self, name)
+            if isinstance(val, bool) or not isinstance(val, (int, float)) or not (0 < float(val) < float("inf")):
+                raise ParameterError(f"setting '{name}' must be a positive finite number, got {val!r}")
+            object.__setattr__(self, name, float(val))
+        outs = (self.outputs,) if isinstance(self.outputs, str) else tuple(self.outputs)
+        bad = [o for o in outs if o not in OUTPUTS]
+        if bad:
+            raise ParameterError(f"setting 'outputs' has unknown entries {bad}; choose from {', '.join(OUTPUTS)}")
+        object.__setattr__(self, "outputs", tuple(o for o in OUTPUTS if o in outs or o == "color"))
+
+    @classmethod
+    def build(cls, **kwargs: Any) -> "Settings":
+        """Settings from keyword arguments, naming any keyword that is not a setting."""
+        names = {f.name for f in fields(cls)}
+        unknown = sorted(set(kwargs) - names)
+        if unknown:
+            raise ParameterError(f"unknown setting(s) {', '.join(unknown)}; known: {', '.join(sorted(names))}")
+        return cls(**kwargs)

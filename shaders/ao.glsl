@@ -1,0 +1,13 @@
+// Ambient occlusion from five distance samples along the normal (Inigo Quilez, MIT),
+// the sample spacing scaled to the scene size.
+float calcAO(vec3 pos, vec3 nor) {
+    float occ = 0.0;
+    float sca = 1.0;
+    for (int i = 0; i < 5; i++) {
+        float h = (0.01 + 0.12 * float(i) / 4.0) * SCENE_SCALE * 0.5;
+        float d = map(pos + h * nor);
+        occ += (h - d) * sca / (SCENE_SCALE * 0.5);
+        sca *= 0.95;
+    }
+    return clamp(1.0 - 3.0 * occ, 0.0, 1.0);
+}
