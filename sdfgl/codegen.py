@@ -242,6 +242,8 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     if settings.ao:
         b.add_file("ao")
     b.add_file("shade")
+    if settings.ground:
+        b.add_file("ground")
     b.add_file("render_main")
     return b.build()
 

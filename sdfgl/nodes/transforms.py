@@ -67,6 +67,7 @@ class Rotate(_Unary):
         m = np.asarray(matrix, dtype=np.float64)
         if m.shape != (3, 3) or not np.all(np.isfinite(m)) or not np.allclose(m @ m.T, np.eye(3), atol=1e-9):
             raise ParameterError(f"{self.kind}: 'matrix' must be a finite 3x3 rotation, got {m.tolist()}")
+        m = np.where(np.abs(m) < 1e-15, 0.0, m)  # cos(90 deg) is 6e-17, not 0
         super().__init__(child, matrix=m)
         self.m = m
 
@@ -103,8 +104,9 @@ class Rotate(_Unary):
     def bounds(self) -> tuple[np.ndarray, np.ndarray]:
         lo, hi = self.child.bounds
         finite = np.isfinite(lo) & np.isfinite(hi)
-        centre = np.where(finite, (lo + hi) / 2, 0.0)
-        half = np.where(finite, (hi - lo) / 2, np.inf)
+        lo_f, hi_f = np.where(finite, lo, 0.0), np.where(finite, hi, 0.0)
+        centre = (lo_f + hi_f) / 2
+        half = np.where(finite, (hi_f - lo_f) / 2, np.inf)
         a = np.abs(self.m)
         contrib = np.where(a > 1e-12, a * half[None, :], 0.0)
         h = contrib.sum(axis=1)

@@ -1,0 +1,43 @@
+"""Scene files: Python files that define ``scene`` (a node) and optionally ``camera``."""
+from __future__ import annotations
+
+import runpy
+import traceback
+from dataclasses import dataclass
+from pathlib import Path
+
+from .camera import Camera
+from .errors import SceneFileError, SdfglError
+from .nodes.base import Node
+
+
+@dataclass
+class SceneFile:
+    path: Path
+    scene: Node
+    camera: Camera | None
+
+
+def load_scene_file(path: str | Path) -> SceneFile:
+    """Run ``path`` and return its ``scene`` and ``camera``; errors name the file and line."""
+    p = Path(path)
+    if not p.is_file():
+        raise SceneFileError(f"scene file '{p}' does not exist")
+    try:
+        ns = runpy.run_path(str(p), run_name="__sdfgl_scene__")
+    except SyntaxError as exc:
+        raise SceneFileError(f"scene file '{p}', line {exc.lineno}: syntax error: {exc.msg}") from exc
+    except Exception as exc:  # a user's script may raise anything: report where, not crash
+        frames = [f for f in traceback.extract_tb(exc.__traceback__) if Path(f.filename).resolve() == p.resolve()]
+        where = f", line {frames[-1].lineno}" if frames else ""
+        what = str(exc) if isinstance(exc, SdfglError) else f"{type(exc).__name__}: {exc}"
+        raise SceneFileError(f"scene file '{p}'{where}: {what}") from exc
+    scene = ns.get("scene")
+    if scene is None:
+        raise SceneFileError(f"scene file '{p}' does not define 'scene'")
+    if not isinstance(scene, Node):
+        raise SceneFileError(f"scene file '{p}': 'scene' must be an sdfgl node, got {type(scene).__name__}")
+    camera = ns.get("camera")
+    if camera is not None and not isinstance(camera, Camera):
+        raise SceneFileError(f"scene file '{p}': 'camera' must be an sdfgl Camera, got {type(camera).__name__}")
+    return SceneFile(p, scene, camera)
