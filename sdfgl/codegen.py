@@ -42,13 +42,16 @@ class Emitter:
     the point itself. This keeps scenes far from the origin exact to float32 rounding.
     """
 
-    def __init__(self, mode: str, default_color: Sequence[float] = DEFAULT_COLOR) -> None:
+    def __init__(self, mode: str, default_color: Sequence[float] = DEFAULT_COLOR,
+                 parent: "Emitter | None" = None) -> None:
         if mode not in ("dist", "color"):
             raise ValueError(mode)
         self.mode = mode
         self.lines: list[tuple[str, str]] = []  # (code, owner path)
-        self.libs: list[str] = []
-        self._path: list[str] = []
+        # library files and helper functions are shared with the emitter of map() itself
+        self.libs: list[str] = parent.libs if parent else []
+        self.functions: dict[tuple, tuple[str, list[tuple[str, str]]]] = parent.functions if parent else {}
+        self._path: list[str] = list(parent._path) if parent else []
         self._colors: list[tuple[float, float, float]] = [tuple(default_color)]  # type: ignore[list-item]
         self._count = 0
         self._shifts: dict[str, tuple[str, np.ndarray]] = {}
@@ -79,6 +82,19 @@ class Emitter:
         self._count += 1
         self.lines.append((f"    {glsl_type} {name} = {expr};", self.owner))
         return name
+
+    def function(self, node: Node) -> str:
+        """Name of a GLSL function computing ``node`` at its argument (emitted once per subtree)."""
+        key = (node.key, self.mode, self._colors[-1])
+        if key not in self.functions:
+            sub = Emitter(self.mode, self._colors[-1], parent=self)
+            result = node.emit(sub, "p")
+            name = f"{self.mode[0]}{len(self.functions)}_{node.kind}"
+            rtype = "float" if self.mode == "dist" else "vec4"
+            lines = [(f"{rtype} {name}(vec3 p) {{", self.owner), *sub.lines,
+                     (f"    return {result};", self.owner), ("}", self.owner)]
+            self.functions[key] = (name, lines)
+        return self.functions[key][0]
 
     # -- literals ----------------------------------------------------------------------
     def num(self, x: float) -> str:
@@ -158,6 +174,14 @@ class _Builder:
         return ShaderSource("\n".join(self.lines) + "\n", tuple(self.owners))
 
 
+def _helpers(b: _Builder, em: Emitter, done: set[str]) -> None:
+    for name, lines in em.functions.values():
+        if name not in done:
+            done.add(name)
+            for code, owner in lines:
+                b.add(code, owner)
+
+
 def _function(b: _Builder, signature: str, em: Emitter, result: str, ret: str) -> None:
     b.add(signature + " {", "(codegen)")
     for code, owner in em.lines:
@@ -229,11 +253,14 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     b.add_file("common")
     for name in libs:
         b.add_file(f"lib/{name}")
+    done: set[str] = set()
+    _helpers(b, dist, done)
     _function(b, "float map(vec3 p)", dist, dist_result, "{}")
     if target == "evaluate":
         b.add_file("evaluate_main")
         return b.build()
     assert color is not None
+    _helpers(b, color, done)
     _function(b, "vec3 mapColor(vec3 p)", color, color_result, "{}.rgb")
     b.add_file(f"march_{settings.method}")
     b.add_file("normal")

@@ -1,9 +1,11 @@
 """The scene graph: one module per family of nodes."""
 from .base import BOUND, EXACT, IMPLICIT, Node, Primitive
 from .booleans import difference, intersection, union
-from .primitives import (box, capsule, cone, cylinder, ellipsoid, hex_prism, octahedron, plane,
+from .deform import bend, twist
+from .domain import repeat
+from .primitives import (box, box_frame, capsule, cone, cylinder, ellipsoid, hex_prism, octahedron, plane,
                          rounded_box, sphere, torus)
 
 __all__ = ["Node", "Primitive", "EXACT", "BOUND", "IMPLICIT", "sphere", "box", "rounded_box", "plane",
            "torus", "capsule", "cylinder", "cone", "ellipsoid", "octahedron", "hex_prism", "union",
-           "intersection", "difference"]
+           "intersection", "difference", "box_frame", "twist", "bend", "repeat"]

@@ -152,6 +152,21 @@ class Node:
         from .transforms import scale
         return scale(self, factor)
 
+    def twist(self, rate: float) -> "Node":
+        """Twist about Y by ``rate`` degrees per unit of height (a bound; steps shortened here only)."""
+        from .deform import Twist
+        return Twist(self, rate)
+
+    def bend(self, rate: float) -> "Node":
+        """Bend in the XY plane by ``rate`` degrees per unit along X (a bound)."""
+        from .deform import Bend
+        return Bend(self, rate)
+
+    def repeat(self, period: float | Sequence[float], count: int | Sequence[int] | None = None) -> "Node":
+        """Copies every ``period`` along the axes with a non-zero period; ``count`` limits them."""
+        from .domain import Repeat
+        return Repeat(self, period, count)
+
     def color(self, r: float | Sequence[float], g: float | None = None, b: float | None = None) -> "Node":
         """Give every part of this node that has no colour of its own the colour (r, g, b)."""
         from .transforms import Material

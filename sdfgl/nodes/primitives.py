@@ -316,6 +316,40 @@ class HexPrism(Primitive):
         return _box_of(np.array([rc, self.h, rc]))
 
 
+class BoxFrame(Primitive):
+    """The twelve edges of a box of full size ``size``, as bars ``thickness`` thick."""
+
+    kind = "box_frame"
+    lib = ("sd_box_frame",)
+
+    def __init__(self, size: float | Sequence[float] = 1.0, thickness: float = 0.05) -> None:
+        s = v.vector(self.kind, "size", size, positive=True)
+        e = v.scalar(self.kind, "thickness", thickness, positive=True)
+        if e > s.min() / 2:
+            raise ParameterError(f"{self.kind}: parameter 'thickness' ({e:g}) must be at most half the "
+                                 f"smallest edge ({s.min() / 2:g})")
+        super().__init__(size=s, thickness=e)
+        self.half, self.e = s / 2, e / 2
+
+    def _expr(self, em: "Emitter", p: str) -> str:
+        return f"sdBoxFrame({p}, {em.vec(self.half)}, {em.num(self.e)})"
+
+    def _distance(self, p: np.ndarray) -> np.ndarray:
+        p = np.abs(p) - self.half
+        q = np.abs(p + self.e) - self.e
+        def part(a: np.ndarray) -> np.ndarray:
+            return _len(np.maximum(a, 0.0)) + np.minimum(a.max(axis=-1), 0.0)
+        px, py, pz = p[..., :1], p[..., 1:2], p[..., 2:]
+        qx, qy, qz = q[..., :1], q[..., 1:2], q[..., 2:]
+        return np.minimum(np.minimum(part(np.concatenate([px, qy, qz], -1)),
+                                     part(np.concatenate([qx, py, qz], -1))),
+                          part(np.concatenate([qx, qy, pz], -1)))
+
+    @property
+    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        return _box_of(self.half)
+
+
 def sphere(radius: float = 1.0, center: Sequence[float] = (0.0, 0.0, 0.0)) -> Sphere:
     """Sphere of ``radius`` centred at ``center``. Exact."""
     return Sphere(radius, center)
@@ -365,6 +399,11 @@ def ellipsoid(radii: float | Sequence[float] = (1.0, 0.5, 0.75)) -> Ellipsoid:
 def octahedron(size: float = 1.0) -> Octahedron:
     """Regular octahedron with vertices at distance ``size`` on each axis. Exact."""
     return Octahedron(size)
+
+
+def box_frame(size: float | Sequence[float] = 1.0, thickness: float = 0.05) -> BoxFrame:
+    """The edges of a box of full edge lengths ``size``, as square bars ``thickness`` wide. Exact."""
+    return BoxFrame(size, thickness)
 
 
 def hex_prism(radius: float = 0.5, height: float = 1.0) -> HexPrism:

@@ -1,0 +1,57 @@
+"""evaluate(): the generated GLSL map() run on the GPU at arbitrary points."""
+from __future__ import annotations
+
+import numpy as np
+
+from .codegen import generate
+from .errors import ParameterError
+from .nodes.base import Node, as_points
+from .render import Renderer, default_renderer
+from .settings import Settings
+
+_ROW = 1024  # points per texture row
+
+
+def evaluate(scene: Node, points: object, origin: object = (0.0, 0.0, 0.0),
+             renderer: Renderer | None = None) -> np.ndarray:
+    """Float32 values of the scene's generated map() at (..., 3) points.
+
+    ``origin`` is subtracted from the points in float64 and folded into the shader (as
+    render() does for far-away cameras), so points far from the world origin keep
+    float32 precision relative to it.
+    """
+    if not isinstance(scene, Node):
+        raise ParameterError(f"evaluate: 'scene' must be an sdfgl node, got {type(scene).__name__}")
+    p = as_points(points)
+    shape = p.shape[:-1]
+    flat = p.reshape(-1, 3)
+    if flat.shape[0] == 0:
+        return np.zeros(shape, dtype=np.float32)
+    if not np.all(np.isfinite(flat)):
+        raise ParameterError("evaluate: points must be finite")
+    org = np.asarray(origin, dtype=np.float64)
+    r = renderer or default_renderer()
+    ctx = r.ctx
+    prog = r.programs.get(generate(scene, Settings(shadows=False, ao=False), org, target="evaluate"))
+    n = flat.shape[0]
+    w = min(n, _ROW)
+    h = -(-n // w)
+    data = np.zeros((h * w, 4), dtype=np.float32)
+    data[:n, :3] = flat - org
+    tex = ctx.texture((w, h), 4, data.tobytes(), dtype="f4")
+    tex.filter = (ctx.NEAREST, ctx.NEAREST)
+    out = ctx.texture((w, h), 1, dtype="f4")
+    fbo = ctx.framebuffer(color_attachments=[out])
+    try:
+        tex.use(0)
+        if "uPoints" in prog:
+            prog["uPoints"].value = 0
+        fbo.use()
+        ctx.viewport = (0, 0, w, h)
+        r.vao(prog).render(vertices=3)
+        vals = np.frombuffer(out.read(), dtype=np.float32)[:n].copy()
+    finally:
+        fbo.release()
+        out.release()
+        tex.release()
+    return vals.reshape(shape)

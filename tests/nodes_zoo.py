@@ -1,0 +1,77 @@
+"""Every node type in a few configurations, and random compositions, for parity tests."""
+import numpy as np
+
+import sdfgl as sg
+
+from .conftest import all_primitives
+
+
+def all_nodes() -> dict[str, sg.Node]:
+    """One or more instances of every node type (primitives, booleans, transforms, ops)."""
+    a, b = sg.box((1.0, 0.6, 0.8)), sg.sphere(0.6).translate((0.4, 0.2, 0))
+    nodes = dict(all_primitives())
+    nodes.update({
+        "box_frame": sg.box_frame((1.2, 1.0, 0.8), 0.1),
+        "union": a | b,
+        "union_smooth": sg.union(a, b, k=0.3),
+        "union_nary": sg.union(a, b, sg.torus(0.6, 0.1), k=0.1),
+        "intersection": a & b,
+        "intersection_smooth": sg.intersection(a, b, k=0.2),
+        "difference": a - b,
+        "difference_smooth": sg.difference(a, b, k=0.2),
+        "translate": sg.torus(0.6, 0.2).translate((0.3, -0.2, 0.5)),
+        "rotate": sg.box((1.2, 0.4, 0.3)).rotate(35, (1, 2, 0.5)),
+        "orient": sg.cylinder(0.3, 1.5).orient((1, 1, 0)),
+        "scale": sg.octahedron(0.5).scale(1.7),
+        "scale_axes": sg.sphere(0.5).scale((1.5, 0.6, 1.0)),
+        "color": (a.color(1, 0, 0) | b.color(0, 0, 1)),
+        "twist": sg.box((0.6, 1.6, 0.4)).twist(90),
+        "bend": sg.box((1.6, 0.3, 0.4)).bend(40),
+        "repeat": sg.sphere(0.5).repeat((1.0, 0, 1.0)),
+        "repeat_finite": sg.box(0.4).rotate(30, (0, 1, 0)).repeat((1.0, 1.0, 0), count=(2, 1, 0)),
+        "repeat_cheap": sg.sphere(0.2).repeat(1.0),
+    })
+    return nodes
+
+
+PRIMS = list(all_primitives().values())
+
+
+def random_scene(rng: np.random.Generator, depth: int = 3) -> sg.Node:
+    """A random tree of primitives, booleans (hard and smooth) and transforms."""
+    if depth == 0 or rng.random() < 0.2:
+        node = PRIMS[rng.integers(len(PRIMS))]
+        if node.bounds[0][0] == -np.inf:  # keep planes out of compositions: bounded scenes
+            node = sg.sphere(0.5)
+        return node
+    pick = rng.integers(6)
+    if pick < 3:
+        op = (sg.union, sg.intersection, sg.difference)[pick]
+        k = float(rng.choice([0.0, 0.05, 0.3]))
+        return op(random_scene(rng, depth - 1), random_scene(rng, depth - 1), k=k)
+    child = random_scene(rng, depth - 1)
+    if pick == 3:
+        return child.translate(rng.uniform(-0.5, 0.5, 3))
+    if pick == 4:
+        return child.rotate(float(rng.uniform(-180, 180)), rng.normal(size=3) + 1e-3)
+    return child.scale(float(rng.uniform(0.5, 1.5)))
+
+
+def probe_points(node: sg.Node, rng: np.random.Generator, n: int = 4000) -> dict[str, np.ndarray]:
+    """Points near the surface, inside, far away, and at awkward places (centres, edges)."""
+    lo, hi = node.bounds
+    lo = np.where(np.isfinite(lo), lo, -3.0)
+    hi = np.where(np.isfinite(hi), hi, 3.0)
+    box = rng.uniform(lo - 0.5, hi + 0.5, size=(n, 3))
+    d = node.distance(box)
+    # walk towards the surface by the field value along a numerical gradient
+    h = 1e-5
+    g = np.stack([node.distance(box + h * e) - node.distance(box - h * e) for e in np.eye(3)], -1) / (2 * h)
+    gn = np.linalg.norm(g, axis=-1, keepdims=True)
+    near = box - d[:, None] * g / np.where(gn > 0, gn, 1) ** 2 * np.where(gn > 0, gn, 0)
+    near += rng.normal(scale=1e-3, size=near.shape)
+    inside = box[d < 0]
+    far = rng.normal(size=(500, 3)) * 200.0
+    corners = np.array(np.meshgrid(*[[a, (a + b) / 2, b] for a, b in zip(lo, hi)])).reshape(3, -1).T
+    awkward = np.concatenate([corners, np.zeros((1, 3)), np.eye(3) * 0.5, -np.eye(3) * 0.5])
+    return {"near": near, "inside": inside, "far": far, "awkward": awkward}
