@@ -25,8 +25,8 @@ class Camera:
         self.target = v.vector("camera", "target", target)
         self.up_hint = v.vector("camera", "up", up, nonzero=True)
         self.fov = v.scalar("camera", "fov", fov)
-        if not 0.1 <= self.fov <= 179.0:
-            raise ParameterError(f"camera: parameter 'fov' must be in [0.1, 179] degrees, got {self.fov:g}")
+        if not 1e-4 <= self.fov <= 179.0:
+            raise ParameterError(f"camera: parameter 'fov' must be in [1e-4, 179] degrees, got {self.fov:g}")
         self.basis()  # validate the geometry now
 
     @classmethod

@@ -262,6 +262,7 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     assert color is not None
     _helpers(b, color, done)
     _function(b, "vec3 mapColor(vec3 p)", color, color_result, "{}.rgb")
+    b.add_file("refine")
     b.add_file(f"march_{settings.method}")
     b.add_file("normal")
     if settings.shadows:

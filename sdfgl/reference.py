@@ -126,6 +126,8 @@ class ErrorReport:
     depth_px_median: float      # |t - t*| / footprint
     depth_px_p99: float
     depth_px_max: float
+    depth_outliers: int         # both hit, but more than 2 footprints apart: a near miss of one
+                                #   surface taken for a hit where the reference goes on to another
     silhouette_mismatch: int    # pixels hit in one image and not in the other
     false_hits: int             # render hit, reference miss
     lost_hits: int              # reference hit, render miss
@@ -168,6 +170,7 @@ def compare(result: RenderResult, ref: Reference) -> ErrorReport:
         pixels=int(depth.size), hits=int(g_hit.sum()),
         depth_abs_median=a[0], depth_abs_p99=a[1], depth_abs_max=a[2],
         depth_px_median=p[0], depth_px_p99=p[1], depth_px_max=p[2],
+        depth_outliers=int((err / foot > 2.0).sum()),
         silhouette_mismatch=int((r_hit != g_hit).sum()), false_hits=int((r_hit & ~g_hit).sum()),
         lost_hits=int((~r_hit & g_hit).sum()),
         normal_deg_median=nd[0], normal_deg_p99=nd[1], normal_deg_max=nd[2],

@@ -21,18 +21,21 @@ from .nodes.base import Node
 from .settings import Settings
 
 
-def shader_origin(eye: np.ndarray) -> np.ndarray:
+def shader_origin(scene: Node, eye: np.ndarray) -> np.ndarray:
     """The world point the shader's float32 coordinates are taken relative to.
 
-    Near the world origin this is 0, so moving the camera never changes the source. Far
-    from it (|eye| > 1000) it is the eye snapped to a power-of-two grid about 1/1000 of
-    |eye| wide: float32 then only has to resolve the scene relative to the camera.
+    The centre of a bounded scene (else the eye) is the anchor: where rays hit, float32
+    then only has to resolve the scene relative to itself. Within 1000 of the world
+    origin the origin stays 0; beyond, the anchor is snapped to a power-of-two grid
+    about 1/1000 of its distance wide, so a moving camera seldom changes the source.
     """
-    r = float(np.max(np.abs(eye)))
+    lo, hi = scene.bounds
+    anchor = (lo + hi) / 2 if np.all(np.isfinite(lo)) and np.all(np.isfinite(hi)) else eye
+    r = float(np.max(np.abs(anchor)))
     if r <= 1000.0:
         return np.zeros(3)
     step = 2.0 ** math.ceil(math.log2(r * 1e-3))
-    return np.round(eye / step) * step
+    return np.round(anchor / step) * step
 
 
 @dataclass
@@ -121,7 +124,7 @@ class Renderer:
         cam = camera if camera is not None else OrbitCamera.framing(*scene.bounds)
         if not isinstance(cam, Camera):
             raise ParameterError(f"render: 'camera' must be an sdfgl Camera, got {type(cam).__name__}")
-        origin = shader_origin(cam.eye)
+        origin = shader_origin(scene, cam.eye)
 
         t0 = time.perf_counter()
         source = generate(scene, st, origin)

@@ -1,5 +1,5 @@
 // Hart's sphere tracing: step by the distance bound until it falls below the hit
-// threshold. Returns the hit t (refined by the last distance) or -1.0; adds the map()
+// threshold. Returns the hit t (refined by refineHit) or -1.0 and adds the map()
 // evaluations it spent to steps.
 float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
     float t = tmin;
@@ -7,7 +7,7 @@ float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
         float d = map(ro + rd * t);
         steps++;
         if (d < hitEpsilon(t)) {
-            return max(t + d, tmin);
+            return refineHit(ro, rd, tmin, t, d, steps);
         }
         t += d;
         if (t > tmax) {
