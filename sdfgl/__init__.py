@@ -11,7 +11,7 @@ from .codegen import compile
 from .errors import ContextError, ParameterError, SceneFileError, SdfglError, ShaderCompileError
 from .evaluate import evaluate
 from .nodes import (BOUND, EXACT, IMPLICIT, Node, bend, box, box_frame, capsule, cone, cylinder, difference, ellipsoid,
-                    hex_prism, intersection, octahedron, plane, repeat, rounded_box, sphere, torus, twist,
+                    hex_prism, intersection, octahedron, plane, product, repeat, rounded_box, sphere, torus, twist,
                     union)
 from .render import RenderResult, Renderer, render
 
@@ -24,7 +24,7 @@ __version__ = "0.1.0"
 __all__ = [
     "Camera", "OrbitCamera", "compile", "render", "Renderer", "RenderResult", "Node",
     "sphere", "box", "rounded_box", "plane", "torus", "capsule", "cylinder", "cone", "ellipsoid",
-    "octahedron", "hex_prism", "box_frame", "twist", "bend", "repeat", "evaluate", "union", "intersection", "difference", "X", "Y", "Z",
+    "octahedron", "hex_prism", "box_frame", "product", "twist", "bend", "repeat", "evaluate", "union", "intersection", "difference", "X", "Y", "Z",
     "EXACT", "BOUND", "IMPLICIT", "SdfglError", "ParameterError", "ShaderCompileError", "ContextError",
     "SceneFileError",
 ]

@@ -27,7 +27,7 @@ def _add_settings(p: argparse.ArgumentParser) -> None:
     p.add_argument("--shadows", type=_shadows, default="soft", help="off, hard or soft (default soft)")
     p.add_argument("--no-ao", dest="ao", action="store_false", help="turn ambient occlusion off")
     p.add_argument("--ground", action="store_true", help="add an analytic ground plane under the scene")
-    p.add_argument("--method", default="sphere", help="marching method (default sphere)")
+    p.add_argument("--method", default="enhanced", help="marching method: sphere, relaxed, enhanced (default), newton, forward_newton, reference")
     p.add_argument("--max-steps", type=int, default=256, help="step limit per primary ray (default 256)")
 
 
@@ -77,6 +77,12 @@ def cmd_shader(a: argparse.Namespace) -> int:
     return 0
 
 
+def cmd_bench(a: argparse.Namespace) -> int:
+    from .bench import run
+    run(a.quick, a.size, a.out, not a.no_progress, a.scenes)
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="sdfgl", description="Render signed-distance-function scenes with GLSL.")
     sub = parser.add_subparsers(dest="command", required=True)
@@ -98,6 +104,11 @@ def build_parser() -> argparse.ArgumentParser:
     s.add_argument("--demo", action="store_true", help="use the built-in showcase scene")
     _add_settings(s)
     s.set_defaults(func=cmd_shader)
+
+    from .bench import add_arguments
+    b = sub.add_parser("bench", help="benchmark marching methods: frame time beside error")
+    add_arguments(b)
+    b.set_defaults(func=cmd_bench)
     return parser
 
 

@@ -15,8 +15,8 @@ import numpy as np
 
 from . import shaderlib
 from .errors import ParameterError
-from .nodes.base import Node
-from .settings import Settings
+from .nodes.base import IMPLICIT, Node
+from .settings import DEFAULT_OMEGA, DISTANCE_METHODS, Settings
 
 DEFAULT_COLOR = (0.7, 0.68, 0.64)
 GLSL_VERSION = "#version 330 core"
@@ -198,12 +198,25 @@ def scene_frame(scene: Node) -> tuple[np.ndarray, np.ndarray, float]:
     return np.where(np.isfinite(lo), lo, -GLSL_FAR), np.where(np.isfinite(hi), hi, GLSL_FAR), scale
 
 
+def max_steps_of(settings: Settings, scale: float, lo: np.ndarray, hi: np.ndarray) -> int:
+    """The loop limit the shader gets: max_steps, or enough fixed steps for "reference"."""
+    if settings.method != "reference":
+        return settings.max_steps
+    diag = float(np.linalg.norm(np.minimum(hi - lo, settings.max_dist)))
+    return max(settings.max_steps, int(diag / ref_step(settings, scale)) + 2)
+
+
+def ref_step(settings: Settings, scale: float) -> float:
+    """The fixed step of the "reference" method."""
+    return settings.ref_step if settings.ref_step is not None else scale / 512.0
+
+
 def _defines(scene: Node, settings: Settings, origin: np.ndarray) -> list[str]:
     lo, hi, scale = scene_frame(scene)
     pad = 1e-3 * scale
     d = [
         f"#define AA {settings.aa}",
-        f"#define MAX_STEPS {settings.max_steps}",
+        f"#define MAX_STEPS {max_steps_of(settings, scale, lo, hi)}",
         f"#define HIT_{settings.hit.upper()}",
         f"#define HIT_SCALE {glsl_float(settings.hit_scale)}",
         f"#define MAX_DIST {glsl_float(settings.max_dist)}",
@@ -211,6 +224,11 @@ def _defines(scene: Node, settings: Settings, origin: np.ndarray) -> list[str]:
         f"#define BOUNDS_LO vec3({', '.join(glsl_float(x) for x in lo - pad - origin)})",
         f"#define BOUNDS_HI vec3({', '.join(glsl_float(x) for x in hi + pad - origin)})",
     ]
+    if settings.method in DEFAULT_OMEGA:
+        omega = settings.omega if settings.omega is not None else DEFAULT_OMEGA[settings.method]
+        d.append(f"#define OMEGA {glsl_float(omega)}")
+    if settings.method == "reference":
+        d.append(f"#define REF_STEP {glsl_float(ref_step(settings, scale))}")
     if settings.shadows:
         d += ["#define SHADOWS", f"#define SHADOWS_{settings.shadows.upper()}"]
     if settings.ao:
@@ -241,6 +259,14 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     """
     if not isinstance(scene, Node):
         raise ParameterError(f"scene must be an sdfgl node, got {type(scene).__name__} {scene!r}")
+    if scene.exactness == IMPLICIT and target == "render":
+        if settings.method in DISTANCE_METHODS:
+            raise ParameterError(
+                f"{scene.label()} is an implicit field, not a distance bound: method {settings.method!r} would step "
+                f"through surfaces. Use method='newton', 'forward_newton' or 'reference'.")
+        if settings.ao:
+            raise ParameterError(f"{scene.label()} is an implicit field: ambient occlusion needs distances; "
+                                 f"pass ao=False")
     org = np.asarray(origin, dtype=np.float64)
     dist, dist_result = _emit_map(scene, "dist", org)
     color, color_result = _emit_map(scene, "color", org) if target == "render" else (None, "")
@@ -263,10 +289,14 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     _helpers(b, color, done)
     _function(b, "vec3 mapColor(vec3 p)", color, color_result, "{}.rgb")
     b.add_file("refine")
+    if settings.method in ("newton", "forward_newton", "reference"):
+        b.add_file("bracket")
+    if settings.method in ("newton", "forward_newton"):
+        b.add_file("ray_derivative")
     b.add_file(f"march_{settings.method}")
     b.add_file("normal")
     if settings.shadows:
-        b.add_file(f"shadow_{settings.shadows}")
+        b.add_file("shadow_march" if scene.exactness == IMPLICIT else f"shadow_{settings.shadows}")
     if settings.ao:
         b.add_file("ao")
     b.add_file("shade")

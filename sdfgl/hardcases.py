@@ -11,7 +11,7 @@ from typing import Callable
 import numpy as np
 
 from .camera import Camera, OrbitCamera
-from .nodes import box, box_frame, difference, plane, rounded_box, sphere, union
+from .nodes import box, box_frame, difference, plane, product, rounded_box, sphere, union
 from .nodes.base import Node
 from .reference import ErrorReport
 
@@ -74,6 +74,11 @@ def _tunnel() -> tuple[Node, Camera]:
 def _five_spheres() -> tuple[Node, Camera]:
     balls = [sphere(0.5).translate((-2.0 + i, 0.0, -0.6 * i)) for i in range(5)]
     return union(*balls), Camera.look_at((0, 0.3, 4), (0, 0, -1.2), fov=60)
+
+
+def _product_union() -> tuple[Node, Camera]:
+    s = product(sphere(0.6).translate((-0.5, 0, 0)), box(0.8).translate((0.6, 0, 0)))
+    return s, OrbitCamera(distance=4, yaw=20, pitch=20)
 
 
 def _thin_shell() -> tuple[Node, Camera]:
@@ -139,6 +144,8 @@ CASES: tuple[HardCase, ...] = (
     HardCase("rounded_box", "seed Exp. 1: silhouette grazing on a rounded box", _rounded_box),
     HardCase("tunnel", "seed Exp. 2: four planes meeting ahead of the camera", _tunnel),
     HardCase("five_spheres", "seed Exp. 3: staggered spheres, rays pass near nearer ones", _five_spheres),
+    HardCase("product_union", "seed: a product of two SDFs, not a distance (Newton marching)",
+             _product_union, settings={"method": "newton"}, expect=Expect(mismatch_frac=0.05, outlier_frac=0.02)),
     HardCase("thin_shell", "a spherical shell 1e-3 thick, cut open", _thin_shell,
              expect=Expect(outlier_frac=0.02)),
     HardCase("box_frame", "thin bars (0.02) of a box frame", _box_frame, expect=Expect(mismatch_frac=0.07)),

@@ -8,7 +8,10 @@ from .errors import ParameterError
 
 OUTPUTS = ("color", "depth", "normal", "steps")
 SHADOWS = (False, "hard", "soft")
-METHODS = ("sphere",)
+METHODS = ("sphere", "relaxed", "enhanced", "newton", "forward_newton", "reference")
+# methods that step by the field value and so need a distance bound
+DISTANCE_METHODS = ("sphere", "relaxed", "enhanced")
+DEFAULT_OMEGA = {"relaxed": 1.6, "enhanced": 0.9}
 HIT_MODES = ("cone", "relative", "absolute")
 
 
@@ -20,7 +23,12 @@ class Settings:
     shadows: False, "hard" or "soft" (Inigo Quilez's improved penumbra).
     ao: 5-tap ambient occlusion along the normal.
     ground: an analytic ground plane under the scene (intersected, not marched).
-    method: the marching algorithm.
+    method: the marching algorithm: "sphere" (Hart), "relaxed" (Keinert et al.),
+        "enhanced" (Balint & Valasek), "newton", "forward_newton" (the seed thesis) or
+        "reference" (fixed small steps and bisection, for validation).
+    omega: relaxation of "relaxed" (in (1, 2), default 1.6) or "enhanced" (in (0, 1],
+        default 0.9); None for the default.
+    ref_step: the step of "reference" (default: the scene size / 512).
     max_steps: map() evaluations a primary ray may spend.
     hit: "cone" (distance below hit_scale pixel footprints), "relative" (below
         hit_scale * t) or "absolute" (below hit_scale).
@@ -33,10 +41,12 @@ class Settings:
     shadows: Any = "soft"
     ao: bool = True
     ground: bool = False
-    method: str = "sphere"
+    method: str = "enhanced"
+    omega: Any = None
+    ref_step: Any = None
     max_steps: int = 256
     hit: str = "cone"
-    hit_scale: float = 0.5
+    hit_scale: float = 0.25
     max_dist: float = 1000.0
     outputs: tuple[str, ...] = field(default=("color",))
 
@@ -54,6 +64,19 @@ class Settings:
                 raise ParameterError(f"setting '{name}' must be True or False, got {getattr(self, name)!r}")
         if self.method not in METHODS:
             raise ParameterError(f"setting 'method' must be one of {', '.join(METHODS)}, got {self.method!r}")
+        if self.omega is not None:
+            lo_hi = {"relaxed": (1.0, 2.0), "enhanced": (0.0, 1.0)}.get(self.method)
+            if lo_hi is None:
+                raise ParameterError(f"setting 'omega' applies to methods 'relaxed' and 'enhanced', not {self.method!r}")
+            ok = isinstance(self.omega, (int, float)) and not isinstance(self.omega, bool)
+            if not ok or not (lo_hi[0] < float(self.omega) <= lo_hi[1]) or (self.method == "relaxed" and self.omega == 2):
+                raise ParameterError(f"setting 'omega' for {self.method!r} must lie in ({lo_hi[0]:g}, {lo_hi[1]:g}"
+                                     f"{')' if self.method == 'relaxed' else ']'}, got {self.omega!r}")
+            object.__setattr__(self, "omega", float(self.omega))
+        if self.ref_step is not None:
+            if isinstance(self.ref_step, bool) or not isinstance(self.ref_step, (int, float)) or not self.ref_step > 0:
+                raise ParameterError(f"setting 'ref_step' must be a positive number, got {self.ref_step!r}")
+            object.__setattr__(self, "ref_step", float(self.ref_step))
         if isinstance(self.max_steps, bool) or not isinstance(self.max_steps, int) or not 1 <= self.max_steps <= 100000:
             raise ParameterError(f"setting 'max_steps' must be an integer 1..100000, got {self.max_steps!r}")
         if self.hit not in HIT_MODES:

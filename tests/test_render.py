@@ -42,7 +42,7 @@ def test_unit_sphere_depth_and_silhouette(renderer):
     rendered = np.isfinite(res.depth)
     mismatch = analytic != rendered
     # any disagreement lies within one pixel footprint of the true silhouette: the cone
-    # hit test counts a ray that passes within hit_scale (0.5) footprints as a hit
+    # hit test counts a ray that passes within hit_scale (0.25) footprints as a hit
     footprint = 3.0 * cam.pixel_angle(h)
     assert np.all(np.abs(closest[mismatch] - 1.0) < footprint)
     assert np.all(rendered[mismatch])  # only grazing near-misses, never a lost hit

@@ -1,6 +1,6 @@
 """The scene graph: one module per family of nodes."""
 from .base import BOUND, EXACT, IMPLICIT, Node, Primitive
-from .booleans import difference, intersection, union
+from .booleans import difference, intersection, product, union
 from .deform import bend, twist
 from .domain import repeat
 from .primitives import (box, box_frame, capsule, cone, cylinder, ellipsoid, hex_prism, octahedron, plane,
@@ -8,4 +8,4 @@ from .primitives import (box, box_frame, capsule, cone, cylinder, ellipsoid, hex
 
 __all__ = ["Node", "Primitive", "EXACT", "BOUND", "IMPLICIT", "sphere", "box", "rounded_box", "plane",
            "torus", "capsule", "cylinder", "cone", "ellipsoid", "octahedron", "hex_prism", "union",
-           "intersection", "difference", "box_frame", "twist", "bend", "repeat"]
+           "intersection", "difference", "box_frame", "product", "twist", "bend", "repeat"]

@@ -151,6 +151,49 @@ class Difference(_Boolean):
         return self.children[0].bounds
 
 
+class Product(Node):
+    """The product a * b of two fields: zero on both surfaces, but not a distance.
+
+    The seed thesis's "product union": an implicit field with no Lipschitz bound, which
+    only the Newton and reference marchers may render. Its solid (a * b < 0) is where
+    exactly one operand is inside.
+    """
+
+    kind = "product"
+
+    def __init__(self, a: Node, b: Node) -> None:
+        super().__init__((a, b))
+
+    @property
+    def exactness(self) -> str:
+        return IMPLICIT
+
+    @property
+    def lipschitz(self) -> float:
+        return float("inf")
+
+    def _emit(self, em: "Emitter", p: str) -> str:
+        a = self.children[0].emit(em, p)
+        b = self.children[1].emit(em, p)
+        if em.mode == "dist":
+            return em.assign("float", f"{a} * {b}")
+        # colour of the nearer surface
+        return em.assign("vec4", f"vec4(abs({a}.w) < abs({b}.w) ? {a}.rgb : {b}.rgb, {a}.w * {b}.w)")
+
+    def _distance(self, p: np.ndarray) -> np.ndarray:
+        return self.children[0]._distance(p) * self.children[1]._distance(p)
+
+    @property
+    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        los, his = zip(*(c.bounds for c in self.children))
+        return np.min(los, axis=0), np.max(his, axis=0)
+
+
+def product(a: Node, b: Node) -> Node:
+    """The implicit field a * b (zero on both surfaces); render with a Newton method."""
+    return Product(a, b)
+
+
 def union(*nodes: Node, k: float = 0.0) -> Node:
     """Union of two or more nodes; ``k`` > 0 blends them smoothly over that distance."""
     return Union(*nodes, k=k)

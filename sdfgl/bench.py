@@ -1,0 +1,357 @@
+"""The frametime benchmark: speed beside error for every marching method and setting.
+
+Frame times are wall-clock draws closed by ctx.finish() (GL timer queries are not
+trusted on llvmpipe), variants interleaved round by round so drift cancels, reported
+as medians, p95 and ratios. Errors come from the same shader against the float64
+reference (sdfgl.reference). Run it as ``sdfgl bench`` or ``python demos/bench.py``.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import platform
+import statistics
+import sys
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Callable, Sequence
+
+import moderngl
+import numpy as np
+
+from . import hardcases
+from .camera import Camera
+from .codegen import generate, max_steps_of, scene_frame
+from .gl.context import describe
+from .nodes.base import IMPLICIT, Node
+from .reference import Reference, compare, trace
+from .render import Renderer, camera_uniforms, shader_origin
+from .settings import DISTANCE_METHODS, Settings
+
+
+@dataclass
+class Variant:
+    """One shader to time: a scene with one set of settings."""
+
+    scene: str
+    label: str
+    settings: dict
+    node: Node
+    camera: Camera
+    times: list[float] = field(default_factory=list)
+    result: dict = field(default_factory=dict)
+
+
+class Progress:
+    """A one-line progress bar on stderr (silent when stderr is not a terminal and quiet)."""
+
+    def __init__(self, total: int, enabled: bool = True) -> None:
+        self.total, self.done, self.enabled = max(total, 1), 0, enabled
+        self.t0 = time.perf_counter()
+
+    def step(self, what: str) -> None:
+        self.done += 1
+        if not self.enabled:
+            return
+        frac = self.done / self.total
+        bar = "#" * int(30 * frac) + "-" * (30 - int(30 * frac))
+        eta = (time.perf_counter() - self.t0) / frac * (1 - frac)
+        sys.stderr.write(f"\r[{bar}] {self.done}/{self.total} eta {eta:4.0f}s {what[:40]:<40}")
+        if self.done == self.total:
+            sys.stderr.write("\n")
+        sys.stderr.flush()
+
+
+class FrameTimer:
+    """Times single draws of prepared programs on one renderer."""
+
+    def __init__(self, renderer: Renderer, size: tuple[int, int]) -> None:
+        self.r, self.size = renderer, size
+        self.fbo = renderer.ctx.simple_framebuffer(size)
+
+    def prepare(self, v: Variant) -> tuple[float, float]:
+        """Compile v's program; return (link seconds, first-frame seconds)."""
+        st = Settings.build(**v.settings)
+        origin = shader_origin(v.node, v.camera.eye)
+        t0 = time.perf_counter()
+        prog = self.r.programs.get(generate(v.node, st, origin))
+        t1 = time.perf_counter()
+        v.result["_prog"] = (prog, origin)
+        first = self.draw(v)
+        return t1 - t0, first
+
+    def draw(self, v: Variant) -> float:
+        prog, origin = v.result["_prog"]
+        camera_uniforms(prog, v.camera, self.size, origin)
+        self.fbo.use()
+        self.r.ctx.viewport = (0, 0, *self.size)
+        t0 = time.perf_counter()
+        self.r.vao(prog).render(moderngl.TRIANGLES, vertices=3)
+        self.r.ctx.finish()
+        return time.perf_counter() - t0
+
+
+def time_interleaved(timer: FrameTimer, variants: Sequence[Variant], frames: int, warmup: int,
+                     progress: Progress) -> None:
+    """Compile each variant, then draw all of them round-robin ``warmup + frames`` times."""
+    for v in variants:
+        link, first = timer.prepare(v)
+        v.result.update(compile_s=link, first_frame_s=first)
+        progress.step(f"compile {v.scene}/{v.label}")
+    for rnd in range(warmup + frames):
+        for v in variants:
+            dt = timer.draw(v)
+            if rnd >= warmup:
+                v.times.append(dt)
+        progress.step(f"round {rnd + 1}")
+    for v in variants:
+        ts = sorted(v.times)
+        v.result.update(frame_ms_median=1000 * statistics.median(ts),
+                        frame_ms_p95=1000 * ts[min(len(ts) - 1, int(round(0.95 * (len(ts) - 1))))])
+
+
+def measure_errors(renderer: Renderer, v: Variant, ref: Reference, size: tuple[int, int]) -> None:
+    """Steps statistics and errors against the reference for one variant."""
+    res = renderer.render(v.node, v.camera, size, outputs=("color", "depth", "normal", "steps"), **v.settings)
+    steps = res.steps.astype(np.float64)
+    marched = steps > 0
+    st = Settings.build(**v.settings)
+    lo, hi, scale = scene_frame(v.node)
+    limit = max_steps_of(st, scale, lo, hi)
+    e = compare(res, ref)
+    both = np.isfinite(res.depth) & ref.hit
+    v.result.update(
+        steps_mean=float(steps.mean()), steps_mean_marched=float(steps[marched].mean()) if marched.any() else 0.0,
+        steps_p95=float(np.percentile(steps, 95)), steps_max=int(steps.max()),
+        out_of_steps=float((steps >= limit).mean()),
+        depth_abs_mse=float(np.mean(np.square(res.depth[both].astype(np.float64) - ref.t[both]))) if both.any() else 0.0,
+        **e.as_dict())
+
+
+# -- what to run -------------------------------------------------------------------------
+
+METHOD_VARIANTS: dict[str, list[dict]] = {
+    "sphere": [{"method": "sphere"}],
+    "relaxed": [{"method": "relaxed"}],
+    "enhanced": [{"method": "enhanced"}],
+    "newton": [{"method": "newton"}],
+    "forward_newton": [{"method": "forward_newton"}],
+    "reference": [{"method": "reference"}],
+}
+
+FULL_EXTRA: list[dict] = [
+    {"method": "sphere", "hit_scale": 0.1}, {"method": "sphere", "hit_scale": 0.5}, {"method": "sphere", "hit_scale": 1.0},
+    {"method": "sphere", "hit": "absolute", "hit_scale": 1e-4},
+    {"method": "relaxed", "omega": 1.2}, {"method": "relaxed", "omega": 1.9},
+    {"method": "enhanced", "hit": "absolute", "hit_scale": 1e-4},
+    {"method": "enhanced", "omega": 0.6}, {"method": "enhanced", "omega": 1.0},
+    {"method": "enhanced", "hit_scale": 0.1}, {"method": "enhanced", "hit_scale": 0.5},
+    {"method": "enhanced", "hit_scale": 1.0},
+]
+
+SEED_SCENES = ("rounded_box", "tunnel", "five_spheres", "product_union")
+MORE_SCENES = ("grazing_sphere", "horizon_plane", "thin_shell", "twist", "repeat_boundary")
+
+# The seed thesis's averages (Tables 5.1-5.3) and medians over 17 scenes (Table 5.4):
+# steps, time in seconds, squared depth error against Regular Marching.
+SEED_TABLES = {
+    "rounded_box": {"sphere": (13.772, 0.12, 4.43e-06), "enhanced": (9.38034, 0.12, 5.12e-06),
+                    "newton": (238.188, 3.51, 16.742), "forward_newton": (27.4862, 0.62, 0.0928301),
+                    "reference": (304.861, 1.08, 0.0)},
+    "tunnel": {"sphere": (500, 2.77, 218650), "enhanced": (433.704, 3.44, 0.008832),
+               "newton": (2, 0.06, 2.53e-05), "forward_newton": (31.0072, 0.52, 2.52e-05),
+               "reference": (136.104, 0.54, 0.0)},
+    "five_spheres": {"sphere": (12.4588, 0.12, 4.26e-07), "enhanced": (9.90928, 0.13, 0.030327),
+                     "newton": (877.792, 21.48, 0.06056), "forward_newton": (181.529, 5.03, 2.04885),
+                     "reference": (472.917, 2.62, 0.0)},
+    "median of 17 scenes": {"sphere": (11.3928, 8.5711, 1.2533e-06), "enhanced": (8.50484, 0.127701, 5.12e-06),
+                            "newton": (714.562, 21.4848, 0.01184), "forward_newton": (142.442, 12.3632, 0.00179),
+                            "reference": (440.579, 2.62416, 0.0)},
+}
+
+
+def label_of(s: dict) -> str:
+    extra = ",".join(f"{k}={v}" for k, v in s.items() if k != "method")
+    return s["method"] + (f"[{extra}]" if extra else "")
+
+
+def build_variants(scene_names: Sequence[str], full: bool) -> list[Variant]:
+    out = []
+    for name in scene_names:
+        hc = hardcases.case(name)
+        node, cam = hc.build()
+        settings = [s for group in METHOD_VARIANTS.values() for s in group] + (FULL_EXTRA if full else [])
+        for s in settings:
+            if node.exactness == IMPLICIT and s["method"] in DISTANCE_METHODS:
+                continue
+            full_s = {"shadows": False, "ao": False, "max_dist": hc.max_dist, **hc.settings, **s}
+            if "method" in hc.settings:
+                full_s["method"] = s["method"]
+            out.append(Variant(name, label_of(s), full_s, node, cam))
+    return out
+
+
+def feature_variants() -> list[Variant]:
+    """AA 1..4, shadows hard/soft and AO, each on its own, on the demo scene."""
+    from .demo import demo_camera, demo_scene
+    node, cam = demo_scene(), demo_camera()
+    base = {"aa": 1, "shadows": False, "ao": False, "ground": True}
+    toggles: list[tuple[str, dict]] = [("base (aa1, no shadows, no AO)", {})]
+    toggles += [(f"aa{n}", {"aa": n}) for n in (2, 3, 4)]
+    toggles += [("shadows hard", {"shadows": "hard"}), ("shadows soft", {"shadows": "soft"}), ("ao", {"ao": True}),
+                ("all (aa2, soft, ao)", {"aa": 2, "shadows": "soft", "ao": True})]
+    return [Variant("demo", name, {**base, **t}, node, cam) for name, t in toggles]
+
+
+# -- reports -------------------------------------------------------------------------------
+
+def _fmt(x: float) -> str:
+    return f"{x:.3g}" if isinstance(x, float) else str(x)
+
+
+def methods_table(variants: Sequence[Variant]) -> str:
+    rows = ["| scene | variant | frame ms (median / p95) | vs sphere | steps/px (mean / marched / p95 / max) "
+            "| out of steps | depth err px (median / p99) | outliers | silhouette | normal deg (median) | compile ms |",
+            "|---|---|---|---|---|---|---|---|---|---|---|"]
+    by_scene: dict[str, list[Variant]] = {}
+    for v in variants:
+        by_scene.setdefault(v.scene, []).append(v)
+    for scene, vs in by_scene.items():
+        base = next((v for v in vs if v.label == "sphere"), None)
+        for v in vs:
+            r = v.result
+            ratio = f"{r['frame_ms_median'] / base.result['frame_ms_median']:.2f}" if base else "-"
+            rows.append(
+                f"| {scene} | {v.label} | {r['frame_ms_median']:.2f} / {r['frame_ms_p95']:.2f} | {ratio} | "
+                f"{r['steps_mean']:.2f} / {r['steps_mean_marched']:.1f} / {r['steps_p95']:.0f} / {r['steps_max']} | "
+                f"{100 * r['out_of_steps']:.2f}% | {r['depth_px_median']:.2g} / {r['depth_px_p99']:.2g} | "
+                f"{r['depth_outliers']} | {r['silhouette_mismatch']} ({r['false_hits']}/{r['lost_hits']}) | "
+                f"{r['normal_deg_median']:.2g} | {1000 * r['compile_s']:.0f} |")
+    return "\n".join(rows)
+
+
+def seed_table(variants: Sequence[Variant]) -> str:
+    rows = ["| scene | method | thesis steps | ours steps/marched ray | thesis time s | ours frame ms "
+            "| thesis sq. depth err | ours mean sq. depth err | ours depth err px (median) |",
+            "|---|---|---|---|---|---|---|---|---|"]
+    for scene in SEED_SCENES:
+        for v in variants:
+            if v.scene != scene or "[" in v.label:
+                continue
+            t = SEED_TABLES.get(scene, {}).get(v.label)
+            r = v.result
+            ts = (f"{t[0]:g}", f"{t[1]:g}", f"{t[2]:.3g}") if t else ("-", "-", "-")
+            rows.append(f"| {scene} | {v.label} | {ts[0]} | {r['steps_mean_marched']:.1f} | {ts[1]} | "
+                        f"{r['frame_ms_median']:.2f} | {ts[2]} | {r['depth_abs_mse']:.3g} | {r['depth_px_median']:.2g} |")
+    med = SEED_TABLES["median of 17 scenes"]
+    rows.append("| thesis: median of 17 scenes | " + "; ".join(f"{m} {s[0]:g} steps" for m, s in med.items())
+                + " | | | | | | | |")
+    return "\n".join(rows)
+
+
+def feature_table(variants: Sequence[Variant]) -> str:
+    base = variants[0].result["frame_ms_median"]
+    rows = ["| setting (demo scene) | frame ms (median / p95) | ratio to base | compile ms |", "|---|---|---|---|"]
+    for v in variants:
+        r = v.result
+        rows.append(f"| {v.label} | {r['frame_ms_median']:.2f} / {r['frame_ms_p95']:.2f} | "
+                    f"{r['frame_ms_median'] / base:.2f} | {1000 * r['compile_s']:.0f} |")
+    return "\n".join(rows)
+
+
+def pareto_plot(variants: Sequence[Variant], path: Path) -> None:
+    """Frame time against depth error, one panel per scene; the Pareto front is joined."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    scenes = list(dict.fromkeys(v.scene for v in variants))
+    cols = min(3, len(scenes))
+    rows = -(-len(scenes) // cols)
+    fig, axes = plt.subplots(rows, cols, figsize=(5.2 * cols, 4.2 * rows), squeeze=False)
+    for ax, scene in zip(axes.ravel(), scenes):
+        vs = [v for v in variants if v.scene == scene]
+        pts = [(v.result["frame_ms_median"], v.result["depth_px_p99"] + 1e-6, v.label) for v in vs]
+        for x, y, lab in pts:
+            ax.scatter(x, y, s=18)
+            ax.annotate(lab, (x, y), fontsize=6, xytext=(3, 2), textcoords="offset points")
+        front, best = [], float("inf")
+        for x, y, _ in sorted(pts):
+            if y < best:
+                front.append((x, y))
+                best = y
+        ax.plot(*zip(*front), "k--", lw=0.8)
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_title(scene, fontsize=9)
+        ax.set_xlabel("median frame time (ms)", fontsize=8)
+        ax.set_ylabel("depth error p99 (pixel footprints)", fontsize=8)
+    for ax in axes.ravel()[len(scenes):]:
+        ax.axis("off")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def run(quick: bool, size: tuple[int, int] | None, out: Path, progress: bool = True,
+        scenes: Sequence[str] | None = None) -> dict:
+    """Run the benchmark, write bench.json, bench.md and pareto.png into ``out``; return the data."""
+    size = size or ((160, 120) if quick else (400, 300))
+    frames, warmup = (3, 1) if quick else (9, 2)
+    names = list(scenes) if scenes else (list(SEED_SCENES) + ([] if quick else list(MORE_SCENES)))
+    variants = build_variants(names, full=not quick)
+    features = feature_variants()
+    renderer = Renderer()
+    total = len(variants) * 2 + (warmup + frames) * 2 + len(features) + len(names)
+    bar = Progress(total, progress)
+
+    refs: dict[str, Reference] = {}
+    for name in names:
+        hc = hardcases.case(name)
+        node, cam = hc.build()
+        refs[name] = trace(node, cam, size, max_dist=hc.max_dist)
+        bar.step(f"reference {name}")
+    timer = FrameTimer(renderer, size)
+    time_interleaved(timer, variants, frames, warmup, bar)
+    for v in variants:
+        measure_errors(renderer, v, refs[v.scene], size)
+        bar.step(f"errors {v.scene}/{v.label}")
+    time_interleaved(timer, features, frames, warmup, Progress(0, False))
+    bar.step("features")
+
+    out.mkdir(parents=True, exist_ok=True)
+    md = "\n\n".join([
+        f"Machine: {platform.machine()}, {describe(renderer.ctx)}; size {size[0]}x{size[1]}, "
+        f"{frames} timed frames after {warmup} warm-up, variants interleaved.",
+        "## Methods: speed and error\n\n" + methods_table(variants),
+        "## Seed thesis tables beside ours\n\n" + seed_table(variants),
+        "## Cost of each feature #define\n\n" + feature_table(features),
+    ])
+    (out / "bench.md").write_text(md + "\n")
+    data = {"size": size, "frames": frames, "warmup": warmup, "gl": describe(renderer.ctx),
+            "variants": [{"scene": v.scene, "label": v.label, "settings": v.settings,
+                          **{k: val for k, val in v.result.items() if not k.startswith("_")}} for v in variants],
+            "features": [{"label": v.label, "settings": v.settings,
+                          **{k: val for k, val in v.result.items() if not k.startswith("_")}} for v in features]}
+    (out / "bench.json").write_text(json.dumps(data, indent=1, default=float))
+    pareto_plot(variants, out / "pareto.png")
+    print(md)
+    print(f"\nwrote {out / 'bench.md'}, {out / 'bench.json'}, {out / 'pareto.png'}")
+    return data
+
+
+def add_arguments(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--quick", action="store_true", help="small size, few frames, the seed scenes only (< 1 min)")
+    p.add_argument("--size", type=lambda s: tuple(int(x) for x in s.lower().split("x")), default=None,
+                   help="WIDTHxHEIGHT (default 400x300, 160x120 with --quick)")
+    p.add_argument("--out", type=Path, default=Path("bench-out"), help="output folder (default bench-out)")
+    p.add_argument("--scenes", nargs="*", help="hard-case names to run (default: the seed scenes, and more)")
+    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+
+
+def main(argv: Sequence[str] | None = None, run_fn: Callable[..., dict] = run) -> int:
+    p = argparse.ArgumentParser(prog="sdfgl bench", description=__doc__.split("\n")[0])
+    add_arguments(p)
+    a = p.parse_args(argv)
+    run_fn(a.quick, a.size, a.out, not a.no_progress, a.scenes)
+    return 0

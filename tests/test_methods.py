@@ -1,0 +1,107 @@
+"""Marching methods: each one compiles, renders and meets its documented behaviour."""
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import sdfgl as sg
+from sdfgl.hardcases import CASES, case, run_case
+from sdfgl.settings import METHODS
+
+ALL = ("color", "depth", "normal", "steps")
+ROOT = Path(__file__).resolve().parents[1]
+
+
+@pytest.mark.parametrize("method", METHODS)
+def test_method_hits_unit_sphere_exactly(renderer, method):
+    cam = sg.OrbitCamera(distance=4, yaw=0, pitch=0, fov=40)
+    res = renderer.render(sg.sphere(1), cam, (33, 33), method=method, outputs=ALL, shadows="hard", ao=True)
+    assert abs(float(res.depth[16, 16]) - 3.0) < 2e-4
+    assert not np.isnan(res.depth).any() and np.isfinite(res.normal).all()
+    assert res.steps[16, 16] >= 1
+
+
+@pytest.mark.parametrize("method", ["sphere", "relaxed", "enhanced"])
+def test_distance_methods_never_lose_a_hit(method):
+    # the overlap fallback of relaxed/enhanced must catch every surface sphere tracing finds
+    for c in CASES:
+        if c.settings.get("method"):
+            continue
+        err, _ = run_case(c, (40, 30), method=method)
+        assert err.lost_hits == 0, f"{method} lost {err.lost_hits} hits on {c.name}"
+        assert err.nan_count == 0
+
+
+def test_reference_march_resolves_what_its_step_resolves():
+    coarse, _ = run_case(case("thin_shell"), (40, 30), method="reference")  # step 2/512 > the 1e-3 shell
+    fine, _ = run_case(case("thin_shell"), (40, 30), method="reference", ref_step=5e-4)
+    assert coarse.lost_hits > 50 and fine.lost_hits == 0
+
+
+def test_newton_takes_wrong_roots_on_staggered_spheres_as_the_seed_reports():
+    newton, _ = run_case(case("five_spheres"), (64, 48), method="newton")
+    enhanced, _ = run_case(case("five_spheres"), (64, 48), method="enhanced")
+    assert newton.lost_hits + newton.depth_outliers > enhanced.lost_hits + enhanced.depth_outliers
+
+
+def test_newton_on_planes_and_forward_newton_cost():
+    newton, rn = run_case(case("tunnel"), (64, 48), method="newton")
+    sphere, rs = run_case(case("tunnel"), (64, 48), method="sphere")
+    fwd, rf = run_case(case("tunnel"), (64, 48), method="forward_newton")
+    assert newton.lost_hits == 0 and newton.depth_px_median < 1e-3
+    assert rn.steps.mean() < rs.steps.mean() < rf.steps.mean()
+
+
+@pytest.mark.parametrize("method", ["newton", "forward_newton", "reference"])
+def test_implicit_product_renders_with_root_finding_methods(method):
+    err, res = run_case(case("product_union"), (48, 36), method=method)
+    assert err.hits > 100 and err.lost_hits <= 0.02 * err.hits
+    assert err.depth_px_median < 0.05  # |f| < eps on a field whose slope is not 1
+    assert not np.isnan(res.depth).any()
+
+
+def test_implicit_scene_with_distance_method_is_refused():
+    s = sg.product(sg.sphere(1), sg.box(1))
+    with pytest.raises(sg.ParameterError, match=r"implicit field, not a distance bound: method 'enhanced'"):
+        sg.compile(s, method="enhanced")
+    with pytest.raises(sg.ParameterError, match=r"ambient occlusion needs distances"):
+        sg.compile(s, method="newton", ao=True)
+    src = sg.compile(s, method="newton", ao=False, shadows="soft")
+    assert "improved penumbra" not in src and "march(ro, rd, tmin, tmax, ignored)" in src
+
+
+def test_only_the_chosen_loop_is_compiled():
+    src = sg.compile(sg.sphere(1), method="enhanced")
+    assert "#define OMEGA 0.899999976" in src and "Enhanced sphere tracing" in src
+    assert "Newton" not in src and "bracketRoot" not in src and "rayDerivative" not in src
+    assert "rayDerivative" in sg.compile(sg.sphere(1), method="newton")
+
+
+def test_bad_method_settings():
+    with pytest.raises(sg.ParameterError, match="setting 'method' must be one of"):
+        sg.compile(sg.sphere(1), method="magic")
+    with pytest.raises(sg.ParameterError, match=r"setting 'omega' for 'relaxed' must lie in \(1, 2\)"):
+        sg.compile(sg.sphere(1), method="relaxed", omega=2.5)
+    with pytest.raises(sg.ParameterError, match="applies to methods 'relaxed' and 'enhanced'"):
+        sg.compile(sg.sphere(1), method="newton", omega=0.5)
+
+
+def test_bench_quick_writes_reports(tmp_path):
+    r = subprocess.run([sys.executable, "-m", "sdfgl.cli", "bench", "--quick", "--size", "48x36", "--no-progress",
+                        "--scenes", "rounded_box", "product_union", "--out", str(tmp_path)],
+                       capture_output=True, text=True, cwd=ROOT, timeout=300)
+    assert r.returncode == 0, r.stderr
+    assert "## Methods: speed and error" in r.stdout and "Seed thesis tables" in r.stdout
+    data = json.loads((tmp_path / "bench.json").read_text())
+    labels = {(v["scene"], v["label"]) for v in data["variants"]}
+    assert ("rounded_box", "enhanced") in labels and ("product_union", "newton") in labels
+    assert ("product_union", "sphere") not in labels  # distance methods skip implicit scenes
+    v = data["variants"][0]
+    for key in ("frame_ms_median", "frame_ms_p95", "compile_s", "steps_mean", "steps_p95", "out_of_steps",
+                "depth_px_median", "depth_px_p99", "silhouette_mismatch", "normal_deg_median"):
+        assert key in v
+    assert (tmp_path / "pareto.png").stat().st_size > 1000
+    assert len(data["features"]) == 8
