@@ -231,6 +231,23 @@ def methods_table(variants: Sequence[Variant]) -> str:
     return "\n".join(rows)
 
 
+def summary_table(variants: Sequence[Variant]) -> str:
+    """One row per scene and method at default settings: steps and time as ratios to sphere tracing."""
+    rows = ["| scene | method | steps/marched ray | steps vs sphere | frame ms | time vs sphere | depth err px "
+            "(median) | depth outliers | silhouette mismatch | lost hits |", "|---|---|---|---|---|---|---|---|---|---|"]
+    for v in variants:
+        if "[" in v.label:
+            continue
+        r = v.result
+        base = next((b.result for b in variants if b.scene == v.scene and b.label == "sphere"), None)
+        sr = f"{r['steps_mean_marched'] / base['steps_mean_marched']:.2f}" if base else "-"
+        tr = f"{r['frame_ms_median'] / base['frame_ms_median']:.2f}" if base else "-"
+        rows.append(f"| {v.scene} | {v.label} | {r['steps_mean_marched']:.2f} | {sr} | {r['frame_ms_median']:.2f} | "
+                    f"{tr} | {r['depth_px_median']:.2g} | {r['depth_outliers']} | {r['silhouette_mismatch']} | "
+                    f"{r['lost_hits']} |")
+    return "\n".join(rows)
+
+
 def seed_table(variants: Sequence[Variant]) -> str:
     rows = ["| scene | method | thesis steps | ours steps/marched ray | thesis time s | ours frame ms "
             "| thesis sq. depth err | ours mean sq. depth err | ours depth err px (median) |",
@@ -323,7 +340,8 @@ def run(quick: bool, size: tuple[int, int] | None, out: Path, progress: bool = T
     md = "\n\n".join([
         f"Machine: {platform.machine()}, {describe(renderer.ctx)}; size {size[0]}x{size[1]}, "
         f"{frames} timed frames after {warmup} warm-up, variants interleaved.",
-        "## Methods: speed and error\n\n" + methods_table(variants),
+        "## Summary: default settings of each method\n\n" + summary_table(variants),
+        "## Methods and settings: speed and error\n\n" + methods_table(variants),
         "## Seed thesis tables beside ours\n\n" + seed_table(variants),
         "## Cost of each feature #define\n\n" + feature_table(features),
     ])
