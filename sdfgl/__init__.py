@@ -15,6 +15,13 @@ from .nodes import (BOUND, EXACT, IMPLICIT, Node, bend, box, box_frame, capsule,
                     union)
 from .render import RenderResult, Renderer, render
 
+
+def show(scene: Node, camera: Camera | None = None, size: tuple[int, int] = (960, 540), **settings: object) -> None:
+    """Open an interactive window on ``scene`` (needs a display); returns when it is closed."""
+    from .viewer import show as _show
+    _show(scene, camera, size, **settings)
+
+
 X = _np.array([1.0, 0.0, 0.0])
 Y = _np.array([0.0, 1.0, 0.0])
 Z = _np.array([0.0, 0.0, 1.0])
@@ -22,7 +29,7 @@ Z = _np.array([0.0, 0.0, 1.0])
 __version__ = "0.1.0"
 
 __all__ = [
-    "Camera", "OrbitCamera", "compile", "render", "Renderer", "RenderResult", "Node",
+    "Camera", "OrbitCamera", "compile", "render", "show", "Renderer", "RenderResult", "Node",
     "sphere", "box", "rounded_box", "plane", "torus", "capsule", "cylinder", "cone", "ellipsoid",
     "octahedron", "hex_prism", "box_frame", "product", "twist", "bend", "repeat", "evaluate", "union", "intersection", "difference", "X", "Y", "Z",
     "EXACT", "BOUND", "IMPLICIT", "SdfglError", "ParameterError", "ShaderCompileError", "ContextError",

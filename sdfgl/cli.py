@@ -77,6 +77,21 @@ def cmd_shader(a: argparse.Namespace) -> int:
     return 0
 
 
+def cmd_view(a: argparse.Namespace) -> int:
+    from .viewer import Viewer
+    settings = _settings(a)
+    if a.scene is None or a.demo:
+        from .demo import demo_camera, demo_scene
+        v = Viewer(demo_scene(), demo_camera(), size=a.size, target_ms=a.target_ms, adaptive=not a.no_adaptive,
+                   max_samples=a.max_samples, state_file=a.state_file, screenshot_dir=a.screenshot_dir,
+                   **{**settings, "ground": True})
+    else:
+        v = Viewer(path=a.scene, size=a.size, target_ms=a.target_ms, adaptive=not a.no_adaptive,
+                   max_samples=a.max_samples, state_file=a.state_file, screenshot_dir=a.screenshot_dir, **settings)
+    v.run()
+    return 0
+
+
 def cmd_bench(a: argparse.Namespace) -> int:
     from .bench import run
     run(a.quick, a.size, a.out, not a.no_progress, a.scenes)
@@ -104,6 +119,21 @@ def build_parser() -> argparse.ArgumentParser:
     s.add_argument("--demo", action="store_true", help="use the built-in showcase scene")
     _add_settings(s)
     s.set_defaults(func=cmd_shader)
+
+    from .viewer import KEYS_HELP
+    v = sub.add_parser("view", help="open an interactive window on a scene file (reloaded when saved)",
+                       formatter_class=argparse.RawDescriptionHelpFormatter, epilog="keys:\n" + KEYS_HELP)
+    v.add_argument("scene", nargs="?", help="Python file defining 'scene' (default: the demo)")
+    v.add_argument("--demo", action="store_true", help="view the built-in showcase scene")
+    v.add_argument("--size", type=_size, default=(960, 540), help="window size WIDTHxHEIGHT (default 960x540)")
+    v.add_argument("--target-ms", type=float, default=50.0,
+                   help="frame time to hold while the camera moves, by lowering the resolution (default 50)")
+    v.add_argument("--no-adaptive", action="store_true", help="always render at full resolution")
+    v.add_argument("--max-samples", type=int, default=16, help="jittered samples accumulated when idle (16)")
+    v.add_argument("--screenshot-dir", default=".", help="where P saves screenshots (default: here)")
+    v.add_argument("--state-file", help="keep a JSON file with the view's state up to date (for scripts)")
+    _add_settings(v)
+    v.set_defaults(func=cmd_view)
 
     from .bench import add_arguments
     b = sub.add_parser("bench", help="benchmark marching methods: frame time beside error")

@@ -236,6 +236,8 @@ def _defines(scene: Node, settings: Settings, origin: np.ndarray) -> list[str]:
     if settings.ground:
         ground_y = lo[1] if lo[1] > -GLSL_FAR else 0.0
         d += ["#define GROUND", f"#define GROUND_Y {glsl_float(ground_y - origin[1])}"]
+    if settings.debug:
+        d += ["#define DEBUG_VIEW", f"#define DEBUG_{settings.debug.upper()}"]
     aux = [o for o in settings.outputs if o != "color"]
     if aux:
         d.append("#define AUX_OUTPUTS")
@@ -302,6 +304,9 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     b.add_file("shade")
     if settings.ground:
         b.add_file("ground")
+    b.add_file("render_main_head")
+    if settings.debug:
+        b.add_file("debug")
     b.add_file("render_main")
     return b.build()
 

@@ -13,6 +13,7 @@ METHODS = ("sphere", "relaxed", "enhanced", "newton", "forward_newton", "referen
 DISTANCE_METHODS = ("sphere", "relaxed", "enhanced")
 DEFAULT_OMEGA = {"relaxed": 1.6, "enhanced": 0.9}
 HIT_MODES = ("cone", "relative", "absolute")
+DEBUG_VIEWS = (None, "steps", "normal", "depth")
 
 
 @dataclass(frozen=True)
@@ -35,6 +36,8 @@ class Settings:
     hit_scale: the factor of the hit test.
     max_dist: far limit along a ray where the scene is unbounded.
     outputs: which images the draw writes (color always).
+    debug: None, or a debug view shown instead of the shaded image: "steps" (heat map of
+        map() calls), "normal" or "depth".
     """
 
     aa: int = 1
@@ -49,6 +52,7 @@ class Settings:
     hit_scale: float = 0.25
     max_dist: float = 1000.0
     outputs: tuple[str, ...] = field(default=("color",))
+    debug: Any = None
 
     def __post_init__(self) -> None:
         if isinstance(self.aa, bool) or not isinstance(self.aa, int) or not 1 <= self.aa <= 4:
@@ -86,6 +90,8 @@ class Settings:
             if isinstance(val, bool) or not isinstance(val, (int, float)) or not (0 < float(val) < float("inf")):
                 raise ParameterError(f"setting '{name}' must be a positive finite number, got {val!r}")
             object.__setattr__(self, name, float(val))
+        if self.debug not in DEBUG_VIEWS:
+            raise ParameterError(f"setting 'debug' must be None, 'steps', 'normal' or 'depth', got {self.debug!r}")
         outs = (self.outputs,) if isinstance(self.outputs, str) else tuple(self.outputs)
         bad = [o for o in outs if o not in OUTPUTS]
         if bad:

@@ -1,64 +1,11 @@
-// The image: trace each sample's primary ray, shade it, average, gamma-correct; write
-// depth, normal and step count of the pixel-centre ray when those outputs are on.
-layout(location = 0) out vec4 outColor;
-#ifdef OUT_DEPTH
-layout(location = LOC_DEPTH) out float outDepth;
-#endif
-#ifdef OUT_NORMAL
-layout(location = LOC_NORMAL) out vec4 outNormal;
-#endif
-#ifdef OUT_STEPS
-layout(location = LOC_STEPS) out float outSteps;
-#endif
-
-struct Hit {
-    float t;       // ray parameter of the hit, -1.0 for a miss
-    int steps;     // map() evaluations spent
-    bool ground;   // the hit is on the analytic ground plane
-};
-
-Hit tracePrimary(vec3 ro, vec3 rd) {
-    Hit h = Hit(-1.0, 0, false);
-    vec2 range = sceneRange(ro, rd);
-#ifdef GROUND
-    float tg = groundHit(ro, rd);
-    if (tg > 0.0) range.y = min(range.y, tg);
-#endif
-    if (range.x <= range.y) {
-        h.t = march(ro, rd, range.x, range.y, h.steps);
-    }
-#ifdef GROUND
-    if (h.t < 0.0 && tg > 0.0) {
-        h.t = tg;
-        h.ground = true;
-    }
-#endif
-    return h;
-}
-
-vec3 hitNormal(vec3 ro, vec3 rd, Hit h) {
-#ifdef GROUND
-    if (h.ground) return vec3(0.0, 1.0, 0.0);
-#endif
-    return calcNormal(ro + rd * h.t, h.t, rd);
-}
-
-vec3 radiance(vec3 ro, vec3 rd, Hit h) {
-    if (h.t < 0.0) return background(rd);
-    vec3 pos = ro + rd * h.t;
-    vec3 nor = hitNormal(ro, rd, h);
-#ifdef GROUND
-    if (h.ground) {
-        vec3 col = shadeSurface(pos, nor, rd, groundAlbedo(pos), h.t);
-        float fog = 1.0 - exp(-h.t / (SCENE_SCALE * 40.0));
-        return mix(col, background(rd), fog);
-    }
-#endif
-    return shadeSurface(pos, nor, rd, mapColor(pos), h.t);
-}
-
+// The image: trace each sample, shade, average, gamma-correct; write depth, normal and
+// step count of the pixel-centre ray when those outputs are on.
 void main() {
     vec3 ro = uEye;
+#ifdef DEBUG_VIEW
+    outColor = vec4(pow(debugView(ro, rayDir(gl_FragCoord.xy)), vec3(1.0 / 2.2)), 1.0);
+    return;
+#endif
 #if AA == 1
     vec3 rd = rayDir(gl_FragCoord.xy);
     Hit h = tracePrimary(ro, rd);

@@ -1,0 +1,440 @@
+"""The interactive window: mouse orbit, live toggles, hot reload, adaptive resolution.
+
+While the camera moves, frames are drawn at a reduced resolution chosen so a frame
+stays under the target time; when it stops, full-resolution frames with sub-pixel
+jitter are accumulated into a clean anti-aliased image, and then nothing is redrawn
+until something changes.
+"""
+from __future__ import annotations
+
+import json
+import math
+import os
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import glfw
+import moderngl
+import numpy as np
+from PIL import Image, ImageDraw, ImageFont
+
+from . import shaderlib
+from .camera import Camera, OrbitCamera
+from .codegen import generate
+from .errors import ContextError, SdfglError
+from .nodes.base import IMPLICIT, Node
+from .render import Renderer, camera_uniforms, shader_origin
+from .scenefile import load_scene_file
+from .settings import DISTANCE_METHODS, Settings
+
+KEYS_HELP = """\
+mouse   left drag: orbit   right/middle drag: pan   wheel: zoom to target
+A       anti-aliasing 1..4 samples per pixel side
+S       shadows off / hard / soft
+O       ambient occlusion on / off
+M       marching method (sphere, relaxed, enhanced, newton, forward_newton)
+G       ground plane on / off
+D       debug view: off / steps heat map / normals / depth
+F       frame the whole scene        R   reset the view
+P       save a screenshot PNG        H   this help
+Q, Esc  quit"""
+
+METHOD_CYCLE = ("sphere", "relaxed", "enhanced", "newton", "forward_newton")
+DEBUG_CYCLE = (None, "steps", "normal", "depth")
+SHADOW_CYCLE = (False, "hard", "soft")
+MOVE_HOLD_S = 0.15  # a camera change keeps the low-resolution mode this long
+
+
+def _r2(n: int) -> tuple[float, float]:
+    """The n-th point of the R2 low-discrepancy sequence, centred on 0 (sub-pixel jitter)."""
+    g = 1.32471795724474602596
+    return ((0.5 + n / g) % 1.0) - 0.5, ((0.5 + n / (g * g)) % 1.0) - 0.5
+
+
+@dataclass
+class ViewState:
+    """What the viewer shows; written to the state file for scripts and tests."""
+
+    settings: dict[str, Any]
+    frames: int = 0
+    compiles: int = 0
+    reloads: int = 0
+    error: str = ""
+    last_frame_ms: float = 0.0
+    scale: float = 1.0
+    samples: int = 0
+    moving: bool = False
+    screenshots: list[str] = field(default_factory=list)
+    frame_log: list[tuple[bool, float, float]] = field(default_factory=list)  # (moving, ms, scale)
+
+
+class Viewer:
+    """A glfw window showing a scene (or a scene file, reloaded when it changes)."""
+
+    def __init__(self, scene: Node | None = None, camera: Camera | None = None, *, path: str | Path | None = None,
+                 size: tuple[int, int] = (960, 540), target_ms: float = 50.0, adaptive: bool = True,
+                 max_samples: int = 16, state_file: str | Path | None = None,
+                 screenshot_dir: str | Path = ".", **settings: Any) -> None:
+        self.path = Path(path) if path else None
+        if self.path is not None:
+            sf = load_scene_file(self.path)
+            scene, camera = sf.scene, camera or sf.camera
+            self._mtime = self.path.stat().st_mtime
+        if scene is None:
+            raise SdfglError("Viewer needs a scene or a scene file")
+        self.scene = scene
+        base = {"aa": 1, "shadows": "soft", "ao": scene.exactness != IMPLICIT, "ground": False}
+        if scene.exactness == IMPLICIT:
+            base["method"] = "newton"
+        self.state = ViewState(settings={**base, **settings})
+        Settings.build(**self.state.settings)  # validate before opening a window
+        self.home = self._orbit_of(camera, scene)
+        self.camera = self._orbit_of(camera, scene)
+        self.size, self.target_ms, self.adaptive = size, target_ms, adaptive
+        self.max_samples = max_samples
+        self.state_file = Path(state_file) if state_file else None
+        self.screenshot_dir = Path(screenshot_dir)
+        self.show_help = False
+        self._last_move = -1.0
+        self._drag: tuple[int, float, float] | None = None
+        self._dirty = True
+        self._overlay_text: str | None = None
+        self._sources: dict[tuple, Any] = {}
+        self._open_window()
+
+    # -- set-up ---------------------------------------------------------------------
+    @staticmethod
+    def _orbit_of(camera: Camera | None, scene: Node) -> OrbitCamera:
+        if isinstance(camera, OrbitCamera):
+            return OrbitCamera(camera.target, camera.distance, camera.yaw, camera.pitch, camera.fov)
+        if camera is not None:  # a look-at camera: orbit about its target from where it stands
+            off = camera.eye - camera.target
+            dist = float(np.linalg.norm(off))
+            yaw = math.degrees(math.atan2(off[0], off[2]))
+            pitch = math.degrees(math.asin(max(-0.999, min(0.999, off[1] / dist))))
+            return OrbitCamera(camera.target, dist, yaw, pitch, camera.fov)
+        return OrbitCamera.framing(*scene.bounds)
+
+    def _open_window(self) -> None:
+        if not glfw.init():
+            raise ContextError("glfw could not initialise: no display? (set DISPLAY, or run under Xvfb)")
+        glfw.window_hint(glfw.CONTEXT_VERSION_MAJOR, 3)
+        glfw.window_hint(glfw.CONTEXT_VERSION_MINOR, 3)
+        glfw.window_hint(glfw.OPENGL_PROFILE, glfw.OPENGL_CORE_PROFILE)
+        glfw.window_hint(glfw.OPENGL_FORWARD_COMPAT, True)
+        glfw.window_hint(glfw.SCALE_TO_MONITOR, True)
+        self.window = glfw.create_window(self.size[0], self.size[1], "sdfgl", None, None)
+        if not self.window:
+            glfw.terminate()
+            raise ContextError("glfw could not open an OpenGL 3.3 core window")
+        glfw.make_context_current(self.window)
+        glfw.swap_interval(0)
+        self.ctx = moderngl.create_context()
+        self.renderer = Renderer(self.ctx)
+        self.present = self.ctx.program(vertex_shader=shaderlib.read("fullscreen.vert"),
+                                        fragment_shader=shaderlib.read("present.frag"))
+        self.present_vao = self.ctx.vertex_array(self.present, [])
+        self._targets: dict[str, Any] = {}
+        self._resize_targets()
+        glfw.set_cursor_pos_callback(self.window, self._on_cursor)
+        glfw.set_mouse_button_callback(self.window, self._on_button)
+        glfw.set_scroll_callback(self.window, self._on_scroll)
+        glfw.set_key_callback(self.window, self._on_key)
+        glfw.set_framebuffer_size_callback(self.window, lambda *_: self._resize_targets())
+        glfw.set_window_refresh_callback(self.window, lambda *_: self._mark())
+
+    def _resize_targets(self) -> None:
+        fw, fh = glfw.get_framebuffer_size(self.window)
+        fw, fh = max(fw, 1), max(fh, 1)
+        for obj in self._targets.values():
+            obj.release()
+        accum = self.ctx.texture((fw, fh), 4, dtype="f4")
+        self._targets = {"accum": accum, "accum_fbo": self.ctx.framebuffer(color_attachments=[accum])}
+        self.fb_size = (fw, fh)
+        self._low: tuple[moderngl.Texture, moderngl.Framebuffer, tuple[int, int]] | None = None
+        self._overlay_text = None
+        self._mark()
+
+    # -- events -----------------------------------------------------------------------
+    def _mark(self, moved: bool = False) -> None:
+        self._dirty = True
+        self.state.samples = 0
+        if moved:
+            self._last_move = time.perf_counter()
+
+    def _on_cursor(self, _w: Any, x: float, y: float) -> None:
+        if self._drag is None:
+            return
+        button, x0, y0 = self._drag
+        dx, dy = x - x0, y - y0
+        self._drag = (button, x, y)
+        if button == glfw.MOUSE_BUTTON_LEFT:
+            self.camera.orbit(-0.4 * dx, 0.4 * dy)
+        else:
+            h = glfw.get_window_size(self.window)[1] or 1
+            self.camera.pan(dx / h, dy / h)
+        self._mark(moved=True)
+
+    def _on_button(self, _w: Any, button: int, action: int, _mods: int) -> None:
+        if action == glfw.PRESS:
+            x, y = glfw.get_cursor_pos(self.window)
+            self._drag = (button, x, y)
+        elif action == glfw.RELEASE:
+            self._drag = None
+
+    def _on_scroll(self, _w: Any, _dx: float, dy: float) -> None:
+        self.camera.zoom(0.88 ** dy)
+        self._mark(moved=True)
+
+    def _cycle(self, key: str, values: tuple) -> None:
+        cur = self.state.settings.get(key)
+        self._apply({key: values[(values.index(cur) + 1) % len(values)] if cur in values else values[0]})
+
+    def _on_key(self, _w: Any, key: int, _scan: int, action: int, _mods: int) -> None:
+        if action != glfw.PRESS:
+            return
+        s = self.state.settings
+        if key in (glfw.KEY_Q, glfw.KEY_ESCAPE):
+            glfw.set_window_should_close(self.window, True)
+        elif key == glfw.KEY_A:
+            self._apply({"aa": s.get("aa", 1) % 4 + 1})
+        elif key == glfw.KEY_S:
+            self._cycle("shadows", SHADOW_CYCLE)
+        elif key == glfw.KEY_O:
+            self._apply({"ao": not s.get("ao", False)})
+        elif key == glfw.KEY_M:
+            methods = METHOD_CYCLE if self.scene.exactness != IMPLICIT else tuple(
+                m for m in METHOD_CYCLE if m not in DISTANCE_METHODS)
+            self._cycle("method", methods)
+        elif key == glfw.KEY_G:
+            self._apply({"ground": not s.get("ground", False)})
+        elif key == glfw.KEY_D:
+            self._cycle("debug", DEBUG_CYCLE)
+        elif key == glfw.KEY_F:
+            framed = OrbitCamera.framing(*self.scene.bounds, yaw=self.camera.yaw, pitch=self.camera.pitch,
+                                         fov=self.camera.fov)
+            self.camera = framed
+            self._mark(moved=True)
+        elif key == glfw.KEY_R:
+            self.camera = self._orbit_of(self.home, self.scene)
+            self._mark(moved=True)
+        elif key == glfw.KEY_P:
+            self.screenshot()
+        elif key in (glfw.KEY_H, glfw.KEY_F1):
+            self.show_help = not self.show_help
+            self._overlay_text = None
+            self._dirty = True
+
+    def _apply(self, change: dict[str, Any]) -> None:
+        """Change settings; the new program is compiled before the next frame replaces the old."""
+        new = {**self.state.settings, **change}
+        try:
+            Settings.build(**new)
+            self._program(self.scene, new)
+        except SdfglError as exc:
+            self._set_error(str(exc))
+            return
+        self.state.settings = new
+        self._set_error("")
+        self._mark()
+
+    # -- drawing ----------------------------------------------------------------------
+    def _program(self, scene: Node, settings: dict[str, Any]) -> tuple[moderngl.Program, np.ndarray]:
+        origin = shader_origin(scene, self.camera.eye)
+        key = (id(scene), tuple(sorted(settings.items())), tuple(origin.tolist()))
+        if key not in self._sources:  # codegen once per scene, settings and origin, not per frame
+            self._sources = {k: v for k, v in self._sources.items() if k[0] == id(scene)}
+            self._sources[key] = generate(scene, Settings.build(**settings), origin)
+        before = self.renderer.programs.compiles
+        prog = self.renderer.programs.get(self._sources[key])
+        self.state.compiles += self.renderer.programs.compiles - before
+        return prog, origin
+
+    def _moving(self) -> bool:
+        return self._drag is not None or time.perf_counter() - self._last_move < MOVE_HOLD_S
+
+    def _low_target(self, scale: float) -> tuple[moderngl.Texture, moderngl.Framebuffer, tuple[int, int]]:
+        size = (max(1, int(self.fb_size[0] * scale)), max(1, int(self.fb_size[1] * scale)))
+        if self._low is None or self._low[2] != size:
+            if self._low is not None:
+                self._low[0].release()
+                self._low[1].release()
+            tex = self.ctx.texture(size, 4, dtype="f1")
+            tex.filter = (moderngl.LINEAR, moderngl.LINEAR)
+            self._low = (tex, self.ctx.framebuffer(color_attachments=[tex]), size)
+        return self._low
+
+    def _draw_scene(self, fbo: moderngl.Framebuffer, size: tuple[int, int], jitter: tuple[float, float],
+                    blend: bool) -> float:
+        prog, origin = self._program(self.scene, self.state.settings)
+        camera_uniforms(prog, self.camera, size, origin, jitter)
+        fbo.use()
+        self.ctx.viewport = (0, 0, *size)
+        if blend:
+            self.ctx.enable(moderngl.BLEND)
+            self.ctx.blend_func = moderngl.ONE, moderngl.ONE
+        t0 = time.perf_counter()
+        self.renderer.vao(prog).render(moderngl.TRIANGLES, vertices=3)
+        self.ctx.finish()
+        ms = 1000 * (time.perf_counter() - t0)
+        if blend:
+            self.ctx.disable(moderngl.BLEND)
+        return ms
+
+    def frame(self) -> None:
+        """Draw one frame: low resolution while moving, else one more accumulated sample."""
+        moving = self._moving()
+        st = self.state
+        if moving:
+            scale = st.scale if self.adaptive else 1.0
+            tex, fbo, size = self._low_target(scale)
+            ms = self._draw_scene(fbo, size, (0.0, 0.0), blend=False)
+            if self.adaptive:  # area scales with scale^2; damp the correction
+                want = scale * math.sqrt(self.target_ms / max(ms, 1e-3))
+                st.scale = float(min(1.0, max(0.1, 0.5 * scale + 0.5 * want)))
+            image, weight = tex, 1.0
+            st.samples = 0
+        else:
+            if st.samples == 0:
+                self._targets["accum_fbo"].clear(0.0, 0.0, 0.0, 0.0)
+            ms = self._draw_scene(self._targets["accum_fbo"], self.fb_size, _r2(st.samples), blend=True)
+            st.samples += 1
+            image, weight = self._targets["accum"], 1.0 / st.samples
+        self._present(image, weight)
+        st.frames += 1
+        st.moving = moving
+        st.last_frame_ms = ms
+        st.frame_log.append((moving, ms, st.scale if moving else 1.0))
+        del st.frame_log[:-400]
+        self._title(ms)
+        self._dirty = moving or st.samples < self.max_samples
+
+    def _present(self, image: moderngl.Texture, weight: float) -> None:
+        self.ctx.screen.use()
+        self.ctx.viewport = (0, 0, *self.fb_size)
+        image.use(0)
+        self._overlay().use(1)
+        self.present["uImage"].value = 0
+        self.present["uOverlay"].value = 1
+        self.present["uWeight"].value = weight
+        self.present["uWindow"].value = tuple(float(x) for x in self.fb_size)
+        self.present_vao.render(moderngl.TRIANGLES, vertices=3)
+        glfw.swap_buffers(self.window)
+
+    def _overlay(self) -> moderngl.Texture:
+        text = "\n".join(x for x in ((KEYS_HELP if self.show_help else ""),
+                                     (f"error: {self.state.error}" if self.state.error else "")) if x)
+        if text != self._overlay_text:
+            img = Image.new("RGBA", self.fb_size, (0, 0, 0, 0))
+            if text:
+                draw = ImageDraw.Draw(img)
+                font = ImageFont.load_default()
+                box = draw.multiline_textbbox((10, 10), text, font=font)
+                draw.rectangle((box[0] - 6, box[1] - 6, box[2] + 6, box[3] + 6), fill=(0, 0, 0, 170))
+                draw.multiline_text((10, 10), text, font=font,
+                                    fill=(255, 120, 110, 255) if self.state.error and not self.show_help
+                                    else (235, 235, 235, 255))
+            if "overlay" in self._targets:
+                self._targets["overlay"].release()
+            self._targets["overlay"] = self.ctx.texture(self.fb_size, 4, img.tobytes(), dtype="f1")
+            self._overlay_text = text
+        return self._targets["overlay"]
+
+    def _title(self, ms: float) -> None:
+        s, st = self.state.settings, self.state
+        shadows = s.get("shadows") or "off"
+        res = (f"{int(self.fb_size[0] * st.scale)}x{int(self.fb_size[1] * st.scale)} ({st.scale:.0%})" if st.moving
+               else f"{self.fb_size[0]}x{self.fb_size[1]} {st.samples}/{self.max_samples} samples")
+        name = self.path.name if self.path else self.scene.kind
+        err = " | ERROR (see overlay)" if st.error else ""
+        glfw.set_window_title(self.window, f"sdfgl: {name} | {ms:.1f} ms ({1000 / max(ms, 1e-3):.0f} fps) | {res} | "
+                                           f"{s.get('method', 'enhanced')} aa{s.get('aa', 1)} shadows {shadows} "
+                                           f"ao {'on' if s.get('ao') else 'off'}{' debug ' + s['debug'] if s.get('debug') else ''}{err}")
+
+    # -- actions ----------------------------------------------------------------------
+    def screenshot(self) -> Path:
+        """Render the current view at the window's framebuffer size and save it as PNG."""
+        self.screenshot_dir.mkdir(parents=True, exist_ok=True)
+        path = self.screenshot_dir / f"sdfgl-{time.strftime('%Y%m%d-%H%M%S')}-{len(self.state.screenshots):03d}.png"
+        res = self.renderer.render(self.scene, self.camera, self.fb_size, **self.state.settings)
+        res.save(path)
+        self.ctx.screen.use()
+        self.state.screenshots.append(str(path))
+        self._dirty = True
+        print(f"sdfgl: saved {path}")
+        return path
+
+    def _set_error(self, text: str) -> None:
+        if text and text != self.state.error:
+            print(f"sdfgl: {text}", flush=True)
+        self.state.error = text
+        self._overlay_text = None
+        self._dirty = True
+
+    def _check_reload(self) -> None:
+        if self.path is None:
+            return
+        try:
+            mtime = self.path.stat().st_mtime
+        except OSError:
+            return
+        if mtime == self._mtime:
+            return
+        self._mtime = mtime
+        try:
+            sf = load_scene_file(self.path)
+            settings = dict(self.state.settings)
+            if sf.scene.exactness == IMPLICIT and settings.get("method", "enhanced") in DISTANCE_METHODS:
+                settings.update(method="newton", ao=False)
+            self._program(sf.scene, settings)  # compile before switching: a GLSL error keeps the old scene
+        except SdfglError as exc:
+            self._set_error(str(exc))
+            return
+        self.scene, self.state.settings = sf.scene, settings
+        self.state.reloads += 1
+        self._set_error("")
+        self._mark()
+
+    def _write_state(self) -> None:
+        if self.state_file is None:
+            return
+        c = self.camera
+        data = {"yaw": c.yaw, "pitch": c.pitch, "distance": c.distance, "target": c.target.tolist(),
+                "scene": self.scene.label(), "size": list(self.fb_size), **{
+                    k: v for k, v in self.state.__dict__.items()}}
+        tmp = self.state_file.with_suffix(".tmp")
+        tmp.write_text(json.dumps(data, default=str))
+        os.replace(tmp, self.state_file)
+
+    def run(self) -> None:
+        """The event loop; returns when the window is closed."""
+        last_poll = 0.0
+        try:
+            while not glfw.window_should_close(self.window):
+                if self._dirty:
+                    self.frame()
+                    self._write_state()
+                    glfw.poll_events()
+                else:
+                    self._write_state()
+                    glfw.wait_events_timeout(0.2)  # idle: no busy loop; wakes to check the file
+                now = time.perf_counter()
+                if now - last_poll > 0.2:
+                    last_poll = now
+                    self._check_reload()
+        finally:
+            self.close()
+
+    def close(self) -> None:
+        """Release GL objects and the window."""
+        if getattr(self, "window", None) is not None:
+            glfw.destroy_window(self.window)
+            self.window = None
+            glfw.terminate()
+
+
+def show(scene: Node, camera: Camera | None = None, size: tuple[int, int] = (960, 540), **settings: Any) -> None:
+    """Open a window on ``scene`` (see KEYS_HELP for the controls); returns when it is closed."""
+    Viewer(scene, camera, size=size, **settings).run()

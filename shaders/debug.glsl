@@ -1,0 +1,21 @@
+// Debug views of the pixel-centre ray: the step-count heat map, normals, or depth.
+vec3 heat(float x) {
+    x = clamp(x, 0.0, 1.0);
+    return clamp(vec3(1.5 * x - 0.25, 1.5 - abs(2.0 * x - 1.0) * 1.5, 1.25 - 1.5 * x), 0.0, 1.0);
+}
+
+// Linear-space colour shown instead of the shaded image.
+vec3 debugView(vec3 ro, vec3 rd) {
+    Hit h = tracePrimary(ro, rd);
+#if defined(DEBUG_STEPS)
+    // 0 steps black, then blue -> green -> red on a log scale up to MAX_STEPS
+    if (h.steps == 0) return vec3(0.0);
+    return pow(heat(log2(float(h.steps)) / log2(float(MAX_STEPS))), vec3(2.2));
+#elif defined(DEBUG_NORMAL)
+    if (h.t < 0.0) return vec3(0.0);
+    return pow(0.5 + 0.5 * hitNormal(ro, rd, h), vec3(2.2));
+#else
+    if (h.t < 0.0) return vec3(0.0);
+    return pow(vec3(exp(-h.t / (2.0 * SCENE_SCALE))), vec3(2.2));
+#endif
+}

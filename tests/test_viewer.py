@@ -1,0 +1,115 @@
+"""The interactive viewer in a real window on Xvfb, driven by real input events."""
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+from PIL import Image
+
+from .xserver import Driver, start_xvfb
+
+pytestmark = pytest.mark.window
+
+SCENE_A = "import sdfgl as sg\nscene = (sg.sphere(1) & sg.box(1.5)).color(0.9, 0.3, 0.2)\n" \
+          "camera = sg.OrbitCamera(distance=5, yaw=30, pitch=20)\n"
+SCENE_B = "import sdfgl as sg\nscene = sg.torus(1, 0.3).color(0.2, 0.6, 0.9)\n"
+
+
+@pytest.fixture(scope="module")
+def display():
+    proc, name = start_xvfb()
+    yield name
+    proc.terminate()
+    proc.wait(10)
+
+
+@pytest.fixture()
+def viewer(display, tmp_path):
+    scene = tmp_path / "scene.py"
+    scene.write_text(SCENE_A)
+    state = tmp_path / "state.json"
+    drv = Driver(display, state)
+    proc = subprocess.Popen([sys.executable, "-m", "sdfgl.cli", "view", str(scene), "--size", "320x240",
+                             "--state-file", str(state), "--screenshot-dir", str(tmp_path / "shots"),
+                             "--max-samples", "4"], env=drv.env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                            text=True)
+    try:
+        drv.find_window()
+        drv.wait_for(lambda s: s["frames"] > 0 and s["samples"] >= 1, what="the first frame")
+        yield drv, proc, scene, tmp_path
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+        proc.wait(10)
+
+
+def test_orbit_pan_zoom_move_the_camera(viewer):
+    drv, proc, _, _ = viewer
+    s0 = drv.state()
+    drv.drag(1, 160, 120, 60, 20)
+    s1 = drv.wait_for(lambda s: s["yaw"] != s0["yaw"], what="an orbit")
+    assert s1["pitch"] != s0["pitch"]
+    drv.drag(3, 160, 120, 40, 0)  # right drag pans the target
+    s2 = drv.wait_for(lambda s: s["target"] != s1["target"], what="a pan")
+    drv.scroll(up=True, times=3)
+    s3 = drv.wait_for(lambda s: s["distance"] < s2["distance"], what="a zoom")
+    assert s3["distance"] < 0.75 * s2["distance"]
+    # frames drawn while moving were at reduced or full resolution, then refined when still
+    drv.wait_for(lambda s: not s["moving"] and s["samples"] >= 4, what="refinement after moving")
+
+
+def test_toggles_recompile_and_screenshots_differ_after_orbit(viewer):
+    drv, proc, _, tmp = viewer
+    c0 = drv.state()["compiles"]
+    drv.key("s")  # soft -> off
+    st = drv.wait_for(lambda s: s["settings"]["shadows"] is False, what="shadows off")
+    assert st["compiles"] == c0 + 1
+    drv.key("d")  # debug view: steps heat map
+    drv.wait_for(lambda s: s["settings"].get("debug") == "steps", what="debug view")
+    drv.key("d"), drv.key("d"), drv.key("d")  # back to the shaded image
+    drv.wait_for(lambda s: s["settings"].get("debug") is None, what="debug off")
+    drv.key("p")
+    s1 = drv.wait_for(lambda s: len(s["screenshots"]) == 1, what="a screenshot")
+    drv.drag(1, 160, 120, 80, 0)
+    drv.wait_for(lambda s: s["yaw"] != s1["yaw"], what="an orbit")
+    drv.key("p")
+    s2 = drv.wait_for(lambda s: len(s["screenshots"]) == 2, what="a second screenshot")
+    a = np.asarray(Image.open(s2["screenshots"][0]), dtype=np.int16)
+    b = np.asarray(Image.open(s2["screenshots"][1]), dtype=np.int16)
+    assert a.shape == b.shape == (240, 320, 3)
+    assert np.abs(a - b).mean() > 1.0
+
+
+def test_hot_reload_and_errors_keep_last_good_scene(viewer):
+    drv, proc, scene, _ = viewer
+    s0 = drv.state()
+    time.sleep(0.05)
+    scene.write_text(SCENE_B)
+    s1 = drv.wait_for(lambda s: s["reloads"] == s0["reloads"] + 1, what="a reload")
+    assert "color" in s1["scene"] and s1["scene"] != s0["scene"] and s1["error"] == ""
+    scene.write_text("import sdfgl as sg\nscene = sg.sphere(\n")
+    s2 = drv.wait_for(lambda s: s["error"] != "", what="the error to show")
+    assert "syntax error" in s2["error"] and s2["scene"] == s1["scene"]
+    scene.write_text("import sdfgl as sg\nscene = sg.box(-1)\n")
+    s3 = drv.wait_for(lambda s: "must be > 0" in s["error"], what="a parameter error")
+    assert s3["scene"] == s1["scene"]
+    scene.write_text(SCENE_A)
+    drv.wait_for(lambda s: s["error"] == "" and s["reloads"] == s0["reloads"] + 2, what="recovery")
+
+
+def test_idle_window_does_not_redraw_and_quit_exits_cleanly(viewer):
+    drv, proc, _, _ = viewer
+    st = drv.wait_for(lambda s: s["samples"] >= 4 and not s["moving"], what="idle")
+    time.sleep(0.8)
+    assert drv.state()["frames"] == st["frames"]  # nothing changed, nothing drawn
+    drv.key("q")
+    assert proc.wait(15) == 0
+
+
+def test_resize_follows_the_framebuffer(viewer):
+    drv, proc, _, _ = viewer
+    drv.xdo("windowsize", drv.window, "400", "300")
+    st = drv.wait_for(lambda s: s["size"] == [400, 300] and s["samples"] >= 1, what="the resize")
+    assert st["error"] == ""

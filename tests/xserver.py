@@ -1,0 +1,83 @@
+"""A private Xvfb display for window tests, and xdotool helpers."""
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import subprocess
+import time
+from pathlib import Path
+
+import pytest
+
+
+def start_xvfb() -> tuple[subprocess.Popen, str]:
+    if shutil.which("Xvfb") is None or shutil.which("xdotool") is None:
+        pytest.fail("window tests need Xvfb and xdotool: run ./install.sh --test (apt-get install xvfb xdotool)")
+    for n in range(90, 140):
+        if not Path(f"/tmp/.X11-unix/X{n}").exists() and not Path(f"/tmp/.X{n}-lock").exists():
+            proc = subprocess.Popen(["Xvfb", f":{n}", "-screen", "0", "1600x900x24", "-nolisten", "tcp"],
+                                    stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+            for _ in range(100):
+                if Path(f"/tmp/.X11-unix/X{n}").exists():
+                    return proc, f":{n}"
+                time.sleep(0.05)
+            proc.kill()
+    pytest.fail("could not start Xvfb on any display :90..:139")
+
+
+class Driver:
+    """Real X input events (XTEST through xdotool) into one viewer process."""
+
+    def __init__(self, display: str, state_file: Path) -> None:
+        self.env = {**os.environ, "DISPLAY": display}
+        self.state_file = state_file
+        self.window = ""
+
+    def xdo(self, *args: str) -> str:
+        out = subprocess.run(["xdotool", *args], env=self.env, capture_output=True, text=True, timeout=20)
+        return out.stdout.strip()
+
+    def find_window(self, timeout: float = 30.0) -> str:
+        deadline = time.time() + timeout
+        while time.time() < deadline:
+            ids = self.xdo("search", "--name", "^sdfgl").split()
+            if ids:
+                self.window = ids[0]
+                self.xdo("windowfocus", "--sync", self.window)
+                return self.window
+            time.sleep(0.1)
+        raise AssertionError("the viewer window never appeared")
+
+    def state(self) -> dict:
+        for _ in range(50):
+            try:
+                return json.loads(self.state_file.read_text())
+            except (OSError, ValueError):
+                time.sleep(0.05)
+        raise AssertionError("no state file")
+
+    def wait_for(self, pred, timeout: float = 20.0, what: str = "condition") -> dict:  # noqa: ANN001
+        deadline = time.time() + timeout
+        st = {}
+        while time.time() < deadline:
+            st = self.state()
+            if pred(st):
+                return st
+            time.sleep(0.05)
+        st.pop("frame_log", None)
+        raise AssertionError(f"timed out waiting for {what}; state: {st}")
+
+    def drag(self, button: int, x0: int, y0: int, dx: int, dy: int, steps: int = 8) -> None:
+        self.xdo("mousemove", "--window", self.window, str(x0), str(y0), "mousedown", str(button))
+        for i in range(1, steps + 1):
+            self.xdo("mousemove", "--window", self.window, str(x0 + dx * i // steps), str(y0 + dy * i // steps))
+            time.sleep(0.02)
+        self.xdo("mouseup", str(button))
+
+    def key(self, name: str) -> None:
+        self.xdo("key", "--window", self.window, name)
+
+    def scroll(self, up: bool, times: int = 1) -> None:
+        for _ in range(times):
+            self.xdo("click", "--window", self.window, "4" if up else "5")
