@@ -23,6 +23,8 @@ GLSL_VERSION = "#version 330 core"
 FLOAT32_MAX = float(np.finfo(np.float32).max)
 # Stand-in for an infinite bound inside GLSL: finite in float32, so no inf*0 arises.
 GLSL_FAR = 1e30
+# methods that share a loop file, told apart by a #define
+MARCH_FILES = {"enhanced": "relaxed", "forward_newton": "newton"}
 
 
 def glsl_float(x: float) -> str:
@@ -229,6 +231,8 @@ def _defines(scene: Node, settings: Settings, origin: np.ndarray) -> list[str]:
         d.append(f"#define OMEGA {glsl_float(omega)}")
     if settings.method == "reference":
         d.append(f"#define REF_STEP {glsl_float(ref_step(settings, scale))}")
+    if settings.method in ("enhanced", "forward_newton"):
+        d.append(f"#define {settings.method.upper()}")
     if settings.shadows:
         d += ["#define SHADOWS", f"#define SHADOWS_{settings.shadows.upper()}"]
     if settings.ao:
@@ -295,7 +299,7 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
         b.add_file("bracket")
     if settings.method in ("newton", "forward_newton"):
         b.add_file("ray_derivative")
-    b.add_file(f"march_{settings.method}")
+    b.add_file(f"march_{MARCH_FILES.get(settings.method, settings.method)}")
     b.add_file("normal")
     if settings.shadows:
         b.add_file("shadow_march" if scene.exactness == IMPLICIT else f"shadow_{settings.shadows}")

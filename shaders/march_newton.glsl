@@ -1,12 +1,22 @@
-// Newton marching (the seed thesis, re-derived): Newton's method on f(t) = map(ro + t rd)
-// with f'(t) from rayDerivative (so an iteration costs two map() calls). When f' >= 0
-// the Newton step would not go forward: a sphere step f is taken instead. A sign change
-// of f means the step crossed a surface: the root is then bracketed and pinned down by
-// bracketRoot. Works on implicit fields that are not distances (e.g. a product of SDFs);
-// it can take a far root when a step jumps a whole object.
+// Newton marching and forward Newton marching (the seed thesis, re-derived).
+//   newton:         Newton's method on f(t) = map(ro + t rd).
+//   forward_newton: Newton on g(t) = f(t) (T - t) / t, g'(t) = f'(t) (T - t) / t - f T / t^2,
+//                   which adds a root at the far limit T, so rays with no surface drift
+//                   forward to T instead of stalling in a local minimum of f. (The
+//                   printed pseudo-code has "eps^2" for t^2 and a flipped sign.)
+// f'(t) comes from rayDerivative, so an iteration costs two map() calls. A step that
+// would not go forward is replaced by a sphere step f. A sign change of f means the
+// step crossed a surface: the root is bracketed and pinned down by bracketRoot. Works on
+// implicit fields that are not distances (a product of SDFs); can take a far root when a
+// step jumps a whole object.
 float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
+#ifdef FORWARD_NEWTON
+    float T = tmax;
+    float t = max(tmin, 1e-4 * SCENE_SCALE);
+#else
     float t = tmin;
-    float tOut = tmin;
+#endif
+    float tOut = t;
     float fOut = 0.0;
     for (int i = 0; i < MAX_STEPS; i++) {
         float f = map(ro + rd * t);
@@ -20,11 +30,19 @@ float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
         }
         tOut = t;
         fOut = f;
-        float dt = df < 0.0 ? -f / df : f;
-        t += dt;
+#ifdef FORWARD_NEWTON
+        float w = (T - t) / t;
+        float dg = df * w - f * T / (t * t);
+        t += dg < 0.0 ? -f * w / dg : f;
+        if (t >= T * 0.9999) {
+            break;
+        }
+#else
+        t += df < 0.0 ? -f / df : f;
         if (t > tmax) {
             break;
         }
+#endif
     }
     return -1.0;
 }

@@ -75,7 +75,7 @@ def test_implicit_scene_with_distance_method_is_refused():
 
 def test_only_the_chosen_loop_is_compiled():
     src = sg.compile(sg.sphere(1), method="enhanced")
-    assert "#define OMEGA 0.899999976" in src and "Enhanced sphere tracing" in src
+    assert "#define OMEGA 0.899999976" in src and "#define ENHANCED" in src and "Over-relaxed" in src
     assert "Newton" not in src and "bracketRoot" not in src and "rayDerivative" not in src
     assert "rayDerivative" in sg.compile(sg.sphere(1), method="newton")
 

@@ -174,6 +174,22 @@ class Node:
         return Material(self, rgb)
 
 
+class Unary(Node):
+    """A node with one child whose exactness and Lipschitz factor it keeps unless it says otherwise."""
+
+    def __init__(self, child: Node, **params: object) -> None:
+        super().__init__((child,), **params)
+        self.child = child
+
+    @property
+    def exactness(self) -> str:
+        return self.child.exactness
+
+    @property
+    def lipschitz(self) -> float:
+        return self.child.lipschitz
+
+
 class Primitive(Node):
     """A leaf: a closed-form field. Subclasses give ``_expr`` (GLSL) and ``_distance`` (numpy)."""
 

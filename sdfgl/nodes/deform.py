@@ -16,7 +16,7 @@ import numpy as np
 
 from ..errors import ParameterError
 from . import validate as v
-from .base import BOUND, IMPLICIT, Node
+from .base import BOUND, IMPLICIT, Node, Unary
 from .primitives import Box
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -25,7 +25,7 @@ if TYPE_CHECKING:  # pragma: no cover
 PAD = 0.05  # the inside box grows by this fraction of the bounds' size
 
 
-class _Warp(Node):
+class _Warp(Unary):
     """Shared machinery: inside-box test, stretch division, box fallback."""
 
     lib: tuple[str, ...] = ()
@@ -37,8 +37,7 @@ class _Warp(Node):
         lo, hi = child.bounds
         if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi))):
             raise ParameterError(f"{self.kind}: the child {child.label()} is unbounded; a warp needs finite bounds")
-        super().__init__((child,), rate=r)
-        self.child = child
+        super().__init__(child, rate=r)
         self.k = math.radians(r)
         a, b = self.axes
         radius = math.hypot(max(abs(lo[a]), abs(hi[a])), max(abs(lo[b]), abs(hi[b])))
@@ -55,10 +54,6 @@ class _Warp(Node):
     @property
     def exactness(self) -> str:
         return IMPLICIT if self.child.exactness == IMPLICIT else BOUND
-
-    @property
-    def lipschitz(self) -> float:
-        return self.child.lipschitz
 
     @property
     def bounds(self) -> tuple[np.ndarray, np.ndarray]:

@@ -8,7 +8,7 @@ import numpy as np
 
 from ..errors import ParameterError
 from . import validate as v
-from .base import BOUND, EXACT, IMPLICIT, INF, Node
+from .base import BOUND, EXACT, IMPLICIT, INF, Node, Unary
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..codegen import Emitter
@@ -18,7 +18,7 @@ if TYPE_CHECKING:  # pragma: no cover
 WALL_GAP = 0.1
 
 
-class Repeat(Node):
+class Repeat(Unary):
     """Copies of the child every ``period[i]`` along each axis with a non-zero period.
 
     ``count`` (per axis, None for endless) limits the copies to cells -count..count.
@@ -51,8 +51,8 @@ class Repeat(Node):
                     f"{self.kind}: the child {child.label()} reaches {extent[ax]:g} from its centre on axis "
                     f"{'xyz'[ax]}, beyond half the period ({s[ax] / 2:g}); use a period of at least "
                     f"{2 * extent[ax]:g}")
-        super().__init__((child,), period=s, count=None if count is None else n)
-        self.child, self.s, self.n, self.axes = child, s, n, axes
+        super().__init__(child, period=s, count=None if count is None else n)
+        self.s, self.n, self.axes = s, n, axes
         gap = s[axes] / 2 - extent[axes]
         self.gap = np.zeros(3)
         self.gap[axes] = gap
@@ -63,10 +63,6 @@ class Repeat(Node):
         if self.child.exactness == IMPLICIT:
             return IMPLICIT
         return EXACT if self.child.exactness == EXACT and not self.cheap else BOUND
-
-    @property
-    def lipschitz(self) -> float:
-        return self.child.lipschitz
 
     @property
     def bounds(self) -> tuple[np.ndarray, np.ndarray]:
@@ -87,6 +83,16 @@ class Repeat(Node):
     def _limit(self) -> np.ndarray:
         return np.where(self.n < 0, 1e30, self.n.astype(float))
 
+    def _neighbours(self) -> list[np.ndarray]:
+        """Per-axis 0/1 picks of the neighbour cells to visit besides the point's own."""
+        picks = []
+        for combo in itertools.product((0.0, 1.0), repeat=len(self.axes)):
+            if any(combo):
+                pick = np.zeros(3)
+                pick[self.axes] = combo
+                picks.append(pick)
+        return picks
+
     def _emit(self, em: "Emitter", p: str) -> str:
         pt = em.point(p)
         inv = np.where(self.s > 0, 1.0 / np.where(self.s > 0, self.s, 1.0), 0.0)
@@ -105,11 +111,7 @@ class Repeat(Node):
             return em.assign("vec4", f"vec4({own}.rgb, min({own}.w, {cap}))")
         side = em.assign("vec3", f"sign({local}) * {em.vec(self._mask())}")
         acc = own
-        for combo in itertools.product((0.0, 1.0), repeat=len(self.axes)):
-            if not any(combo):
-                continue
-            pick = np.zeros(3)
-            pick[self.axes] = combo
+        for pick in self._neighbours():
             nb = f"clamp({cell} + {side} * {em.vec(pick)}, -{lim}, {lim})"
             val = f"{fn}({pt} - {period} * {nb})"
             if em.mode == "dist":
@@ -130,11 +132,7 @@ class Repeat(Node):
             return np.minimum(own, wall.min(axis=-1))
         side = np.sign(local) * self._mask()
         acc = own
-        for combo in itertools.product((0.0, 1.0), repeat=len(self.axes)):
-            if not any(combo):
-                continue
-            pick = np.zeros(3)
-            pick[self.axes] = combo
+        for pick in self._neighbours():
             nb = np.clip(cell + side * pick, -lim, lim)
             acc = np.minimum(acc, self.child._distance(p - self.s * nb))
         return acc

@@ -8,29 +8,13 @@ import numpy as np
 
 from ..errors import ParameterError
 from . import validate as v
-from .base import BOUND, IMPLICIT, Node
+from .base import BOUND, IMPLICIT, Node, Unary
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..codegen import Emitter
 
 
-class _Unary(Node):
-    """A node with one child whose exactness, Lipschitz factor and colour it keeps."""
-
-    def __init__(self, child: Node, **params: object) -> None:
-        super().__init__((child,), **params)
-        self.child = child
-
-    @property
-    def exactness(self) -> str:
-        return self.child.exactness
-
-    @property
-    def lipschitz(self) -> float:
-        return self.child.lipschitz
-
-
-class Translate(_Unary):
+class Translate(Unary):
     kind = "translate"
 
     def __init__(self, child: Node, offset: Sequence[float]) -> None:
@@ -58,7 +42,7 @@ def _axis_angle_matrix(axis: np.ndarray, degrees: float) -> np.ndarray:
     return np.eye(3) * c + s * k + (1 - c) * np.outer(a, a)
 
 
-class Rotate(_Unary):
+class Rotate(Unary):
     """Rotation by the orthonormal matrix ``matrix`` (world = matrix @ local)."""
 
     kind = "rotate"
@@ -114,7 +98,7 @@ class Rotate(_Unary):
         return c - h, c + h
 
 
-class Scale(_Unary):
+class Scale(Unary):
     """Uniform scale: f(p / s) * s, exactness kept."""
 
     kind = "scale"
@@ -137,7 +121,7 @@ class Scale(_Unary):
         return lo * self.s, hi * self.s
 
 
-class ScaleAxes(_Unary):
+class ScaleAxes(Unary):
     """Non-uniform scale: f(p / s) * min(s). A distance bound (1-Lipschitz), never exact."""
 
     kind = "scale_axes"
@@ -174,7 +158,7 @@ def scale(node: Node, factor: float | Sequence[float]) -> Node:
     return ScaleAxes(node, s)
 
 
-class Material(_Unary):
+class Material(Unary):
     """Colour for every part of the child that has no colour of its own. Free in map()."""
 
     kind = "color"
