@@ -13,6 +13,7 @@ from .evaluate import evaluate
 from .nodes import (BOUND, EXACT, IMPLICIT, Node, bend, box, box_frame, capsule, cone, cylinder, difference, ellipsoid,
                     hex_prism, intersection, octahedron, plane, product, repeat, rounded_box, sphere, torus, twist,
                     union)
+from .params import Param, param
 from .render import RenderResult, Renderer, render
 
 
@@ -29,7 +30,7 @@ Z = _np.array([0.0, 0.0, 1.0])
 __version__ = "0.1.0"
 
 __all__ = [
-    "Camera", "OrbitCamera", "compile", "render", "show", "Renderer", "RenderResult", "Node",
+    "Camera", "OrbitCamera", "compile", "render", "show", "param", "Param", "Renderer", "RenderResult", "Node",
     "sphere", "box", "rounded_box", "plane", "torus", "capsule", "cylinder", "cone", "ellipsoid",
     "octahedron", "hex_prism", "box_frame", "product", "twist", "bend", "repeat", "evaluate", "union", "intersection", "difference", "X", "Y", "Z",
     "EXACT", "BOUND", "IMPLICIT", "SdfglError", "ParameterError", "ShaderCompileError", "ContextError",

@@ -26,7 +26,7 @@ from .codegen import generate, max_steps_of, scene_frame
 from .gl.context import describe
 from .nodes.base import IMPLICIT, Node
 from .reference import Reference, compare, trace
-from .render import Renderer, camera_uniforms, shader_origin
+from .render import Renderer, camera_uniforms, scene_uniforms, shader_origin
 from .settings import DISTANCE_METHODS, Settings
 
 
@@ -75,15 +75,17 @@ class FrameTimer:
         st = Settings.build(**v.settings)
         origin = shader_origin(v.node, v.camera.eye)
         t0 = time.perf_counter()
-        prog = self.r.programs.get(generate(v.node, st, origin))
+        source = generate(v.node, st, origin)
+        prog = self.r.programs.get(source)
         t1 = time.perf_counter()
-        v.result["_prog"] = (prog, origin)
+        v.result["_prog"] = (prog, origin, source)
         first = self.draw(v)
         return t1 - t0, first
 
     def draw(self, v: Variant) -> float:
-        prog, origin = v.result["_prog"]
+        prog, origin, source = v.result["_prog"]
         camera_uniforms(prog, v.camera, self.size, origin)
+        scene_uniforms(prog, source, v.node, origin)
         self.fbo.use()
         self.r.ctx.viewport = (0, 0, *self.size)
         t0 = time.perf_counter()

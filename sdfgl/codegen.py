@@ -16,6 +16,7 @@ import numpy as np
 from . import shaderlib
 from .errors import ParameterError
 from .nodes.base import IMPLICIT, Node
+from .params import Live, Param
 from .settings import DEFAULT_OMEGA, DISTANCE_METHODS, Settings
 
 DEFAULT_COLOR = (0.7, 0.68, 0.64)
@@ -45,7 +46,7 @@ class Emitter:
     """
 
     def __init__(self, mode: str, default_color: Sequence[float] = DEFAULT_COLOR,
-                 parent: "Emitter | None" = None) -> None:
+                 parent: "Emitter | None" = None, params: list[Param] | None = None) -> None:
         if mode not in ("dist", "color"):
             raise ValueError(mode)
         self.mode = mode
@@ -53,6 +54,7 @@ class Emitter:
         # library files and helper functions are shared with the emitter of map() itself
         self.libs: list[str] = parent.libs if parent else []
         self.functions: dict[tuple, tuple[str, list[tuple[str, str]]]] = parent.functions if parent else {}
+        self.params: list[Param] = parent.params if parent else (params if params is not None else [])
         self._path: list[str] = list(parent._path) if parent else []
         self._colors: list[tuple[float, float, float]] = [tuple(default_color)]  # type: ignore[list-item]
         self._count = 0
@@ -99,14 +101,30 @@ class Emitter:
         return self.functions[key][0]
 
     # -- literals ----------------------------------------------------------------------
-    def num(self, x: float) -> str:
+    def num(self, x: float | Live) -> str:
+        """A float: a constant, or the expression of a live value over its uniform."""
+        if isinstance(x, Live):
+            return x.glsl(self)
         if not abs(float(x)) <= FLOAT32_MAX:
             raise ParameterError(f"{self.owner}: value {x!r} does not fit in a float32 shader constant")
         return glsl_float(x)
 
-    def vec(self, v: Sequence[float]) -> str:
+    def vec(self, v: Sequence[float] | Live) -> str:
+        """A vecN: constants, or a live value (a live scalar is broadcast to vec3)."""
+        if isinstance(v, Live):
+            return v.glsl(self) if v.dims == 3 else f"vec3({v.glsl(self)})"
         vals = list(v)
         return f"vec{len(vals)}({', '.join(self.num(x) for x in vals)})"
+
+    def literal(self, x: object) -> str:
+        """A constant inside a live expression: a float or a 3-vector."""
+        return self.vec(np.asarray(x, dtype=np.float64)) if np.ndim(x) else self.num(float(x))  # type: ignore[arg-type]
+
+    def uniform_for(self, p: Param) -> str:
+        """The uniform that carries live parameter ``p`` (declared by generate())."""
+        if p not in self.params:
+            self.params.append(p)
+        return f"uP{self.params.index(p)}"
 
     # -- points with a pending float64 offset ------------------------------------------
     def shift(self, p: str, delta: np.ndarray) -> str:
@@ -149,10 +167,15 @@ class Emitter:
 
 @dataclass(frozen=True)
 class ShaderSource:
-    """A generated fragment shader plus the owner (node path or file) of every line."""
+    """A generated fragment shader plus the owner (node path or file) of every line.
+
+    ``params`` are the live parameters behind uniforms uP0, uP1, ...; ``live_bounds`` says
+    the scene box is a uniform (it moves with the parameters)."""
 
     text: str
     owners: tuple[str, ...]
+    params: tuple[Param, ...] = ()
+    live_bounds: bool = False
 
     def owner_of(self, line: int) -> str:
         """Who wrote 1-based source line ``line``."""
@@ -172,8 +195,8 @@ class _Builder:
     def add_file(self, name: str) -> None:
         self.add(shaderlib.read(name), f"shaders/{name}.glsl")
 
-    def build(self) -> ShaderSource:
-        return ShaderSource("\n".join(self.lines) + "\n", tuple(self.owners))
+    def build(self, params: Sequence[Param] = (), live_bounds: bool = False) -> ShaderSource:
+        return ShaderSource("\n".join(self.lines) + "\n", tuple(self.owners), tuple(params), live_bounds)
 
 
 def _helpers(b: _Builder, em: Emitter, done: set[str]) -> None:
@@ -213,18 +236,23 @@ def ref_step(settings: Settings, scale: float) -> float:
     return settings.ref_step if settings.ref_step is not None else scale / 512.0
 
 
-def _defines(scene: Node, settings: Settings, origin: np.ndarray) -> list[str]:
+BOUNDS_PAD = 1e-3  # the ray clip box grows by this share of the scene size
+
+
+def _defines(scene: Node, settings: Settings, origin: np.ndarray, live: bool) -> list[str]:
     lo, hi, scale = scene_frame(scene)
-    pad = 1e-3 * scale
+    pad = BOUNDS_PAD * scale
+    bounds = (["#define BOUNDS_LO uBoundsLo", "#define BOUNDS_HI uBoundsHi"] if live else [
+        f"#define BOUNDS_LO vec3({', '.join(glsl_float(x) for x in lo - pad - origin)})",
+        f"#define BOUNDS_HI vec3({', '.join(glsl_float(x) for x in hi + pad - origin)})"])
     d = [
         f"#define AA {settings.aa}",
         f"#define MAX_STEPS {max_steps_of(settings, scale, lo, hi)}",
         f"#define HIT_{settings.hit.upper()}",
         f"#define HIT_SCALE {glsl_float(settings.hit_scale)}",
         f"#define MAX_DIST {glsl_float(settings.max_dist)}",
-        f"#define SCENE_SCALE {glsl_float(scale)}",
-        f"#define BOUNDS_LO vec3({', '.join(glsl_float(x) for x in lo - pad - origin)})",
-        f"#define BOUNDS_HI vec3({', '.join(glsl_float(x) for x in hi + pad - origin)})",
+        "#define SCENE_SCALE uSceneScale" if live else f"#define SCENE_SCALE {glsl_float(scale)}",
+        *bounds,
     ]
     if settings.method in DEFAULT_OMEGA:
         omega = settings.omega if settings.omega is not None else DEFAULT_OMEGA[settings.method]
@@ -239,7 +267,7 @@ def _defines(scene: Node, settings: Settings, origin: np.ndarray) -> list[str]:
         d.append("#define AO")
     if settings.ground:
         ground_y = lo[1] if lo[1] > -GLSL_FAR else 0.0
-        d += ["#define GROUND", f"#define GROUND_Y {glsl_float(ground_y - origin[1])}"]
+        d += ["#define GROUND", "#define GROUND_Y uGroundY" if live else f"#define GROUND_Y {glsl_float(ground_y - origin[1])}"]
     if settings.debug:
         d += ["#define DEBUG_VIEW", f"#define DEBUG_{settings.debug.upper()}"]
     aux = [o for o in settings.outputs if o != "color"]
@@ -250,8 +278,8 @@ def _defines(scene: Node, settings: Settings, origin: np.ndarray) -> list[str]:
     return d
 
 
-def _emit_map(scene: Node, mode: str, origin: np.ndarray) -> tuple[Emitter, str]:
-    em = Emitter(mode)
+def _emit_map(scene: Node, mode: str, origin: np.ndarray, params: list[Param]) -> tuple[Emitter, str]:
+    em = Emitter(mode, params=params)
     p = em.shift("p", origin) if origin.any() else "p"
     return em, scene.emit(em, p)
 
@@ -274,14 +302,21 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
             raise ParameterError(f"{scene.label()} is an implicit field: ambient occlusion needs distances; "
                                  f"pass ao=False")
     org = np.asarray(origin, dtype=np.float64)
-    dist, dist_result = _emit_map(scene, "dist", org)
-    color, color_result = _emit_map(scene, "color", org) if target == "render" else (None, "")
+    params: list[Param] = []
+    dist, dist_result = _emit_map(scene, "dist", org, params)
+    color, color_result = _emit_map(scene, "color", org, params) if target == "render" else (None, "")
     libs = list(dist.libs) + [n for n in (color.libs if color else []) if n not in dist.libs]
+    live = bool(params)
 
     b = _Builder()
     b.add(GLSL_VERSION, "(codegen)")
     b.add(f"// sdfgl scene: {scene.label()}  [{scene.exactness}, L={scene.lipschitz:g}]", "(codegen)")
-    b.add("\n".join(_defines(scene, settings, org)), "(settings)")
+    b.add("\n".join(_defines(scene, settings, org, live)), "(settings)")
+    for i, prm in enumerate(params):
+        b.add(f"uniform {'vec3' if prm.dims == 3 else 'float'} uP{i};  // param {prm.label}", "(live parameters)")
+    if live:
+        b.add("uniform vec3 uBoundsLo;\nuniform vec3 uBoundsHi;\nuniform float uGroundY;\nuniform float uSceneScale;",
+              "(live parameters)")
     b.add_file("common")
     for name in libs:
         b.add_file(f"lib/{name}")
@@ -290,7 +325,7 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     _function(b, "float map(vec3 p)", dist, dist_result, "{}")
     if target == "evaluate":
         b.add_file("evaluate_main")
-        return b.build()
+        return b.build(params, live)
     assert color is not None
     _helpers(b, color, done)
     _function(b, "vec3 mapColor(vec3 p)", color, color_result, "{}.rgb")
@@ -312,7 +347,7 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     if settings.debug:
         b.add_file("debug")
     b.add_file("render_main")
-    return b.build()
+    return b.build(params, live)
 
 
 def compile(scene: Node, **settings: object) -> str:  # noqa: A001 - public API name

@@ -6,7 +6,7 @@ import numpy as np
 from .codegen import generate
 from .errors import ParameterError
 from .nodes.base import Node, as_points
-from .render import Renderer, default_renderer
+from .render import Renderer, default_renderer, scene_uniforms
 from .settings import Settings
 
 _ROW = 1024  # points per texture row
@@ -32,7 +32,9 @@ def evaluate(scene: Node, points: object, origin: object = (0.0, 0.0, 0.0),
     org = np.asarray(origin, dtype=np.float64)
     r = renderer or default_renderer()
     ctx = r.ctx
-    prog = r.programs.get(generate(scene, Settings(shadows=False, ao=False), org, target="evaluate"))
+    source = generate(scene, Settings(shadows=False, ao=False), org, target="evaluate")
+    prog = r.programs.get(source)
+    scene_uniforms(prog, source, scene, org)
     n = flat.shape[0]
     w = min(n, _ROW)
     h = -(-n // w)

@@ -12,7 +12,7 @@ import numpy as np
 from PIL import Image
 
 from .camera import Camera, OrbitCamera
-from .codegen import ShaderSource, generate
+from .codegen import BOUNDS_PAD, GLSL_FAR, ShaderSource, generate, scene_frame
 from .errors import ParameterError, SdfglError
 from .gl.context import headless_context
 from .gl.programs import ProgramCache
@@ -90,6 +90,20 @@ def camera_uniforms(prog: moderngl.Program, camera: Camera, size: tuple[int, int
     _set_uniform(prog, "uJitter", jitter)
 
 
+def scene_uniforms(prog: moderngl.Program, source: ShaderSource, scene: Node, origin: np.ndarray) -> None:
+    """Set the uniforms of live parameters (and the scene box they move) to their current values."""
+    for i, prm in enumerate(source.params):
+        val = prm.value
+        _set_uniform(prog, f"uP{i}", float(val) if np.ndim(val) == 0 else tuple(float(x) for x in val))
+    if source.live_bounds:
+        lo, hi, scale = scene_frame(scene)
+        pad = BOUNDS_PAD * scale
+        _set_uniform(prog, "uBoundsLo", tuple((lo - pad - origin).tolist()))
+        _set_uniform(prog, "uBoundsHi", tuple((hi + pad - origin).tolist()))
+        _set_uniform(prog, "uGroundY", float((lo[1] if lo[1] > -GLSL_FAR else 0.0) - origin[1]))
+        _set_uniform(prog, "uSceneScale", float(scale))
+
+
 class Renderer:
     """Draws scenes on one GL context, caching programs by source and targets by size."""
 
@@ -133,6 +147,7 @@ class Renderer:
         compile_s = self.programs.last_compile_s
         targets = self._targets_for(wh, st.outputs)
         camera_uniforms(prog, cam, wh, origin)
+        scene_uniforms(prog, source, scene, origin)
         targets.fbo.use()
         self.ctx.viewport = (0, 0, *wh)
         t2 = time.perf_counter()

@@ -25,7 +25,7 @@ from .camera import Camera, OrbitCamera
 from .codegen import generate
 from .errors import ContextError, SdfglError
 from .nodes.base import IMPLICIT, Node
-from .render import Renderer, camera_uniforms, shader_origin
+from .render import Renderer, camera_uniforms, scene_uniforms, shader_origin
 from .scenefile import load_scene_file
 from .settings import DISTANCE_METHODS, Settings
 
@@ -250,6 +250,7 @@ class Viewer:
         before = self.renderer.programs.compiles
         prog = self.renderer.programs.get(self._sources[key])
         self.state.compiles += self.renderer.programs.compiles - before
+        scene_uniforms(prog, self._sources[key], scene, origin)
         return prog, origin
 
     def _moving(self) -> bool:

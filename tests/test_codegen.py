@@ -98,7 +98,7 @@ class _Broken(Primitive):
         return p[..., 0]
 
     @property
-    def bounds(self):
+    def _bounds(self):
         return sg.box(1).bounds
 
 

@@ -5,11 +5,12 @@ the numpy reference cannot drift apart unnoticed (the parity tests hold them equ
 """
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, ClassVar, Sequence
+from typing import TYPE_CHECKING, Any, ClassVar, Sequence
 
 import numpy as np
 
 from ..errors import ParameterError
+from ..params import Live, Param
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..codegen import Emitter
@@ -46,6 +47,8 @@ class Node:
     def key(self) -> tuple:
         """Structural key: equal keys mean equal fields (used to share code and caches)."""
         def freeze(v: object) -> object:
+            if isinstance(v, Live):
+                return ("live", id(v))
             if isinstance(v, np.ndarray):
                 return tuple(v.ravel().tolist())
             if isinstance(v, (list, tuple)):
@@ -57,6 +60,8 @@ class Node:
     def label(self) -> str:
         """Short human-readable name used in error messages and shader comments."""
         def fmt(v: object) -> str:
+            if isinstance(v, Live):  # by name, not value: the source must not change with it
+                return f"param:{v.label}" if isinstance(v, Param) else "param-expr"
             if isinstance(v, np.ndarray):
                 return "(" + ", ".join(f"{x:g}" for x in v.ravel()) + ")"
             if isinstance(v, float):
@@ -105,8 +110,26 @@ class Node:
 
     @property
     def bounds(self) -> tuple[np.ndarray, np.ndarray]:
-        """Conservative axis-aligned box (lo, hi) holding the solid; components may be inf."""
+        """Conservative axis-aligned box (lo, hi) holding the solid; components may be inf.
+
+        With live parameters, the box for their current values."""
+        lo, hi = self._bounds
+        return (np.array(np.broadcast_to(np.asarray(lo, dtype=np.float64), (3,))),
+                np.array(np.broadcast_to(np.asarray(hi, dtype=np.float64), (3,))))
+
+    @property
+    def _bounds(self) -> tuple[Any, Any]:
         raise NotImplementedError
+
+    def live_params(self) -> list["Param"]:
+        """The live parameters anywhere in this subtree."""
+        out: list[Param] = []
+        for v in self.params.values():
+            if isinstance(v, Live):
+                out += [p for p in v.roots() if p not in out]
+        for c in self.children:
+            out += [p for p in c.live_params() if p not in out]
+        return out
 
     # -- modelling API (fogleman/sdf style) ---------------------------------------------
     def __or__(self, other: "Node") -> "Node":

@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..errors import ParameterError
+from ..params import Live
 from . import validate as v
 from .base import BOUND, EXACT, IMPLICIT, Node
 
@@ -37,8 +38,20 @@ class _Boolean(Node):
         if len(children) < 2:
             raise ParameterError(f"{self.kind}: needs at least two operands, got {len(children)}")
         kk = v.scalar(self.kind, "k", k, nonnegative=True)
-        super().__init__(children, k=0.0 if kk < K_MIN else kk)
-        self.k = float(self.params["k"])  # type: ignore[arg-type]
+        if isinstance(kk, Live):  # a live blend radius is always smooth, so it must stay > 0
+            def check() -> None:
+                if float(kk) < K_MIN:
+                    raise ParameterError(f"{self.kind}: live parameter 'k' must stay >= {K_MIN:g} (the smooth "
+                                         f"code is compiled in), got {float(kk):g}")
+            v.watch(check, kk)
+        else:
+            kk = 0.0 if kk < K_MIN else kk
+        super().__init__(children, k=kk)
+        self.k = kk
+
+    @property
+    def _hard(self) -> bool:
+        return not isinstance(self.k, Live) and self.k == 0
 
     @property
     def exactness(self) -> str:
@@ -76,29 +89,29 @@ class Union(_Boolean):
     @property
     def exactness(self) -> str:
         # min() of exact fields is exact outside the solid (a bound inside); smoothing breaks it
-        if self.k == 0 and all(c.exactness == EXACT for c in self.children):
+        if self._hard and all(c.exactness == EXACT for c in self.children):
             return EXACT
         return super().exactness
 
     def _combine(self, em: "Emitter", a: str, b: str) -> str:
         if em.mode == "dist":
-            if self.k == 0:
+            if self._hard:
                 return em.assign("float", f"min({a}, {b})")
             em.require("op_smin")
             return em.assign("float", f"opSmin({a}, {b}, {em.num(self.k)})")
-        if self.k == 0:
+        if self._hard:
             return em.assign("vec4", f"({a}.w < {b}.w) ? {a} : {b}")
         em.require("op_smin_color")
         return em.assign("vec4", f"opSminColor({a}, {b}, {em.num(self.k)})")
 
     def _fold(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
-        return np.minimum(a, b) if self.k == 0 else _smin(a, b, self.k)
+        return np.minimum(a, b) if self._hard else _smin(a, b, float(self.k))
 
     @property
-    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+    def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
         lo = np.min([c.bounds[0] for c in self.children], axis=0)
         hi = np.max([c.bounds[1] for c in self.children], axis=0)
-        grow = self.k * 0.25  # the smooth min lowers the field by at most k/4
+        grow = float(self.k) * 0.25  # the smooth min lowers the field by at most k/4
         return lo - grow, hi + grow
 
 
@@ -107,20 +120,20 @@ class Intersection(_Boolean):
 
     def _combine(self, em: "Emitter", a: str, b: str) -> str:
         if em.mode == "dist":
-            if self.k == 0:
+            if self._hard:
                 return em.assign("float", f"max({a}, {b})")
             em.require("op_smax")
             return em.assign("float", f"opSmax({a}, {b}, {em.num(self.k)})")
-        if self.k == 0:
+        if self._hard:
             return em.assign("vec4", f"({a}.w > {b}.w) ? {a} : {b}")
         em.require("op_smax_color")
         return em.assign("vec4", f"opSmaxColor({a}, {b}, {em.num(self.k)})")
 
     def _fold(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
-        return np.maximum(a, b) if self.k == 0 else _smax(a, b, self.k)
+        return np.maximum(a, b) if self._hard else _smax(a, b, float(self.k))
 
     @property
-    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+    def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
         lo = np.max([c.bounds[0] for c in self.children], axis=0)
         hi = np.min([c.bounds[1] for c in self.children], axis=0)
         return lo, np.maximum(hi, lo)
@@ -133,21 +146,21 @@ class Difference(_Boolean):
 
     def _combine(self, em: "Emitter", a: str, b: str) -> str:
         if em.mode == "dist":
-            if self.k == 0:
+            if self._hard:
                 return em.assign("float", f"max({a}, -{b})")
             em.require("op_smax")
             return em.assign("float", f"opSmax({a}, -{b}, {em.num(self.k)})")
         neg = f"vec4({b}.rgb, -{b}.w)"
-        if self.k == 0:
+        if self._hard:
             return em.assign("vec4", f"({a}.w > -{b}.w) ? {a} : {neg}")
         em.require("op_smax_color")
         return em.assign("vec4", f"opSmaxColor({a}, {neg}, {em.num(self.k)})")
 
     def _fold(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
-        return np.maximum(a, -b) if self.k == 0 else _smax(a, -b, self.k)
+        return np.maximum(a, -b) if self._hard else _smax(a, -b, float(self.k))
 
     @property
-    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+    def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
         return self.children[0].bounds
 
 
@@ -184,7 +197,7 @@ class Product(Node):
         return self.children[0]._distance(p) * self.children[1]._distance(p)
 
     @property
-    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+    def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
         los, his = zip(*(c.bounds for c in self.children))
         return np.min(los, axis=0), np.max(his, axis=0)
 

@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..errors import ParameterError
+from ..params import Live
 from . import validate as v
 from .base import BOUND, IMPLICIT, Node, Unary
 from .primitives import Box
@@ -34,6 +35,9 @@ class _Warp(Unary):
 
     def __init__(self, child: Node, rate: float) -> None:
         r = v.scalar(self.kind, "rate", rate)
+        if isinstance(r, Live):
+            raise ParameterError(f"{self.kind}: 'rate' cannot be a live parameter (the step safety factor "
+                                 f"is compiled from it)")
         lo, hi = child.bounds
         if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi))):
             raise ParameterError(f"{self.kind}: the child {child.label()} is unbounded; a warp needs finite bounds")
@@ -56,7 +60,7 @@ class _Warp(Unary):
         return IMPLICIT if self.child.exactness == IMPLICIT else BOUND
 
     @property
-    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+    def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
         lo, hi = self.child.bounds
         lo, hi = lo.copy(), hi.copy()
         for ax in self.axes:  # the warp turns points about an axis: radius is kept

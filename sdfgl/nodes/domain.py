@@ -7,6 +7,7 @@ from typing import TYPE_CHECKING, Sequence
 import numpy as np
 
 from ..errors import ParameterError
+from ..params import Live
 from . import validate as v
 from .base import BOUND, EXACT, IMPLICIT, INF, Node, Unary
 
@@ -32,6 +33,9 @@ class Repeat(Unary):
 
     def __init__(self, child: Node, period: float | Sequence[float],
                  count: int | Sequence[int] | None = None) -> None:
+        if isinstance(period, Live) or isinstance(count, Live):
+            raise ParameterError(f"{self.kind}: 'period' and 'count' cannot be live parameters (the cell "
+                                 f"structure is compiled from them)")
         s = v.vector(self.kind, "period", period)
         if np.any(s < 0) or not s.any():
             raise ParameterError(f"{self.kind}: 'period' must be >= 0 per axis and not all 0, got {tuple(s)}")
@@ -65,7 +69,7 @@ class Repeat(Unary):
         return EXACT if self.child.exactness == EXACT and not self.cheap else BOUND
 
     @property
-    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+    def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
         lo, hi = self.child.bounds
         lo, hi = lo.copy(), hi.copy()
         for ax in self.axes:

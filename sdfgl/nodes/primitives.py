@@ -5,12 +5,13 @@ cones, capsules and prisms run along Y, the torus lies in the XZ plane.
 """
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Sequence
+from typing import TYPE_CHECKING, Any, Sequence
 
 import numpy as np
 
 from ..errors import ParameterError
 from . import validate as v
+from ..params import Live
 from .base import INF, Primitive
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -21,8 +22,9 @@ def _len(a: np.ndarray) -> np.ndarray:
     return np.sqrt(np.sum(a * a, axis=-1))
 
 
-def _box_of(half: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    return -half.copy(), half.copy()
+def _box_of(half: Any) -> tuple[np.ndarray, np.ndarray]:
+    h = np.asarray(half, dtype=np.float64)
+    return -h, h.copy()
 
 
 class Sphere(Primitive):
@@ -36,14 +38,14 @@ class Sphere(Primitive):
         self.r, self.c = r, c
 
     def _expr(self, em: "Emitter", p: str) -> str:
-        q = p if not self.c.any() else f"({p} - {em.vec(self.c)})"
+        q = f"({p} - {em.vec(self.c)})" if isinstance(self.c, Live) or self.c.any() else p
         return f"sdSphere({q}, {em.num(self.r)})"
 
     def _distance(self, p: np.ndarray) -> np.ndarray:
         return _len(p - self.c) - self.r
 
     @property
-    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+    def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
         return self.c - self.r, self.c + self.r
 
 
@@ -64,7 +66,7 @@ class Box(Primitive):
         return _len(np.maximum(q, 0.0)) + np.minimum(q.max(axis=-1), 0.0)
 
     @property
-    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+    def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
         return _box_of(self.half)
 
 
@@ -75,9 +77,11 @@ class RoundedBox(Primitive):
     def __init__(self, size: float | Sequence[float] = 1.0, radius: float = 0.1) -> None:
         s = v.vector(self.kind, "size", size, positive=True)
         r = v.scalar(self.kind, "radius", radius, nonnegative=True)
-        if r > s.min() / 2:
-            raise ParameterError(f"{self.kind}: parameter 'radius' ({r:g}) must be at most half the "
-                                 f"smallest edge ({s.min() / 2:g})")
+        def check() -> None:
+            if float(r) > np.min(s) / 2:
+                raise ParameterError(f"{self.kind}: parameter 'radius' ({float(r):g}) must be at most half the "
+                                     f"smallest edge ({np.min(s) / 2:g})")
+        v.watch(check, s, r)
         super().__init__(size=s, radius=r)
         self.half, self.r = s / 2, r
 
@@ -89,7 +93,7 @@ class RoundedBox(Primitive):
         return _len(np.maximum(q, 0.0)) + np.minimum(q.max(axis=-1), 0.0) - self.r
 
     @property
-    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+    def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
         return _box_of(self.half)
 
 
@@ -102,25 +106,32 @@ class Plane(Primitive):
     def __init__(self, normal: Sequence[float] = (0.0, 1.0, 0.0), point: Sequence[float] = (0.0, 0.0, 0.0)) -> None:
         n = v.vector(self.kind, "normal", normal, nonzero=True)
         o = v.vector(self.kind, "point", point)
-        n = n / np.linalg.norm(n)
+        if not isinstance(n, Live):
+            n = n / np.linalg.norm(n)
         super().__init__(normal=n, point=o)
         self.n, self.o = n, o
 
+    def _unit_normal(self) -> np.ndarray:
+        n = np.asarray(self.n, dtype=np.float64)
+        return n / np.linalg.norm(n)
+
     def _expr(self, em: "Emitter", p: str) -> str:
-        return f"sdPlane({p}, {em.vec(self.n)}, {em.vec(self.o)})"
+        n = f"normalize({em.vec(self.n)})" if isinstance(self.n, Live) else em.vec(self.n)
+        return f"sdPlane({p}, {n}, {em.vec(self.o)})"
 
     def _distance(self, p: np.ndarray) -> np.ndarray:
-        return (p - self.o) @ self.n
+        return (p - self.o) @ self._unit_normal()
 
     @property
-    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+    def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
         lo, hi = np.full(3, -INF), np.full(3, INF)
-        axis = int(np.argmax(np.abs(self.n)))
-        if abs(self.n[axis]) == 1.0:  # axis-aligned: one side of the box is finite
-            if self.n[axis] > 0:
-                hi[axis] = self.o[axis]
+        n, o = self._unit_normal(), np.asarray(self.o, dtype=np.float64)
+        axis = int(np.argmax(np.abs(n)))
+        if abs(n[axis]) == 1.0 and not isinstance(self.n, Live):  # axis-aligned: one side is finite
+            if n[axis] > 0:
+                hi[axis] = o[axis]
             else:
-                lo[axis] = self.o[axis]
+                lo[axis] = o[axis]
         return lo, hi
 
 
@@ -142,9 +153,9 @@ class Torus(Primitive):
         return np.hypot(qx, p[..., 1]) - self.r2
 
     @property
-    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+    def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
         e = self.r1 + self.r2
-        return _box_of(np.array([e, self.r2, e]))
+        return _box_of(np.array([float(e), float(self.r2), float(e)]))
 
 
 class Capsule(Primitive):
@@ -156,8 +167,11 @@ class Capsule(Primitive):
         pa = v.vector(self.kind, "a", a)
         pb = v.vector(self.kind, "b", b)
         r = v.scalar(self.kind, "radius", radius, positive=True)
-        if np.array_equal(pa, pb):
-            raise ParameterError(f"{self.kind}: end points 'a' and 'b' coincide at {tuple(pa)}; use sphere()")
+        def check() -> None:
+            if np.array_equal(np.asarray(pa, float), np.asarray(pb, float)):
+                raise ParameterError(f"{self.kind}: end points 'a' and 'b' coincide at "
+                                     f"{tuple(np.asarray(pa, float))}; use sphere()")
+        v.watch(check, pa, pb)
         super().__init__(a=pa, b=pb, radius=r)
         self.a, self.b, self.r = pa, pb, r
 
@@ -170,8 +184,9 @@ class Capsule(Primitive):
         return _len(pa - h[..., None] * ba) - self.r
 
     @property
-    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
-        return np.minimum(self.a, self.b) - self.r, np.maximum(self.a, self.b) + self.r
+    def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        a, b, r = np.asarray(self.a, float), np.asarray(self.b, float), float(self.r)
+        return np.minimum(a, b) - r, np.maximum(a, b) + r
 
 
 class Cylinder(Primitive):
@@ -193,8 +208,8 @@ class Cylinder(Primitive):
         return np.minimum(np.maximum(dx, dy), 0.0) + np.hypot(np.maximum(dx, 0.0), np.maximum(dy, 0.0))
 
     @property
-    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
-        return _box_of(np.array([self.r, self.h, self.r]))
+    def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        return _box_of(np.array([float(self.r), float(self.h), float(self.r)]))
 
 
 class Cone(Primitive):
@@ -205,8 +220,10 @@ class Cone(Primitive):
         h = v.scalar(self.kind, "height", height, positive=True)
         a = v.scalar(self.kind, "r1", r1, nonnegative=True)
         b = v.scalar(self.kind, "r2", r2, nonnegative=True)
-        if a == 0 and b == 0:
-            raise ParameterError(f"{self.kind}: radii 'r1' and 'r2' are both 0; the cone is empty")
+        def check() -> None:
+            if float(a) == 0 and float(b) == 0:
+                raise ParameterError(f"{self.kind}: radii 'r1' and 'r2' are both 0; the cone is empty")
+        v.watch(check, a, b)
         super().__init__(height=h, r1=a, r2=b)
         self.h, self.r1, self.r2 = h / 2, a, b
 
@@ -215,10 +232,11 @@ class Cone(Primitive):
 
     def _distance(self, p: np.ndarray) -> np.ndarray:
         qx, qy = np.hypot(p[..., 0], p[..., 2]), p[..., 1]
-        k1 = np.array([self.r2, self.h])
-        k2 = np.array([self.r2 - self.r1, 2 * self.h])
-        rr = np.where(qy < 0, self.r1, self.r2)
-        cax, cay = qx - np.minimum(qx, rr), np.abs(qy) - self.h
+        r1, r2, hh = float(self.r1), float(self.r2), float(self.h)
+        k1 = np.array([r2, hh])
+        k2 = np.array([r2 - r1, 2 * hh])
+        rr = np.where(qy < 0, r1, r2)
+        cax, cay = qx - np.minimum(qx, rr), np.abs(qy) - hh
         q = np.stack([qx, qy], axis=-1)
         t = np.clip(((k1 - q) @ k2) / (k2 @ k2), 0.0, 1.0)
         cb = q - k1 + t[..., None] * k2
@@ -226,9 +244,9 @@ class Cone(Primitive):
         return s * np.sqrt(np.minimum(cax * cax + cay * cay, np.sum(cb * cb, axis=-1)))
 
     @property
-    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
-        r = max(self.r1, self.r2)
-        return _box_of(np.array([r, self.h, r]))
+    def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        r = max(float(self.r1), float(self.r2))
+        return _box_of(np.array([r, float(self.h), r]))
 
 
 class Ellipsoid(Primitive):
@@ -247,12 +265,13 @@ class Ellipsoid(Primitive):
         return f"sdEllipsoid({p}, {em.vec(self.r)})"
 
     def _distance(self, p: np.ndarray) -> np.ndarray:
-        near = (_len(p / self.r) - 1.0) * self.r.min()
-        far = _len(p) - self.r.max()
+        r = np.asarray(self.r, dtype=np.float64)
+        near = (_len(p / r) - 1.0) * r.min()
+        far = _len(p) - r.max()
         return np.maximum(near, far)
 
     @property
-    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+    def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
         return _box_of(self.r)
 
 
@@ -281,7 +300,7 @@ class Octahedron(Primitive):
         return np.where(cx | cy | cz, edge, m * 0.57735027)
 
     @property
-    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+    def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
         return _box_of(np.full(3, self.s))
 
 
@@ -311,9 +330,9 @@ class HexPrism(Primitive):
         return np.minimum(np.maximum(dx, dy), 0.0) + np.hypot(np.maximum(dx, 0.0), np.maximum(dy, 0.0))
 
     @property
-    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+    def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
         rc = self.r / 0.8660254037844386
-        return _box_of(np.array([rc, self.h, rc]))
+        return _box_of(np.array([float(rc), float(self.h), float(rc)]))
 
 
 class BoxFrame(Primitive):
@@ -325,9 +344,11 @@ class BoxFrame(Primitive):
     def __init__(self, size: float | Sequence[float] = 1.0, thickness: float = 0.05) -> None:
         s = v.vector(self.kind, "size", size, positive=True)
         e = v.scalar(self.kind, "thickness", thickness, positive=True)
-        if e > s.min() / 2:
-            raise ParameterError(f"{self.kind}: parameter 'thickness' ({e:g}) must be at most half the "
-                                 f"smallest edge ({s.min() / 2:g})")
+        def check() -> None:
+            if float(e) > np.min(s) / 2:
+                raise ParameterError(f"{self.kind}: parameter 'thickness' ({float(e):g}) must be at most half the "
+                                     f"smallest edge ({np.min(s) / 2:g})")
+        v.watch(check, s, e)
         super().__init__(size=s, thickness=e)
         self.half, self.e = s / 2, e / 2
 
@@ -346,7 +367,7 @@ class BoxFrame(Primitive):
                           part(np.concatenate([qx, qy, pz], -1)))
 
     @property
-    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+    def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
         return _box_of(self.half)
 
 

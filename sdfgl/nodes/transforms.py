@@ -8,6 +8,7 @@ import numpy as np
 
 from ..errors import ParameterError
 from . import validate as v
+from ..params import Live
 from .base import BOUND, IMPLICIT, Node, Unary
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -23,13 +24,15 @@ class Translate(Unary):
         self.offset = off
 
     def _emit(self, em: "Emitter", p: str) -> str:
+        if isinstance(self.offset, Live):
+            return self.child.emit(em, em.assign("vec3", f"{em.point(p)} - {em.vec(self.offset)}"))
         return self.child.emit(em, em.shift(p, -self.offset))
 
     def _distance(self, p: np.ndarray) -> np.ndarray:
         return self.child._distance(p - self.offset)
 
     @property
-    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+    def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
         lo, hi = self.child.bounds
         return lo + self.offset, hi + self.offset
 
@@ -43,23 +46,39 @@ def _axis_angle_matrix(axis: np.ndarray, degrees: float) -> np.ndarray:
 
 
 class Rotate(Unary):
-    """Rotation by the orthonormal matrix ``matrix`` (world = matrix @ local)."""
+    """Rotation by the orthonormal matrix ``matrix`` (world = matrix @ local), or by a live
+    angle (degrees) about a fixed axis."""
 
     kind = "rotate"
 
-    def __init__(self, child: Node, matrix: np.ndarray) -> None:
+    def __init__(self, child: Node, matrix: np.ndarray | None = None, axis: np.ndarray | None = None,
+                 angle: Live | None = None) -> None:
+        if angle is not None:
+            super().__init__(child, axis=axis, angle=angle)
+            self.axis, self.angle = np.asarray(axis, dtype=np.float64) / np.linalg.norm(axis), angle
+            return
         m = np.asarray(matrix, dtype=np.float64)
         if m.shape != (3, 3) or not np.all(np.isfinite(m)) or not np.allclose(m @ m.T, np.eye(3), atol=1e-9):
             raise ParameterError(f"{self.kind}: 'matrix' must be a finite 3x3 rotation, got {m.tolist()}")
         m = np.where(np.abs(m) < 1e-15, 0.0, m)  # cos(90 deg) is 6e-17, not 0
         super().__init__(child, matrix=m)
-        self.m = m
+        self.angle = None
+        self._m = m
+
+    @property
+    def m(self) -> np.ndarray:
+        """The current rotation matrix."""
+        return self._m if self.angle is None else _axis_angle_matrix(self.axis, float(self.angle))
 
     @classmethod
-    def axis_angle(cls, child: Node, angle: float, axis: Sequence[float]) -> "Rotate":
+    def axis_angle(cls, child: Node, angle: float | Live, axis: Sequence[float]) -> "Rotate":
         """Rotate ``child`` by ``angle`` degrees about ``axis``."""
         deg = v.scalar(cls.kind, "angle", angle)
         ax = v.vector(cls.kind, "axis", axis, nonzero=True)
+        if isinstance(deg, Live):
+            if isinstance(ax, Live):
+                raise ParameterError(f"{cls.kind}: the axis cannot be a live parameter (the angle can)")
+            return cls(child, axis=ax, angle=deg)
         return cls(child, _axis_angle_matrix(ax, deg))
 
     @classmethod
@@ -76,6 +95,11 @@ class Rotate(Unary):
         return cls(child, _axis_angle_matrix(np.cross(y, a), math.degrees(math.acos(c))))
 
     def _emit(self, em: "Emitter", p: str) -> str:
+        if self.angle is not None:
+            em.require("op_rotate")
+            rad = em.num(self.angle * (math.pi / 180.0))
+            q = em.assign("vec3", f"opRotateInverse({em.point(p)}, {em.vec(self.axis)}, {rad})")
+            return self.child.emit(em, q)
         # GLSL's mat3 constructor is column-major, so the row-major entries of m build m^T.
         entries = ", ".join(em.num(x) for x in self.m.ravel())
         q = em.assign("vec3", f"mat3({entries}) * {em.point(p)}")
@@ -85,7 +109,7 @@ class Rotate(Unary):
         return self.child._distance(p @ self.m)
 
     @property
-    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+    def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
         lo, hi = self.child.bounds
         finite = np.isfinite(lo) & np.isfinite(hi)
         lo_f, hi_f = np.where(finite, lo, 0.0), np.where(finite, hi, 0.0)
@@ -116,7 +140,7 @@ class Scale(Unary):
         return self.child._distance(p * (1.0 / self.s)) * self.s
 
     @property
-    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+    def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
         lo, hi = self.child.bounds
         return lo * self.s, hi * self.s
 
@@ -136,20 +160,28 @@ class ScaleAxes(Unary):
         return IMPLICIT if self.child.exactness == IMPLICIT else BOUND
 
     def _emit(self, em: "Emitter", p: str) -> str:
-        q = em.assign("vec3", f"{em.point(p)} * {em.vec(1.0 / self.s)}")
-        return em.scale_distance(self.child.emit(em, q), em.num(self.s.min()))
+        q = em.assign("vec3", f"{em.point(p)} / {em.vec(self.s)}")
+        if isinstance(self.s, Live):
+            s = em.assign("vec3", em.vec(self.s))
+            smin = f"min({s}.x, min({s}.y, {s}.z))"
+        else:
+            smin = em.num(self.s.min())
+        return em.scale_distance(self.child.emit(em, q), smin)
 
     def _distance(self, p: np.ndarray) -> np.ndarray:
-        return self.child._distance(p * (1.0 / self.s)) * self.s.min()
+        s = np.asarray(self.s, dtype=np.float64)
+        return self.child._distance(p / s) * s.min()
 
     @property
-    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+    def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
         lo, hi = self.child.bounds
         return lo * self.s, hi * self.s
 
 
-def scale(node: Node, factor: float | Sequence[float]) -> Node:
+def scale(node: Node, factor: float | Sequence[float] | Live) -> Node:
     """Scale ``node`` by a positive factor, or by one positive factor per axis."""
+    if isinstance(factor, Live):
+        return Scale(node, factor) if factor.dims == 1 else ScaleAxes(node, factor)
     if isinstance(factor, (int, float, np.floating, np.integer)) and not isinstance(factor, bool):
         return Scale(node, factor)
     s = v.vector("scale", "factor", factor, positive=True)
@@ -176,7 +208,7 @@ class Material(Unary):
         return self.child._distance(p)
 
     @property
-    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+    def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
         return self.child.bounds
 
 

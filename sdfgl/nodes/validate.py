@@ -1,21 +1,39 @@
-"""Parameter checks shared by every node constructor: each error names node and parameter."""
+"""Parameter checks shared by every node constructor: each error names node and parameter.
+
+A live parameter (sdfgl.param) is checked now and again whenever its value changes, so a
+later ``p.value = -1`` fails with the same message as ``sphere(-1)``.
+"""
 from __future__ import annotations
 
 import math
 from numbers import Real
-from typing import Sequence
+from typing import Any, Callable, Sequence
 
 import numpy as np
 
 from ..errors import ParameterError
+from ..params import Live
 
 
-def scalar(node: str, name: str, value: object, *, positive: bool = False,
-           nonnegative: bool = False) -> float:
-    """Return ``value`` as a finite float, or raise ParameterError naming ``node.name``."""
-    if isinstance(value, bool) or not isinstance(value, (Real, np.floating, np.integer)):
-        raise ParameterError(f"{node}: parameter '{name}' must be a number, got {type(value).__name__} {value!r}")
-    v = float(value)
+def _roots(values: Sequence[Any]) -> list:
+    out = []
+    for x in values:
+        if isinstance(x, Live):
+            out += [p for p in x.roots() if p not in out]
+    return out
+
+
+def watch(check: Callable[[], None], *values: Any) -> None:
+    """Run ``check()`` now and whenever a live parameter among ``values`` changes."""
+    roots = _roots(values)
+    if not roots:
+        check()
+        return
+    for p in roots:
+        p.add_check(lambda _v: check())
+
+
+def _check_scalar(node: str, name: str, v: float, positive: bool, nonnegative: bool) -> float:
     if not math.isfinite(v):
         raise ParameterError(f"{node}: parameter '{name}' must be finite, got {v}")
     if positive and v <= 0:
@@ -25,9 +43,33 @@ def scalar(node: str, name: str, value: object, *, positive: bool = False,
     return v
 
 
+def scalar(node: str, name: str, value: object, *, positive: bool = False,
+           nonnegative: bool = False) -> Any:
+    """``value`` as a finite float (or a live scalar), else ParameterError naming ``node.name``."""
+    if isinstance(value, Live):
+        if value.dims != 1:
+            raise ParameterError(f"{node}: parameter '{name}' must be a scalar, got a 3-vector parameter")
+        watch(lambda: _check_scalar(node, name, float(value.value), positive, nonnegative), value)
+        return value
+    if isinstance(value, bool) or not isinstance(value, (Real, np.floating, np.integer)):
+        raise ParameterError(f"{node}: parameter '{name}' must be a number, got {type(value).__name__} {value!r}")
+    return _check_scalar(node, name, float(value), positive, nonnegative)
+
+
+def _check_vector(node: str, name: str, arr: np.ndarray, positive: bool, nonzero: bool) -> None:
+    for i, x in enumerate(arr):
+        _check_scalar(node, f"{name}[{i}]", float(x), positive, False)
+    if nonzero and not np.any(arr):
+        raise ParameterError(f"{node}: parameter '{name}' must not be the zero vector")
+
+
 def vector(node: str, name: str, value: object, n: int = 3, *, positive: bool = False,
-           nonzero: bool = False) -> np.ndarray:
-    """Return ``value`` as a float64 vector of length n (a scalar is broadcast)."""
+           nonzero: bool = False) -> Any:
+    """``value`` as a float64 vector of length n (a scalar is broadcast), or a live value."""
+    if isinstance(value, Live):
+        watch(lambda: _check_vector(node, name, np.broadcast_to(np.asarray(value.value, float), (n,)),
+                                    positive, nonzero), value)
+        return value
     if isinstance(value, (Real, np.floating, np.integer)) and not isinstance(value, bool):
         value = [value] * n
     if isinstance(value, (str, bytes)) or not isinstance(value, (Sequence, np.ndarray)):
@@ -37,14 +79,17 @@ def vector(node: str, name: str, value: object, n: int = 3, *, positive: bool = 
         raise ParameterError(f"{node}: parameter '{name}' must have {n} components, got {len(items)}")
     out = np.array([scalar(node, f"{name}[{i}]", x, positive=positive) for i, x in enumerate(items)],
                    dtype=np.float64)
-    if nonzero and not np.any(out):
-        raise ParameterError(f"{node}: parameter '{name}' must not be the zero vector")
+    _check_vector(node, name, out, positive, nonzero)
     return out
 
 
-def color(node: str, value: object) -> tuple[float, float, float]:
-    """Return an RGB triple with components in [0, 1]."""
+def color(node: str, value: object) -> Any:
+    """An RGB triple with components in [0, 1] (or a live 3-vector checked the same way)."""
     rgb = vector(node, "color", value)
-    if np.any(rgb < 0) or np.any(rgb > 1):
-        raise ParameterError(f"{node}: colour components must lie in [0, 1], got {tuple(rgb)}")
-    return tuple(float(c) for c in rgb)
+
+    def check() -> None:
+        c = np.broadcast_to(np.asarray(rgb.value if isinstance(rgb, Live) else rgb, float), (3,))
+        if np.any(c < 0) or np.any(c > 1):
+            raise ParameterError(f"{node}: colour components must lie in [0, 1], got {tuple(c)}")
+    watch(check, rgb)
+    return rgb if isinstance(rgb, Live) else tuple(float(c) for c in rgb)
