@@ -60,6 +60,8 @@ class Emitter:
         self._count = 0
         self._shifts: dict[str, tuple[str, np.ndarray]] = {}
         self._materialized: dict[str, str] = {}
+        self.shared_keys: set = parent.shared_keys if parent else set()
+        self._defining: set = set(parent._defining) if parent else set()
 
     # -- bookkeeping -------------------------------------------------------------------
     def enter(self, node: Node) -> None:
@@ -92,6 +94,7 @@ class Emitter:
         key = (node.key, self.mode, self._colors[-1])
         if key not in self.functions:
             sub = Emitter(self.mode, self._colors[-1], parent=self)
+            sub._defining.add(node.key)
             result = node.emit(sub, "p")
             name = f"{self.mode[0]}{len(self.functions)}_{node.kind}"
             rtype = "float" if self.mode == "dist" else "vec4"
@@ -278,8 +281,24 @@ def _defines(scene: Node, settings: Settings, origin: np.ndarray, live: bool) ->
     return d
 
 
-def _emit_map(scene: Node, mode: str, origin: np.ndarray, params: list[Param]) -> tuple[Emitter, str]:
+def shared_subtrees(scene: Node) -> set:
+    """Keys of composite subtrees that occur more than once (each becomes one GLSL function)."""
+    counts: dict = {}
+
+    def walk(n: Node) -> None:
+        if n.children:
+            counts[n.key] = counts.get(n.key, 0) + 1
+            if counts[n.key] > 1:
+                return  # its inside is counted once; the function holds it
+        for c in n.children:
+            walk(c)
+    walk(scene)
+    return {k for k, c in counts.items() if c > 1}
+
+
+def _emit_map(scene: Node, mode: str, origin: np.ndarray, params: list[Param], shared: set) -> tuple[Emitter, str]:
     em = Emitter(mode, params=params)
+    em.shared_keys = shared
     p = em.shift("p", origin) if origin.any() else "p"
     return em, scene.emit(em, p)
 
@@ -303,8 +322,9 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
                                  f"pass ao=False")
     org = np.asarray(origin, dtype=np.float64)
     params: list[Param] = []
-    dist, dist_result = _emit_map(scene, "dist", org, params)
-    color, color_result = _emit_map(scene, "color", org, params) if target == "render" else (None, "")
+    shared = shared_subtrees(scene)
+    dist, dist_result = _emit_map(scene, "dist", org, params, shared)
+    color, color_result = _emit_map(scene, "color", org, params, shared) if target == "render" else (None, "")
     libs = list(dist.libs) + [n for n in (color.libs if color else []) if n not in dist.libs]
     live = bool(params)
 

@@ -88,6 +88,7 @@ def camera_uniforms(prog: moderngl.Program, camera: Camera, size: tuple[int, int
     _set_uniform(prog, "uForward", tuple(f.tolist()))
     _set_uniform(prog, "uTanHalfFov", camera.tan_half_fov)
     _set_uniform(prog, "uJitter", jitter)
+    _set_uniform(prog, "uZero", 0)
 
 
 def scene_uniforms(prog: moderngl.Program, source: ShaderSource, scene: Node, origin: np.ndarray) -> None:

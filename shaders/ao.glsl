@@ -3,7 +3,7 @@
 float calcAO(vec3 pos, vec3 nor) {
     float occ = 0.0;
     float sca = 1.0;
-    for (int i = 0; i < 5; i++) {
+    for (int i = uZero; i < 5; i++) {
         float h = (0.01 + 0.12 * float(i) / 4.0) * SCENE_SCALE * 0.5;
         float d = map(pos + h * nor);
         occ += (h - d) * sca / (SCENE_SCALE * 0.5);

@@ -6,6 +6,8 @@ uniform vec3 uUp;
 uniform vec3 uForward;
 uniform float uTanHalfFov;  // tan(vertical fov / 2)
 uniform vec2 uJitter;       // sub-pixel offset of the whole image (0 for a still frame)
+uniform int uZero;          // always 0: loops starting at uZero cannot be unrolled, so the
+                            // compiler keeps one copy of map() per loop, not one per tap
 
 // Angle one pixel subtends at the eye: a ray's footprint at distance t is t * pixelAngle().
 float pixelAngle() {

@@ -1,6 +1,8 @@
 """Generated GLSL: determinism, only what the scene uses, features absent when off,
 every #define combination compiles on the real driver (and in glslangValidator)."""
 import itertools
+
+import numpy as np
 import subprocess
 
 import pytest
@@ -109,3 +111,21 @@ def test_compile_error_names_the_node(renderer):
     msg = str(info.value)
     assert "from union(k=0) > translate(offset=(1, 0, 0)) > broken()" in msg
     assert "noSuchFunction" in msg
+
+
+def test_identical_subtrees_are_emitted_once(renderer):
+    part = (sg.box(1) - sg.sphere(0.6)).color(0.2, 0.5, 0.8)
+    s = part.translate((2, 0, 0)) | part.translate((-2, 0, 0)) | part.rotate(30, sg.Y)
+    src = sg.compile(s)
+    body = src.split("float map(vec3 p) {")[1].split("\n}")[0]
+    assert src.count("float d0_color(vec3 p) {") == 1 and body.count("d0_color(") == 3
+    assert src.count("sdBox(") - src.count("float sdBox(") == 2  # once in the distance, once in the colour function
+    pts = np.random.default_rng(2).uniform(-3, 3, (2000, 3))
+    assert np.abs(sg.evaluate(s, pts, renderer=renderer) - s.distance(pts)).max() < 1e-5
+
+
+def test_map_is_called_in_loops_that_cannot_be_unrolled():
+    # Mesa inlines every call: six normal taps written out would be six copies of map()
+    src = sg.compile(scene(), ao=True, shadows="soft")
+    assert "for (int i = uZero; i < 6; i++)" in src and "for (int i = uZero; i < 5; i++)" in src
+    assert "for (int i = uZero; i < 2; i++)" in src  # the hit refinement's two samples

@@ -46,6 +46,12 @@ class Node:
     @property
     def key(self) -> tuple:
         """Structural key: equal keys mean equal fields (used to share code and caches)."""
+        cached = self.__dict__.get("_key")
+        if cached is None:
+            cached = self.__dict__["_key"] = self._make_key()
+        return cached
+
+    def _make_key(self) -> tuple:
         def freeze(v: object) -> object:
             if isinstance(v, Live):
                 return ("live", id(v))
@@ -82,6 +88,10 @@ class Node:
         In ``em.mode == "dist"`` the result is a float distance; in ``"color"`` mode it is a
         vec4 (rgb, distance).
         """
+        if self.key in em.shared_keys and self.key not in em._defining:
+            # a subtree that occurs more than once in the scene is one GLSL function
+            fn = em.function(self)
+            return em.assign("float" if em.mode == "dist" else "vec4", f"{fn}({em.point(p)})")
         em.enter(self)
         try:
             return self._emit(em, p)
