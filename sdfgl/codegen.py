@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import contextlib
 from dataclasses import dataclass
-from typing import Iterator, Sequence
+from typing import Any, Iterator, Sequence
 
 import numpy as np
 
@@ -61,6 +61,8 @@ class Emitter:
         self._shifts: dict[str, tuple[str, np.ndarray]] = {}
         self._materialized: dict[str, str] = {}
         self.shared_keys: set = parent.shared_keys if parent else set()
+        self.grids: dict[int, tuple[str, Any, tuple[float, float, float]]] = parent.grids if parent else {}
+        self.use_grids = parent.use_grids if parent else True
         self._defining: set = set(parent._defining) if parent else set()
 
     # -- bookkeeping -------------------------------------------------------------------
@@ -102,6 +104,12 @@ class Emitter:
                      (f"    return {result};", self.owner), ("}", self.owner)]
             self.functions[key] = (name, lines)
         return self.functions[key][0]
+
+    def grid_name(self, grid: Any) -> str:
+        """The GLSL prefix of a union kept as data (its textures are the ShaderSource's data)."""
+        if id(grid) not in self.grids:
+            self.grids[id(grid)] = (f"g{len(self.grids)}", grid, self._colors[-1])
+        return self.grids[id(grid)][0]
 
     # -- literals ----------------------------------------------------------------------
     def num(self, x: float | Live) -> str:
@@ -179,6 +187,7 @@ class ShaderSource:
     owners: tuple[str, ...]
     params: tuple[Param, ...] = ()
     live_bounds: bool = False
+    data: tuple[tuple[str, np.ndarray], ...] = ()  # sampler name -> float32 RGBA texels (rows, width, 4)
 
     def owner_of(self, line: int) -> str:
         """Who wrote 1-based source line ``line``."""
@@ -198,8 +207,10 @@ class _Builder:
     def add_file(self, name: str) -> None:
         self.add(shaderlib.read(name), f"shaders/{name}.glsl")
 
-    def build(self, params: Sequence[Param] = (), live_bounds: bool = False) -> ShaderSource:
-        return ShaderSource("\n".join(self.lines) + "\n", tuple(self.owners), tuple(params), live_bounds)
+    def build(self, params: Sequence[Param] = (), live_bounds: bool = False,
+              data: Sequence[tuple[str, np.ndarray]] = ()) -> ShaderSource:
+        return ShaderSource("\n".join(self.lines) + "\n", tuple(self.owners), tuple(params), live_bounds,
+                            tuple(data))
 
 
 def _helpers(b: _Builder, em: Emitter, done: set[str]) -> None:
@@ -296,9 +307,27 @@ def shared_subtrees(scene: Node) -> set:
     return {k for k, c in counts.items() if c > 1}
 
 
-def _emit_map(scene: Node, mode: str, origin: np.ndarray, params: list[Param], shared: set) -> tuple[Emitter, str]:
+def _grid_code(b: "_Builder", grids: dict, origin: np.ndarray) -> list[tuple[str, np.ndarray]]:
+    """The code of each union kept as data, and its textures."""
+    from .nodes.grid import LIST_WIDTH
+    data: list[tuple[str, np.ndarray]] = []
+    if grids:
+        b.add(f"#define GRID_LIST_WIDTH {LIST_WIDTH}", "(grid)")
+    for gid, grid, default_color in grids.values():
+        lo = ", ".join(glsl_float(x) for x in grid.lo - origin)
+        b.add(f"#define {gid}_LO vec3({lo})\n#define {gid}_CELL {glsl_float(grid.cell)}\n"
+              f"#define {gid}_DIMS ivec3({', '.join(str(int(x)) for x in grid.dims)})", "(grid)")
+        b.add(shaderlib.read("grid_union").replace("GRIDID", gid), "shaders/grid_union.glsl")
+        data += [(f"u{gid}{name}", arr) for name, arr in grid.textures(origin, default_color).items()]
+    return data
+
+
+def _emit_map(scene: Node, mode: str, origin: np.ndarray, params: list[Param], shared: set,
+              grids: dict, use_grids: bool) -> tuple[Emitter, str]:
     em = Emitter(mode, params=params)
     em.shared_keys = shared
+    em.grids = grids
+    em.use_grids = use_grids
     p = em.shift("p", origin) if origin.any() else "p"
     return em, scene.emit(em, p)
 
@@ -323,8 +352,10 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     org = np.asarray(origin, dtype=np.float64)
     params: list[Param] = []
     shared = shared_subtrees(scene)
-    dist, dist_result = _emit_map(scene, "dist", org, params, shared)
-    color, color_result = _emit_map(scene, "color", org, params, shared) if target == "render" else (None, "")
+    grids: dict = {}
+    dist, dist_result = _emit_map(scene, "dist", org, params, shared, grids, settings.grid)
+    color, color_result = (_emit_map(scene, "color", org, params, shared, grids, settings.grid)
+                           if target == "render" else (None, ""))
     libs = list(dist.libs) + [n for n in (color.libs if color else []) if n not in dist.libs]
     live = bool(params)
 
@@ -340,12 +371,13 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     b.add_file("common")
     for name in libs:
         b.add_file(f"lib/{name}")
+    data = _grid_code(b, grids, org)
     done: set[str] = set()
     _helpers(b, dist, done)
     _function(b, "float map(vec3 p)", dist, dist_result, "{}")
     if target == "evaluate":
         b.add_file("evaluate_main")
-        return b.build(params, live)
+        return b.build(params, live, data)
     assert color is not None
     _helpers(b, color, done)
     _function(b, "vec3 mapColor(vec3 p)", color, color_result, "{}.rgb")
@@ -367,7 +399,7 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     if settings.debug:
         b.add_file("debug")
     b.add_file("render_main")
-    return b.build(params, live)
+    return b.build(params, live, data)
 
 
 def compile(scene: Node, **settings: object) -> str:  # noqa: A001 - public API name

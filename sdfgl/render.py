@@ -91,8 +91,14 @@ def camera_uniforms(prog: moderngl.Program, camera: Camera, size: tuple[int, int
     _set_uniform(prog, "uZero", 0)
 
 
+DATA_UNIT = 1  # first texture unit of scene data (unit 0 is evaluate()'s points)
+
+
 def scene_uniforms(prog: moderngl.Program, source: ShaderSource, scene: Node, origin: np.ndarray) -> None:
-    """Set the uniforms of live parameters (and the scene box they move) to their current values."""
+    """Set the uniforms of live parameters (and the scene box they move) to their current values,
+    and bind the textures of unions kept as data."""
+    if source.data:
+        bind_data(prog, source)
     for i, prm in enumerate(source.params):
         val = prm.value
         _set_uniform(prog, f"uP{i}", float(val) if np.ndim(val) == 0 else tuple(float(x) for x in val))
@@ -103,6 +109,30 @@ def scene_uniforms(prog: moderngl.Program, source: ShaderSource, scene: Node, or
         _set_uniform(prog, "uBoundsHi", tuple((hi + pad - origin).tolist()))
         _set_uniform(prog, "uGroundY", float((lo[1] if lo[1] > -GLSL_FAR else 0.0) - origin[1]))
         _set_uniform(prog, "uSceneScale", float(scale))
+
+
+_data_textures: dict[int, tuple[ShaderSource, list[moderngl.Texture]]] = {}
+
+
+def bind_data(prog: moderngl.Program, source: ShaderSource) -> None:
+    """Upload (once per source) and bind the data textures a shader samples."""
+    entry = _data_textures.get(id(source))
+    if entry is None or entry[0] is not source:
+        if entry is not None:
+            for t in entry[1]:
+                t.release()
+        texs = []
+        for _, arr in source.data:
+            tex = prog.ctx.texture((arr.shape[1], arr.shape[0]), 4, np.ascontiguousarray(arr).tobytes(), dtype="f4")
+            tex.filter = (moderngl.NEAREST, moderngl.NEAREST)
+            texs.append(tex)
+        entry = _data_textures[id(source)] = (source, texs)
+        while len(_data_textures) > 32:  # keep the most recent sources' textures
+            for t in _data_textures.pop(next(iter(_data_textures)))[1]:
+                t.release()
+    for unit, ((name, _), tex) in enumerate(zip(source.data, entry[1]), start=DATA_UNIT):
+        tex.use(unit)
+        _set_uniform(prog, name, unit)
 
 
 class Renderer:

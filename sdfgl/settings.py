@@ -38,6 +38,8 @@ class Settings:
     outputs: which images the draw writes (color always).
     debug: None, or a debug view shown instead of the shaded image: "steps" (heat map of
         map() calls), "normal" or "depth".
+    grid: keep big unions of simple primitives as data with a cell grid (False writes
+        them out as code, to compare).
     """
 
     aa: int = 1
@@ -53,6 +55,7 @@ class Settings:
     max_dist: float = 1000.0
     outputs: tuple[str, ...] = field(default=("color",))
     debug: Any = None
+    grid: bool = True
 
     def __post_init__(self) -> None:
         if isinstance(self.aa, bool) or not isinstance(self.aa, int) or not 1 <= self.aa <= 4:
@@ -63,7 +66,7 @@ class Settings:
             object.__setattr__(self, "shadows", False)
         if self.shadows not in SHADOWS:
             raise ParameterError(f"setting 'shadows' must be False, 'hard' or 'soft', got {self.shadows!r}")
-        for name in ("ao", "ground"):
+        for name in ("ao", "ground", "grid"):
             if not isinstance(getattr(self, name), bool):
                 raise ParameterError(f"setting '{name}' must be True or False, got {getattr(self, name)!r}")
         if self.method not in METHODS:

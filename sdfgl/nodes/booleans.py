@@ -17,6 +17,7 @@ from .base import BOUND, EXACT, IMPLICIT, Node
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..codegen import Emitter
+    from .grid import Grid
 
 K_MIN = 1e-30
 
@@ -84,12 +85,40 @@ class _Boolean(Node):
 
 
 class Union(_Boolean):
+    """Union (min). A hard union of many simple primitives is kept as data with a cell
+    grid (sdfgl.nodes.grid): its field is then min(children, cap), a distance bound that
+    is exact wherever the min is below the cap (about one grid cell)."""
+
     kind = "union"
 
     @property
+    def grid(self) -> "Grid | None":
+        if "_grid" not in self.__dict__:
+            from .grid import build
+            self.__dict__["_grid"] = build(list(self.children)) if self._hard else None
+        return self.__dict__["_grid"]
+
+    def _emit(self, em: "Emitter", p: str) -> str:
+        grid = self.grid if em.use_grids else None
+        if grid is None:
+            return super()._emit(em, p)
+        pt = em.point(p)
+        acc = em.assign("vec4", f"{em.grid_name(grid)}Union({pt})")
+        acc = acc if em.mode == "color" else em.assign("float", f"{acc}.w")
+        for c in self.children:
+            if not any(c is g for g in grid.children):
+                acc = self._combine(em, acc, c.emit(em, pt))
+        return acc
+
+    def _distance(self, p: np.ndarray) -> np.ndarray:
+        d = super()._distance(p)
+        return d if self.grid is None else np.minimum(d, self.grid.cap(p))
+
+    @property
     def exactness(self) -> str:
-        # min() of exact fields is exact outside the solid (a bound inside); smoothing breaks it
-        if self._hard and all(c.exactness == EXACT for c in self.children):
+        # min() of exact fields is exact outside the solid (a bound inside); smoothing and
+        # the grid's cap break it
+        if self._hard and self.grid is None and all(c.exactness == EXACT for c in self.children):
             return EXACT
         return super().exactness
 

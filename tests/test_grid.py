@@ -1,0 +1,59 @@
+"""Big unions kept as data: parity with the twin, the same image as code, flat compile size."""
+import numpy as np
+import pytest
+
+import sdfgl as sg
+from sdfgl.nodes.grid import GRID_MIN
+
+
+def scattered(n, seed=0):
+    rng = np.random.default_rng(seed)
+    ext = 2.0 * n ** (1 / 3)
+    kinds = [lambda: sg.sphere(0.4), lambda: sg.box(0.6), lambda: sg.torus(0.35, 0.1),
+             lambda: sg.cylinder(0.2, 0.7).rotate(30, (1, 0, 0)), lambda: sg.rounded_box(0.7, 0.1).scale(1.3)]
+    parts = [kinds[i % 5]().color(*rng.uniform(0, 1, 3)).translate(rng.uniform(-ext, ext, 3)) for i in range(n)]
+    return sg.union(*parts), sg.OrbitCamera(distance=3.2 * ext, yaw=30, pitch=25), ext
+
+
+def test_big_union_is_data_and_matches_the_twin(renderer):
+    s, _, ext = scattered(GRID_MIN + 40)
+    assert s.grid is not None and s.exactness == sg.BOUND
+    src = sg.compile(s)
+    assert "g0Union(" in src and "sdSphere" not in src  # no per-primitive code
+    pts = np.random.default_rng(1).uniform(-ext - 3, ext + 3, (20000, 3))
+    err = np.abs(sg.evaluate(s, pts, renderer=renderer) - s.distance(pts))
+    assert err.max() < 1e-5
+    near = np.abs(s.distance(pts)) < 0.5 * s.grid.cell  # below the cap the field is the exact min
+    plain = np.min([c.distance(pts[near]) for c in s.children], axis=0)
+    assert np.allclose(s.distance(pts[near]), plain)
+
+
+def test_grid_and_code_render_the_same_image(renderer):
+    s, cam, _ = scattered(GRID_MIN + 10, seed=3)
+    a = renderer.render(s, cam, (64, 48), outputs=("color", "depth"), shadows=False, ao=False)
+    b = renderer.render(s, cam, (64, 48), outputs=("color", "depth"), shadows=False, ao=False, grid=False)
+    hit = np.isfinite(a.depth)
+    # the capped field takes other steps, so a near miss at a silhouette may go either way
+    assert (hit != np.isfinite(b.depth)).sum() <= 0.02 * hit.sum()
+    both = hit & np.isfinite(b.depth)
+    footprint = a.depth[both] * cam.pixel_angle(48)
+    assert np.median(np.abs(a.depth[both] - b.depth[both]) / footprint) < 0.01
+    assert np.mean(np.abs(a.color.astype(int) - b.color.astype(int)) > 8) < 0.02
+
+
+def test_shader_size_does_not_grow_with_the_union():
+    small, _, _ = scattered(GRID_MIN)
+    large, _, _ = scattered(4 * GRID_MIN)
+    a, b = sg.compile(small), sg.compile(large)
+    assert abs(len(a) - len(b)) < 20  # only the grid's dimensions differ
+    assert len(sg.compile(large, grid=False)) > 5 * len(b)
+
+
+def test_unions_with_unpackable_or_too_few_children_stay_code():
+    s, _, _ = scattered(GRID_MIN - 1)
+    assert s.grid is None
+    smooth = sg.union(*[sg.sphere(0.3).translate((i, 0, 0)) for i in range(GRID_MIN)], k=0.1)
+    assert smooth.grid is None
+    mixed = sg.union(*[sg.sphere(0.3).translate((i, 0, 0)) for i in range(GRID_MIN)], sg.octahedron(1))
+    assert mixed.grid is not None and len(mixed.grid.children) == GRID_MIN
+    assert "sdOctahedron" in sg.compile(mixed)  # the unpackable child stays code beside the grid
