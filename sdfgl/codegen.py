@@ -237,6 +237,33 @@ def scene_frame(scene: Node) -> tuple[np.ndarray, np.ndarray, float]:
     return np.where(np.isfinite(lo), lo, -GLSL_FAR), np.where(np.isfinite(hi), hi, GLSL_FAR), scale
 
 
+def analytic_shape(scene: Node) -> tuple[str, np.ndarray] | None:
+    """("sphere", (centre, radius)) or ("plane", (normal, offset)) in world space when the
+    scene is one sphere or plane under rigid transforms, uniform scales and colours."""
+    from .nodes.grid import pack
+    from .nodes.primitives import Plane
+    from .nodes.transforms import Material, Rotate, Scale, Translate
+    q = pack(scene)
+    if q is not None and q.type == 0:
+        return "sphere", np.array([*q.t, q.scale * q.size[0]])
+    t, r, s, node = np.zeros(3), np.eye(3), 1.0, scene
+    while isinstance(node, (Material, Translate, Rotate, Scale)):
+        if any(isinstance(v, Live) for v in node.params.values()):
+            return None
+        if isinstance(node, Translate):
+            t = t + s * (r @ node.offset)
+        elif isinstance(node, Rotate):
+            r = r @ node.m
+        elif isinstance(node, Scale):
+            s *= float(node.s)
+        node = node.child
+    if isinstance(node, Plane) and not any(isinstance(v, Live) for v in node.params.values()):
+        n = r @ node._unit_normal()
+        point = t + s * (r @ np.asarray(node.o, dtype=float))
+        return "plane", np.array([*n, float(n @ point)])
+    return None
+
+
 def max_steps_of(settings: Settings, scale: float, lo: np.ndarray, hi: np.ndarray) -> int:
     """The loop limit the shader gets: max_steps, or enough fixed steps for "reference"."""
     if settings.method != "reference":
@@ -275,6 +302,11 @@ def _defines(scene: Node, settings: Settings, origin: np.ndarray, live: bool) ->
         d.append(f"#define REF_STEP {glsl_float(ref_step(settings, scale))}")
     if settings.method in ("enhanced", "forward_newton"):
         d.append(f"#define {settings.method.upper()}")
+    shape = analytic_shape(scene) if settings.analytic else None
+    if shape is not None:
+        kind, v = shape
+        v = v - np.array([*origin, 0.0]) if kind == "sphere" else np.array([*v[:3], v[3] - v[:3] @ origin])
+        d.append(f"#define ANALYTIC_{kind.upper()} vec4({', '.join(glsl_float(x) for x in v)})")
     if settings.shadows:
         d += ["#define SHADOWS", f"#define SHADOWS_{settings.shadows.upper()}"]
     if settings.ao:
@@ -382,11 +414,15 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     _helpers(b, color, done)
     _function(b, "vec3 mapColor(vec3 p)", color, color_result, "{}.rgb")
     b.add_file("refine")
-    if settings.method in ("newton", "forward_newton", "reference"):
+    marched = not (settings.analytic and analytic_shape(scene) is not None)
+    if marched and settings.method in ("newton", "forward_newton", "reference"):
         b.add_file("bracket")
-    if settings.method in ("newton", "forward_newton"):
+    if marched and settings.method in ("newton", "forward_newton"):
         b.add_file("ray_derivative")
-    b.add_file(f"march_{MARCH_FILES.get(settings.method, settings.method)}")
+    if settings.analytic and analytic_shape(scene) is not None:
+        b.add_file("march_analytic")
+    else:
+        b.add_file(f"march_{MARCH_FILES.get(settings.method, settings.method)}")
     b.add_file("normal")
     if settings.shadows:
         b.add_file("shadow_march" if scene.exactness == IMPLICIT else f"shadow_{settings.shadows}")

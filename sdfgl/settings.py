@@ -40,6 +40,7 @@ class Settings:
         map() calls), "normal" or "depth".
     grid: keep big unions of simple primitives as data with a cell grid (False writes
         them out as code, to compare).
+    analytic: intersect a lone sphere or plane in closed form instead of marching it.
     """
 
     aa: int = 1
@@ -56,6 +57,7 @@ class Settings:
     outputs: tuple[str, ...] = field(default=("color",))
     debug: Any = None
     grid: bool = True
+    analytic: bool = True
 
     def __post_init__(self) -> None:
         if isinstance(self.aa, bool) or not isinstance(self.aa, int) or not 1 <= self.aa <= 4:
@@ -66,7 +68,7 @@ class Settings:
             object.__setattr__(self, "shadows", False)
         if self.shadows not in SHADOWS:
             raise ParameterError(f"setting 'shadows' must be False, 'hard' or 'soft', got {self.shadows!r}")
-        for name in ("ao", "ground", "grid"):
+        for name in ("ao", "ground", "grid", "analytic"):
             if not isinstance(getattr(self, name), bool):
                 raise ParameterError(f"setting '{name}' must be True or False, got {getattr(self, name)!r}")
         if self.method not in METHODS:

@@ -30,10 +30,11 @@ def test_every_primitive_renders(renderer, name):
     assert np.all(np.abs(node.distance(p)) <= footprint + 1e-5)
 
 
-def test_unit_sphere_depth_and_silhouette(renderer):
+@pytest.mark.parametrize("analytic", [False, True], ids=["marched", "closed-form"])
+def test_unit_sphere_depth_and_silhouette(renderer, analytic):
     cam = sg.OrbitCamera(distance=4, yaw=0, pitch=0, fov=40)
     w = h = 65  # odd: the centre pixel's ray passes through the sphere centre
-    res = renderer.render(sg.sphere(1), cam, (w, h), outputs=ALL, shadows=False, ao=False)
+    res = renderer.render(sg.sphere(1), cam, (w, h), outputs=ALL, shadows=False, ao=False, analytic=analytic)
     centre = float(res.depth[h // 2, w // 2])
     assert abs(centre - 3.0) < 1e-5, centre
     o, d = cam.rays(w, h)
@@ -125,3 +126,17 @@ def test_save_png(renderer, tmp_path):
     assert Image.open(path).size == (16, 12)
     with pytest.raises(sg.SdfglError, match="cannot write image file"):
         res.save(tmp_path / "missing-dir" / "a.png")
+
+
+def test_lone_sphere_and_plane_are_intersected_not_marched(renderer):
+    cam = sg.OrbitCamera(distance=4, yaw=0, pitch=0, fov=40)
+    for scene, want in [(sg.sphere(0.5).scale(2).color(1, 0, 0), 3.0),
+                        (sg.plane((0, 1, 0), (0, -0.5, 0)).rotate(10, (1, 0, 0)), 4 + 0.5 / np.sin(np.radians(10)))]:
+        a = renderer.render(scene, cam, (33, 33), outputs=ALL)
+        m = renderer.render(scene, cam, (33, 33), outputs=ALL, analytic=False)
+        assert a.steps.max() == 0 and m.steps.max() > 0
+        assert abs(float(a.depth[16, 16]) - want) < 1e-5 * want
+        assert abs(float(m.depth[16, 16]) - want) < 0.05 * want
+        no_nan(a)
+    assert "march_analytic" not in sg.compile(sg.sphere(1) | sg.box(1))
+    assert "closed form" in sg.compile(sg.sphere(1)) and "closed form" not in sg.compile(sg.sphere(1), analytic=False)

@@ -116,7 +116,8 @@ class Rotate(Unary):
         centre = (lo_f + hi_f) / 2
         half = np.where(finite, (hi_f - lo_f) / 2, np.inf)
         a = np.abs(self.m)
-        contrib = np.where(a > 1e-12, a * half[None, :], 0.0)
+        with np.errstate(invalid="ignore"):  # 0 * inf where an axis does not contribute
+            contrib = np.where(a > 1e-12, a * half[None, :], 0.0)
         h = contrib.sum(axis=1)
         c = self.m @ centre
         return c - h, c + h
