@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import platform
 import statistics
 import sys
@@ -22,7 +23,7 @@ import numpy as np
 
 from . import hardcases
 from .camera import Camera
-from .codegen import generate, max_steps_of, scene_frame
+from .codegen import ShaderSource, generate, max_steps_of, scene_frame
 from .gl.context import describe
 from .nodes.base import IMPLICIT, Node
 from .reference import Reference, compare, trace
@@ -41,6 +42,7 @@ class Variant:
     camera: Camera
     times: list[float] = field(default_factory=list)
     result: dict = field(default_factory=dict)
+    source: Callable[[ShaderSource], ShaderSource] | None = None  # rewrites the generated shader
 
 
 class Progress:
@@ -76,6 +78,8 @@ class FrameTimer:
         origin = shader_origin(v.node, v.camera.eye)
         t0 = time.perf_counter()
         source = generate(v.node, st, origin)
+        if v.source is not None:
+            source = v.source(source)
         prog = self.r.programs.get(source)
         t1 = time.perf_counter()
         v.result["_prog"] = (prog, origin, source)
@@ -187,7 +191,8 @@ def build_variants(scene_names: Sequence[str], full: bool) -> list[Variant]:
         for s in settings:
             if node.exactness == IMPLICIT and s["method"] in DISTANCE_METHODS:
                 continue
-            full_s = {"shadows": False, "ao": False, "max_dist": hc.max_dist, **hc.settings, **s}
+            # the methods are compared marching: no closed-form shortcut for a lone sphere
+            full_s = {"shadows": False, "ao": False, "max_dist": hc.max_dist, "analytic": False, **hc.settings, **s}
             if "method" in hc.settings:
                 full_s["method"] = s["method"]
             out.append(Variant(name, label_of(s), full_s, node, cam))
@@ -242,7 +247,7 @@ def summary_table(variants: Sequence[Variant]) -> str:
             continue
         r = v.result
         base = next((b.result for b in variants if b.scene == v.scene and b.label == "sphere"), None)
-        sr = f"{r['steps_mean_marched'] / base['steps_mean_marched']:.2f}" if base else "-"
+        sr = f"{r['steps_mean_marched'] / base['steps_mean_marched']:.2f}" if base and base['steps_mean_marched'] else "-"
         tr = f"{r['frame_ms_median'] / base['frame_ms_median']:.2f}" if base else "-"
         rows.append(f"| {v.scene} | {v.label} | {r['steps_mean_marched']:.2f} | {sr} | {r['frame_ms_median']:.2f} | "
                     f"{tr} | {r['depth_px_median']:.2g} | {r['depth_outliers']} | {r['silhouette_mismatch']} | "
@@ -314,7 +319,11 @@ def pareto_plot(variants: Sequence[Variant], path: Path) -> None:
 
 def run(quick: bool, size: tuple[int, int] | None, out: Path, progress: bool = True,
         scenes: Sequence[str] | None = None) -> dict:
-    """Run the benchmark, write bench.json, bench.md and pareto.png into ``out``; return the data."""
+    """Run the benchmark, write bench.json, bench.md and pareto.png into ``out``; return the data.
+
+    Mesa's on-disk shader cache is turned off (before the context exists) so compile
+    times are real compiles, not cache hits from an earlier run."""
+    os.environ.setdefault("MESA_SHADER_CACHE_DISABLE", "true")
     size = size or ((160, 120) if quick else (400, 300))
     frames, warmup = (3, 1) if quick else (9, 2)
     names = list(scenes) if scenes else (list(SEED_SCENES) + ([] if quick else list(MORE_SCENES)))
@@ -337,6 +346,9 @@ def run(quick: bool, size: tuple[int, int] | None, out: Path, progress: bool = T
         bar.step(f"errors {v.scene}/{v.label}")
     time_interleaved(timer, features, frames, warmup, Progress(0, False))
     bar.step("features")
+    from .bench_model import run_model
+    model = run_model((160, 120) if quick else (320, 240), min(frames, 5), warmup,
+                      (16, 64, 256) if quick else (16, 64, 256, 1024), progress)
 
     out.mkdir(parents=True, exist_ok=True)
     md = "\n\n".join([
@@ -346,6 +358,7 @@ def run(quick: bool, size: tuple[int, int] | None, out: Path, progress: bool = T
         "## Methods and settings: speed and error\n\n" + methods_table(variants),
         "## Seed thesis tables beside ours\n\n" + seed_table(variants),
         "## Cost of each feature #define\n\n" + feature_table(features),
+        "## Model only what a scene needs\n\n" + model,
     ])
     (out / "bench.md").write_text(md + "\n")
     data = {"size": size, "frames": frames, "warmup": warmup, "gl": describe(renderer.ctx),

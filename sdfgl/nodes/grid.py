@@ -86,13 +86,15 @@ def pack(node: Node) -> Packed | None:
 class Grid:
     """The packed primitives of one union and the cell lists over their bounds."""
 
-    def __init__(self, children: list[Node], packed: list[Packed]) -> None:
+    def __init__(self, children: list[Node], packed: list[Packed], single_cell: bool = False) -> None:
+        """``single_cell`` makes one cell list every primitive: a plain data-driven loop
+        (the uber-shader the benchmark compares against)."""
         self.children, self.packed = children, packed
         los, his = zip(*(c.bounds for c in children))
         lo, hi = np.min(los, axis=0), np.max(his, axis=0)
         extent = np.maximum(hi - lo, 1e-9)
         cell = 0.5 * float(np.prod(extent) / len(children)) ** (1 / 3)  # ~8 cells a primitive
-        cell = max(cell, float(extent.max()) / MAX_DIMS)
+        cell = float(extent.max()) * 1.001 if single_cell else max(cell, float(extent.max()) / MAX_DIMS)
         self.dims = np.minimum(np.ceil(extent / cell).astype(int), MAX_DIMS)
         self.cell = cell
         self.lo = lo
