@@ -10,7 +10,8 @@ from .camera import Camera, OrbitCamera
 from .codegen import compile
 from .errors import ContextError, ParameterError, SceneFileError, SdfglError, ShaderCompileError
 from .evaluate import evaluate
-from .nodes import (BOUND, EXACT, IMPLICIT, Node, bend, box, box_frame, capsule, cone, cylinder, difference, ellipsoid,
+from .nodes import (BOUND, EXACT, IMPLICIT, Node, bend, box, box_frame, capsule, circle, elongate, extrude,
+                    mirror, polygon, rectangle, repeat_polar, revolve, rounded, shell, sierpinski, symmetric, tree, cone, cylinder, difference, ellipsoid,
                     hex_prism, intersection, octahedron, plane, product, repeat, rounded_box, sphere, torus, twist,
                     union)
 from .params import Param, param
@@ -32,7 +33,9 @@ __version__ = "0.1.0"
 __all__ = [
     "Camera", "OrbitCamera", "compile", "render", "show", "param", "Param", "Renderer", "RenderResult", "Node",
     "sphere", "box", "rounded_box", "plane", "torus", "capsule", "cylinder", "cone", "ellipsoid",
-    "octahedron", "hex_prism", "box_frame", "product", "twist", "bend", "repeat", "evaluate", "union", "intersection", "difference", "X", "Y", "Z",
+    "octahedron", "hex_prism", "box_frame", "product", "twist", "bend", "repeat", "evaluate", "union",
+    "circle", "rectangle", "polygon", "extrude", "revolve", "mirror", "symmetric", "repeat_polar", "elongate",
+    "rounded", "shell", "sierpinski", "tree", "intersection", "difference", "X", "Y", "Z",
     "EXACT", "BOUND", "IMPLICIT", "SdfglError", "ParameterError", "ShaderCompileError", "ContextError",
     "SceneFileError",
 ]

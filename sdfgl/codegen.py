@@ -61,6 +61,7 @@ class Emitter:
         self._shifts: dict[str, tuple[str, np.ndarray]] = {}
         self._materialized: dict[str, str] = {}
         self.shared_keys: set = parent.shared_keys if parent else set()
+        self.helpers: dict[str, str] = parent.helpers if parent else {}
         self.grids: dict[int, tuple[str, Any, tuple[float, float, float]]] = parent.grids if parent else {}
         self.use_grids = parent.use_grids if parent else True
         self._defining: set = set(parent._defining) if parent else set()
@@ -104,6 +105,10 @@ class Emitter:
                      (f"    return {result};", self.owner), ("}", self.owner)]
             self.functions[key] = (name, lines)
         return self.functions[key][0]
+
+    def helper(self, name: str, code: str) -> None:
+        """Include a generated helper function (e.g. a polygon of N vertices) once."""
+        self.helpers.setdefault(name, code)
 
     def grid_name(self, grid: Any) -> str:
         """The GLSL prefix of a union kept as data (its textures are the ShaderSource's data)."""
@@ -355,8 +360,9 @@ def _grid_code(b: "_Builder", grids: dict, origin: np.ndarray) -> list[tuple[str
 
 
 def _emit_map(scene: Node, mode: str, origin: np.ndarray, params: list[Param], shared: set,
-              grids: dict, use_grids: bool) -> tuple[Emitter, str]:
+              grids: dict, use_grids: bool, helpers: dict) -> tuple[Emitter, str]:
     em = Emitter(mode, params=params)
+    em.helpers = helpers
     em.shared_keys = shared
     em.grids = grids
     em.use_grids = use_grids
@@ -385,8 +391,9 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     params: list[Param] = []
     shared = shared_subtrees(scene)
     grids: dict = {}
-    dist, dist_result = _emit_map(scene, "dist", org, params, shared, grids, settings.grid)
-    color, color_result = (_emit_map(scene, "color", org, params, shared, grids, settings.grid)
+    helpers: dict = {}
+    dist, dist_result = _emit_map(scene, "dist", org, params, shared, grids, settings.grid, helpers)
+    color, color_result = (_emit_map(scene, "color", org, params, shared, grids, settings.grid, helpers)
                            if target == "render" else (None, ""))
     libs = list(dist.libs) + [n for n in (color.libs if color else []) if n not in dist.libs]
     live = bool(params)
@@ -403,6 +410,8 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     b.add_file("common")
     for name in libs:
         b.add_file(f"lib/{name}")
+    for name, code in helpers.items():
+        b.add(code, f"(generated helper {name})")
     data = _grid_code(b, grids, org)
     done: set[str] = set()
     _helpers(b, dist, done)

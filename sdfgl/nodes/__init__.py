@@ -3,9 +3,14 @@ from .base import BOUND, EXACT, IMPLICIT, Node, Primitive
 from .booleans import difference, intersection, product, union
 from .deform import bend, twist
 from .domain import repeat
+from .fractals import sierpinski, tree
+from .shapes2d import circle, extrude, polygon, rectangle, revolve
+from .shaping import elongate, mirror, repeat_polar, rounded, shell, symmetric
 from .primitives import (box, box_frame, capsule, cone, cylinder, ellipsoid, hex_prism, octahedron, plane,
                          rounded_box, sphere, torus)
 
 __all__ = ["Node", "Primitive", "EXACT", "BOUND", "IMPLICIT", "sphere", "box", "rounded_box", "plane",
            "torus", "capsule", "cylinder", "cone", "ellipsoid", "octahedron", "hex_prism", "union",
-           "intersection", "difference", "box_frame", "product", "twist", "bend", "repeat"]
+           "intersection", "difference", "box_frame", "product", "twist", "bend", "repeat",
+           "sierpinski", "tree", "circle", "rectangle", "polygon", "extrude", "revolve", "mirror", "symmetric",
+           "repeat_polar", "elongate", "rounded", "shell"]

@@ -200,6 +200,36 @@ class Node:
         from .domain import Repeat
         return Repeat(self, period, count)
 
+    def mirror(self, normal: Sequence[float] = (1.0, 0.0, 0.0), point: Sequence[float] = (0.0, 0.0, 0.0)) -> "Node":
+        """This node on the side ``normal`` points to, plus its reflection in that plane."""
+        from .shaping import Mirror
+        return Mirror(self, normal, point)
+
+    def symmetric(self, axes: str = "x") -> "Node":
+        """Mirror across the coordinate planes named in ``axes`` (e.g. "xz")."""
+        from .shaping import symmetric
+        return symmetric(self, axes)
+
+    def repeat_polar(self, count: int) -> "Node":
+        """``count`` copies (this node placed around +X) turned evenly about Y."""
+        from .shaping import PolarRepeat
+        return PolarRepeat(self, count)
+
+    def elongate(self, length: float | Sequence[float]) -> "Node":
+        """Stretch by ``length`` along each axis, inserted at the centre planes."""
+        from .shaping import Elongate
+        return Elongate(self, length)
+
+    def round(self, radius: float) -> "Node":
+        """Grow by ``radius`` (f - r): rounded edges."""
+        from .shaping import Round
+        return Round(self, radius)
+
+    def shell(self, thickness: float) -> "Node":
+        """A shell ``thickness`` thick around the surface (|f| - t/2)."""
+        from .shaping import Shell
+        return Shell(self, thickness)
+
     def color(self, r: float | Sequence[float], g: float | None = None, b: float | None = None) -> "Node":
         """Give every part of this node that has no colour of its own the colour (r, g, b)."""
         from .transforms import Material

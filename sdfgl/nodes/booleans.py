@@ -22,22 +22,36 @@ if TYPE_CHECKING:  # pragma: no cover
 K_MIN = 1e-30
 
 
-def _smin(a: np.ndarray, b: np.ndarray, k: float) -> np.ndarray:
+BLENDS = ("quadratic", "circular", "chamfer")
+# how far each blend can lower min(a, b), as a share of k (grows the bounds)
+BLEND_REACH = {"quadratic": 0.25, "circular": 1.0, "chamfer": 0.5}
+BLEND_GLSL = {"circular": ("op_circular", "opCircular"), "chamfer": ("op_chamfer", "opChamfer")}
+
+
+def _smin(a: np.ndarray, b: np.ndarray, k: float, blend: str = "quadratic") -> np.ndarray:
+    if blend == "chamfer":
+        return np.minimum(np.minimum(a, b), (a + b - k) * 0.5)
+    if blend == "circular":
+        kk = k / (1.0 - np.sqrt(0.5))
+        h = np.maximum(kk - np.abs(a - b), 0.0) / kk
+        return np.minimum(a, b) - kk * 0.5 * (1.0 + h - np.sqrt(1.0 - h * (h - 2.0)))
     h = np.maximum(k - np.abs(a - b), 0.0) / k
     return np.minimum(a, b) - h * h * k * 0.25
 
 
-def _smax(a: np.ndarray, b: np.ndarray, k: float) -> np.ndarray:
-    h = np.maximum(k - np.abs(a - b), 0.0) / k
-    return np.maximum(a, b) + h * h * k * 0.25
+def _smax(a: np.ndarray, b: np.ndarray, k: float, blend: str = "quadratic") -> np.ndarray:
+    return -_smin(-a, -b, k, blend)
 
 
 class _Boolean(Node):
     """N-ary boolean folded left to right."""
 
-    def __init__(self, *children: Node, k: float = 0.0) -> None:
+    def __init__(self, *children: Node, k: float = 0.0, blend: str = "quadratic") -> None:
         if len(children) < 2:
             raise ParameterError(f"{self.kind}: needs at least two operands, got {len(children)}")
+        if blend not in BLENDS:
+            raise ParameterError(f"{self.kind}: 'blend' must be one of {', '.join(BLENDS)}, got {blend!r}")
+        self.blend = blend
         kk = v.scalar(self.kind, "k", k, nonnegative=True)
         if isinstance(kk, Live):  # a live blend radius is always smooth, so it must stay > 0
             def check() -> None:
@@ -47,7 +61,8 @@ class _Boolean(Node):
             v.watch(check, kk)
         else:
             kk = 0.0 if kk < K_MIN else kk
-        super().__init__(children, k=kk)
+        params = {"k": kk} if blend == "quadratic" else {"k": kk, "blend": blend}
+        super().__init__(children, **params)
         self.k = kk
 
     @property
@@ -64,6 +79,17 @@ class _Boolean(Node):
     @property
     def lipschitz(self) -> float:
         return max(c.lipschitz for c in self.children)
+
+    def _smooth(self, em: "Emitter", a: str, b: str, negate: bool = False) -> str:
+        """GLSL for the blended min of a and b (or max, as -min(-a, -b))."""
+        if self.blend == "quadratic":
+            em.require("op_smax" if negate else "op_smin")
+            return f"{'opSmax' if negate else 'opSmin'}({a}, {b}, {em.num(self.k)})"
+        lib, fn = BLEND_GLSL[self.blend]
+        em.require(lib)
+        if negate:
+            return f"-{fn}(-{a}, -{b}, {em.num(self.k)})"
+        return f"{fn}({a}, {b}, {em.num(self.k)})"
 
     def _emit(self, em: "Emitter", p: str) -> str:
         acc = self.children[0].emit(em, p)
@@ -126,21 +152,23 @@ class Union(_Boolean):
         if em.mode == "dist":
             if self._hard:
                 return em.assign("float", f"min({a}, {b})")
-            em.require("op_smin")
-            return em.assign("float", f"opSmin({a}, {b}, {em.num(self.k)})")
+            return em.assign("float", self._smooth(em, a, b))
         if self._hard:
             return em.assign("vec4", f"({a}.w < {b}.w) ? {a} : {b}")
         em.require("op_smin_color")
-        return em.assign("vec4", f"opSminColor({a}, {b}, {em.num(self.k)})")
+        mixed = em.assign("vec4", f"opSminColor({a}, {b}, {em.num(self.k)})")
+        if self.blend == "quadratic":
+            return mixed
+        return em.assign("vec4", f"vec4({mixed}.rgb, {self._smooth(em, f'{a}.w', f'{b}.w')})")
 
     def _fold(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
-        return np.minimum(a, b) if self._hard else _smin(a, b, float(self.k))
+        return np.minimum(a, b) if self._hard else _smin(a, b, float(self.k), self.blend)
 
     @property
     def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
         lo = np.min([c.bounds[0] for c in self.children], axis=0)
         hi = np.max([c.bounds[1] for c in self.children], axis=0)
-        grow = float(self.k) * 0.25  # the smooth min lowers the field by at most k/4
+        grow = float(self.k) * BLEND_REACH[self.blend]  # how far the blend lowers the field
         return lo - grow, hi + grow
 
 
@@ -151,15 +179,17 @@ class Intersection(_Boolean):
         if em.mode == "dist":
             if self._hard:
                 return em.assign("float", f"max({a}, {b})")
-            em.require("op_smax")
-            return em.assign("float", f"opSmax({a}, {b}, {em.num(self.k)})")
+            return em.assign("float", self._smooth(em, a, b, negate=True))
         if self._hard:
             return em.assign("vec4", f"({a}.w > {b}.w) ? {a} : {b}")
         em.require("op_smax_color")
-        return em.assign("vec4", f"opSmaxColor({a}, {b}, {em.num(self.k)})")
+        mixed = em.assign("vec4", f"opSmaxColor({a}, {b}, {em.num(self.k)})")
+        if self.blend == "quadratic":
+            return mixed
+        return em.assign("vec4", f"vec4({mixed}.rgb, {self._smooth(em, f'{a}.w', f'{b}.w', negate=True)})")
 
     def _fold(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
-        return np.maximum(a, b) if self._hard else _smax(a, b, float(self.k))
+        return np.maximum(a, b) if self._hard else _smax(a, b, float(self.k), self.blend)
 
     @property
     def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
@@ -177,16 +207,18 @@ class Difference(_Boolean):
         if em.mode == "dist":
             if self._hard:
                 return em.assign("float", f"max({a}, -{b})")
-            em.require("op_smax")
-            return em.assign("float", f"opSmax({a}, -{b}, {em.num(self.k)})")
+            return em.assign("float", self._smooth(em, a, f"(-{b})", negate=True))
         neg = f"vec4({b}.rgb, -{b}.w)"
         if self._hard:
             return em.assign("vec4", f"({a}.w > -{b}.w) ? {a} : {neg}")
         em.require("op_smax_color")
-        return em.assign("vec4", f"opSmaxColor({a}, {neg}, {em.num(self.k)})")
+        mixed = em.assign("vec4", f"opSmaxColor({a}, {neg}, {em.num(self.k)})")
+        if self.blend == "quadratic":
+            return mixed
+        return em.assign("vec4", f"vec4({mixed}.rgb, {self._smooth(em, f'{a}.w', f'(-{b}.w)', negate=True)})")
 
     def _fold(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
-        return np.maximum(a, -b) if self._hard else _smax(a, -b, float(self.k))
+        return np.maximum(a, -b) if self._hard else _smax(a, -b, float(self.k), self.blend)
 
     @property
     def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
@@ -236,16 +268,17 @@ def product(a: Node, b: Node) -> Node:
     return Product(a, b)
 
 
-def union(*nodes: Node, k: float = 0.0) -> Node:
-    """Union of two or more nodes; ``k`` > 0 blends them smoothly over that distance."""
-    return Union(*nodes, k=k)
+def union(*nodes: Node, k: float = 0.0, blend: str = "quadratic") -> Node:
+    """Union of two or more nodes; ``k`` > 0 blends them over that distance: ``blend`` is
+    "quadratic" (smooth), "circular" (a quarter-circle fillet) or "chamfer" (a bevel)."""
+    return Union(*nodes, k=k, blend=blend)
 
 
-def intersection(*nodes: Node, k: float = 0.0) -> Node:
+def intersection(*nodes: Node, k: float = 0.0, blend: str = "quadratic") -> Node:
     """Intersection of two or more nodes; ``k`` > 0 rounds the seam."""
-    return Intersection(*nodes, k=k)
+    return Intersection(*nodes, k=k, blend=blend)
 
 
-def difference(*nodes: Node, k: float = 0.0) -> Node:
+def difference(*nodes: Node, k: float = 0.0, blend: str = "quadratic") -> Node:
     """The first node minus the others; ``k`` > 0 rounds the cut."""
-    return Difference(*nodes, k=k)
+    return Difference(*nodes, k=k, blend=blend)

@@ -1,0 +1,120 @@
+"""Recursive shapes built by mirror folding, whose cost is linear in the recursion depth."""
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from ..errors import ParameterError
+from . import validate as v
+from .base import BOUND, Primitive
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ..codegen import Emitter
+
+
+def _levels(node: str, levels: object, most: int) -> int:
+    if isinstance(levels, bool) or not isinstance(levels, (int, np.integer)) or not 0 <= levels <= most:
+        raise ParameterError(f"{node}: 'levels' must be a whole number 0..{most}, got {levels!r}")
+    return int(levels)
+
+
+class Sierpinski(Primitive):
+    """Sierpinski tetrahedron of ``levels`` recursions, vertices at (±size, ±size, ±size)."""
+
+    kind = "sierpinski"
+    lib = ("sd_sierpinski",)
+    exact = False
+
+    def __init__(self, levels: int = 5, size: float = 1.0) -> None:
+        n = _levels(self.kind, levels, 16)
+        s = v.scalar(self.kind, "size", size, positive=True)
+        super().__init__(levels=n, size=s)
+        self.levels, self.size = n, float(s)
+
+    def _expr(self, em: "Emitter", p: str) -> str:
+        return f"sdSierpinski({p}, {self.levels}, {em.num(self.size)})"
+
+    def _distance(self, p: np.ndarray) -> np.ndarray:
+        p = p.copy()
+        for _ in range(self.levels):
+            for i, j in ((0, 1), (0, 2), (1, 2)):
+                m = p[..., i] + p[..., j] < 0
+                a, b = -p[..., j].copy(), -p[..., i].copy()
+                p[..., i] = np.where(m, a, p[..., i])
+                p[..., j] = np.where(m, b, p[..., j])
+            p = 2.0 * p - self.size
+        d = (np.maximum(np.abs(p[..., 0] + p[..., 1]) - p[..., 2], np.abs(p[..., 0] - p[..., 1]) + p[..., 2])
+             - self.size) * 0.57735027
+        return d / 2.0 ** self.levels
+
+    @property
+    def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        return np.full(3, -self.size), np.full(3, self.size)
+
+
+class Tree(Primitive):
+    """A branching tree: a trunk of ``height`` and ``radius`` on the origin, and ``levels``
+    of four branches each, leaning out by ``angle`` degrees and shrinking by ``shrink``."""
+
+    kind = "tree"
+    lib = ("sd_tree",)
+    exact = False
+
+    def __init__(self, levels: int = 5, height: float = 1.0, radius: float = 0.08, angle: float = 30.0,
+                 shrink: float = 0.7) -> None:
+        n = _levels(self.kind, levels, 12)
+        h = v.scalar(self.kind, "height", height, positive=True)
+        r = v.scalar(self.kind, "radius", radius, positive=True)
+        a = v.scalar(self.kind, "angle", angle)
+        k = v.scalar(self.kind, "shrink", shrink, positive=True)
+        if not (0 < float(k) < 1):
+            raise ParameterError(f"{self.kind}: parameter 'shrink' must lie in (0, 1), got {float(k):g}")
+        super().__init__(levels=n, height=h, radius=r, angle=a, shrink=k)
+        self.levels, self.h, self.r, self.k = n, float(h), float(r), float(k)
+        self.c, self.s = math.cos(math.radians(float(a))), math.sin(math.radians(float(a)))
+
+    def _expr(self, em: "Emitter", p: str) -> str:
+        return (f"sdTree({p}, {self.levels}, {em.num(self.h)}, {em.num(self.r)}, {em.num(self.c)}, "
+                f"{em.num(self.s)}, {em.num(self.k)})")
+
+    def _capsule(self, p: np.ndarray) -> np.ndarray:
+        y = np.clip(p[..., 1], 0.0, self.h)
+        return np.sqrt(p[..., 0] ** 2 + (p[..., 1] - y) ** 2 + p[..., 2] ** 2) - self.r
+
+    def _distance(self, p: np.ndarray) -> np.ndarray:
+        p = p.copy()
+        scale = 1.0
+        d = self._capsule(p)
+        c, s = self.c, self.s
+        for _ in range(self.levels):
+            p[..., 1] -= self.h
+            p[..., 0], p[..., 2] = np.abs(p[..., 0]), np.abs(p[..., 2])
+            x, y = p[..., 0].copy(), p[..., 1].copy()
+            p[..., 0], p[..., 1] = c * x - s * y, s * x + c * y
+            z, y = p[..., 2].copy(), p[..., 1].copy()
+            p[..., 2], p[..., 1] = c * z - s * y, s * z + c * y
+            p /= self.k
+            scale *= self.k
+            d = np.minimum(d, self._capsule(p) * scale)
+        return d
+
+    @property
+    def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        reach = (self.h + self.r) / (1.0 - self.k)  # the branches' lengths sum to less than this
+        return np.array([-reach, -self.r, -reach]), np.array([reach, reach, reach])
+
+
+def sierpinski(levels: int = 5, size: float = 1.0) -> Sierpinski:
+    """A Sierpinski tetrahedron: 4^levels copies at the cost of ``levels`` folds. A bound."""
+    return Sierpinski(levels, size)
+
+
+def tree(levels: int = 5, height: float = 1.0, radius: float = 0.08, angle: float = 30.0,
+         shrink: float = 0.7) -> Tree:
+    """A branching tree by mirror recursion: 4^levels branches at linear cost. A bound."""
+    return Tree(levels, height, radius, angle, shrink)
+
+
+__all__ = ["Sierpinski", "Tree", "sierpinski", "tree", "BOUND"]
