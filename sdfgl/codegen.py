@@ -62,6 +62,7 @@ class Emitter:
         self._materialized: dict[str, str] = {}
         self.shared_keys: set = parent.shared_keys if parent else set()
         self.helpers: dict[str, str] = parent.helpers if parent else {}
+        self.detail = parent.detail if parent else False  # emitting the normals-only field
         self.grids: dict[int, tuple[str, Any, tuple[float, float, float]]] = parent.grids if parent else {}
         self.use_grids = parent.use_grids if parent else True
         self._defining: set = set(parent._defining) if parent else set()
@@ -94,12 +95,12 @@ class Emitter:
 
     def function(self, node: Node) -> str:
         """Name of a GLSL function computing ``node`` at its argument (emitted once per subtree)."""
-        key = (node.key, self.mode, self._colors[-1])
+        key = (node.key, self.mode, self._colors[-1], self.detail)
         if key not in self.functions:
             sub = Emitter(self.mode, self._colors[-1], parent=self)
             sub._defining.add(node.key)
             result = node.emit(sub, "p")
-            name = f"{self.mode[0]}{len(self.functions)}_{node.kind}"
+            name = f"{'n' if self.detail else self.mode[0]}{len(self.functions)}_{node.kind}"
             rtype = "float" if self.mode == "dist" else "vec4"
             lines = [(f"{rtype} {name}(vec3 p) {{", self.owner), *sub.lines,
                      (f"    return {result};", self.owner), ("}", self.owner)]
@@ -360,9 +361,10 @@ def _grid_code(b: "_Builder", grids: dict, origin: np.ndarray) -> list[tuple[str
 
 
 def _emit_map(scene: Node, mode: str, origin: np.ndarray, params: list[Param], shared: set,
-              grids: dict, use_grids: bool, helpers: dict) -> tuple[Emitter, str]:
+              grids: dict, use_grids: bool, helpers: dict, detail: bool = False) -> tuple[Emitter, str]:
     em = Emitter(mode, params=params)
     em.helpers = helpers
+    em.detail = detail
     em.shared_keys = shared
     em.grids = grids
     em.use_grids = use_grids
@@ -395,7 +397,9 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     dist, dist_result = _emit_map(scene, "dist", org, params, shared, grids, settings.grid, helpers)
     color, color_result = (_emit_map(scene, "color", org, params, shared, grids, settings.grid, helpers)
                            if target == "render" else (None, ""))
-    libs = list(dist.libs) + [n for n in (color.libs if color else []) if n not in dist.libs]
+    detail, detail_result = (_emit_map(scene, "dist", org, params, shared, grids, settings.grid, helpers, True)
+                             if target == "render" and scene.has_detail else (None, ""))
+    libs = list(dict.fromkeys(dist.libs + (color.libs if color else []) + (detail.libs if detail else [])))
     live = bool(params)
 
     b = _Builder()
@@ -422,6 +426,10 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     assert color is not None
     _helpers(b, color, done)
     _function(b, "vec3 mapColor(vec3 p)", color, color_result, "{}.rgb")
+    if detail is not None:
+        _helpers(b, detail, done)
+        _function(b, "float mapDetail(vec3 p)", detail, detail_result, "{}")
+        b.add("#define DETAIL_NORMALS", "(codegen)")
     b.add_file("refine")
     marched = not (settings.analytic and analytic_shape(scene) is not None)
     if marched and settings.method in ("newton", "forward_newton", "reference"):

@@ -131,6 +131,11 @@ class Node:
     def _bounds(self) -> tuple[Any, Any]:
         raise NotImplementedError
 
+    @property
+    def has_detail(self) -> bool:
+        """True if some node shades with a more detailed field than it marches (see Displace)."""
+        return any(c.has_detail for c in self.children)
+
     def live_params(self) -> list["Param"]:
         """The live parameters anywhere in this subtree."""
         out: list[Param] = []
@@ -229,6 +234,12 @@ class Node:
         """A shell ``thickness`` thick around the surface (|f| - t/2)."""
         from .shaping import Shell
         return Shell(self, thickness)
+
+    def displace(self, amplitude: float, frequency: float = 1.0, octaves: int = 4,
+                 normal_octaves: int | None = None) -> "Node":
+        """Displace the surface by fBm noise (a bound; only this subtree's steps shrink)."""
+        from .noise import Displace
+        return Displace(self, amplitude, frequency, octaves, normal_octaves)
 
     def color(self, r: float | Sequence[float], g: float | None = None, b: float | None = None) -> "Node":
         """Give every part of this node that has no colour of its own the colour (r, g, b)."""
