@@ -31,9 +31,19 @@ def _add_settings(p: argparse.ArgumentParser) -> None:
     p.add_argument("--max-steps", type=int, default=256, help="step limit per primary ray (default 256)")
 
 
+CLI_DEFAULTS = {"aa": 1, "shadows": "soft", "ao": True, "ground": False, "method": "enhanced", "max_steps": 256}
+
+
+def _overrides(a: argparse.Namespace) -> dict[str, object]:
+    """The settings given on the command line (those that differ from the defaults)."""
+    given = {"aa": a.aa, "shadows": a.shadows, "ao": a.ao, "ground": a.ground, "method": a.method,
+             "max_steps": a.max_steps}
+    return {k: v for k, v in given.items() if v != CLI_DEFAULTS[k]}
+
+
 def _settings(a: argparse.Namespace) -> dict[str, object]:
-    return {"aa": a.aa, "shadows": a.shadows, "ao": a.ao, "ground": a.ground, "method": a.method,
-            "max_steps": a.max_steps}
+    """Defaults, then the scene file's own 'settings', then what the command line gave."""
+    return {**CLI_DEFAULTS, **getattr(a, "file_settings", {}), **_overrides(a)}
 
 
 def _load(a: argparse.Namespace):  # -> tuple[Node, Camera | None]
@@ -44,6 +54,7 @@ def _load(a: argparse.Namespace):  # -> tuple[Node, Camera | None]
             raise SdfglError("give either a scene file or --demo, not both")
         return demo_scene(), demo_camera(), True
     sf = load_scene_file(a.scene)
+    a.file_settings = sf.settings
     return sf.scene, sf.camera, False
 
 
@@ -87,7 +98,8 @@ def cmd_view(a: argparse.Namespace) -> int:
                    **{**settings, "ground": True})
     else:
         v = Viewer(path=a.scene, size=a.size, target_ms=a.target_ms, adaptive=not a.no_adaptive,
-                   max_samples=a.max_samples, state_file=a.state_file, screenshot_dir=a.screenshot_dir, **settings)
+                   max_samples=a.max_samples, state_file=a.state_file, screenshot_dir=a.screenshot_dir,
+                   **_overrides(a))
     v.run()
     return 0
 

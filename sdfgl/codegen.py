@@ -308,6 +308,8 @@ def _defines(scene: Node, settings: Settings, origin: np.ndarray, live: bool) ->
         d.append(f"#define REF_STEP {glsl_float(ref_step(settings, scale))}")
     if settings.method in ("enhanced", "forward_newton"):
         d.append(f"#define {settings.method.upper()}")
+    if settings.method in ("newton", "forward_newton"):
+        d.append(f"#define NEWTON_CAP {glsl_float(settings.newton_cap if settings.newton_cap else 1e30)}")
     shape = analytic_shape(scene) if settings.analytic else None
     if shape is not None:
         kind, v = shape

@@ -16,10 +16,11 @@ class SceneFile:
     path: Path
     scene: Node
     camera: Camera | None
+    settings: dict  # render settings the file asks for (e.g. {"method": "newton"})
 
 
 def load_scene_file(path: str | Path) -> SceneFile:
-    """Run ``path`` and return its ``scene`` and ``camera``; errors name the file and line."""
+    """Run ``path`` and return its ``scene``, ``camera`` and ``settings``; errors name the file and line."""
     p = Path(path)
     if not p.is_file():
         raise SceneFileError(f"scene file '{p}' does not exist")
@@ -40,4 +41,7 @@ def load_scene_file(path: str | Path) -> SceneFile:
     camera = ns.get("camera")
     if camera is not None and not isinstance(camera, Camera):
         raise SceneFileError(f"scene file '{p}': 'camera' must be an sdfgl Camera, got {type(camera).__name__}")
-    return SceneFile(p, scene, camera)
+    settings = ns.get("settings", {})
+    if not isinstance(settings, dict):
+        raise SceneFileError(f"scene file '{p}': 'settings' must be a dict, got {type(settings).__name__}")
+    return SceneFile(p, scene, camera, dict(settings))

@@ -30,6 +30,8 @@ class Settings:
     omega: relaxation of "relaxed" (in (1, 2), default 1.6) or "enhanced" (in (0, 1],
         default 0.9); None for the default.
     ref_step: the step of "reference" (default: the scene size / 512).
+    newton_cap: the Newton methods' step is at most this many times the field value
+        (default 2; None for the seed thesis's uncapped Newton step).
     max_steps: map() evaluations a primary ray may spend.
     hit: "cone" (distance below hit_scale pixel footprints), "relative" (below
         hit_scale * t) or "absolute" (below hit_scale).
@@ -50,6 +52,7 @@ class Settings:
     method: str = "enhanced"
     omega: Any = None
     ref_step: Any = None
+    newton_cap: Any = 2.0
     max_steps: int = 256
     hit: str = "cone"
     hit_scale: float = 0.25
@@ -86,6 +89,11 @@ class Settings:
             if isinstance(self.ref_step, bool) or not isinstance(self.ref_step, (int, float)) or not self.ref_step > 0:
                 raise ParameterError(f"setting 'ref_step' must be a positive number, got {self.ref_step!r}")
             object.__setattr__(self, "ref_step", float(self.ref_step))
+        if self.newton_cap is not None:
+            ok = isinstance(self.newton_cap, (int, float)) and not isinstance(self.newton_cap, bool)
+            if not ok or not self.newton_cap >= 1:
+                raise ParameterError(f"setting 'newton_cap' must be None or a number >= 1, got {self.newton_cap!r}")
+            object.__setattr__(self, "newton_cap", float(self.newton_cap))
         if isinstance(self.max_steps, bool) or not isinstance(self.max_steps, int) or not 1 <= self.max_steps <= 100000:
             raise ParameterError(f"setting 'max_steps' must be an integer 1..100000, got {self.max_steps!r}")
         if self.hit not in HIT_MODES:

@@ -81,6 +81,7 @@ class Viewer:
         if self.path is not None:
             sf = load_scene_file(self.path)
             scene, camera = sf.scene, camera or sf.camera
+            settings = {**sf.settings, **settings}
             self._mtime = self.path.stat().st_mtime
         if scene is None:
             raise SdfglError("Viewer needs a scene or a scene file")

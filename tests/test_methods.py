@@ -43,7 +43,7 @@ def test_reference_march_resolves_what_its_step_resolves():
 
 
 def test_newton_takes_wrong_roots_on_staggered_spheres_as_the_seed_reports():
-    newton, _ = run_case(case("five_spheres"), (64, 48), method="newton")
+    newton, _ = run_case(case("five_spheres"), (64, 48), method="newton", newton_cap=None)
     enhanced, _ = run_case(case("five_spheres"), (64, 48), method="enhanced")
     assert newton.lost_hits + newton.depth_outliers > enhanced.lost_hits + enhanced.depth_outliers
 
@@ -106,3 +106,16 @@ def test_bench_quick_writes_reports(tmp_path):
         assert key in v
     assert (tmp_path / "pareto.png").stat().st_size > 1000
     assert len(data["features"]) == 8
+
+
+def test_capped_newton_keeps_the_roots_of_an_implicit_surface():
+    from sdfgl import reference as R
+    t = sg.implicit("x**4 - 5*x**2 + y**4 - 5*y**2 + z**4 - 5*z**2 + 11.8",
+                    bounds=((-2.8, -2.8, -2.8), (2.8, 2.8, 2.8)))
+    cam = sg.OrbitCamera(distance=9, yaw=25, pitch=25)
+    ref = R.trace(t, cam, (64, 48), step=0.002)
+    lost = {}
+    for cap in (None, 2.0):
+        res = sg.render(t, cam, (64, 48), method="newton", newton_cap=cap, ao=False, outputs=("color", "depth", "normal"))
+        lost[cap] = R.compare(res, ref).lost_hits
+    assert lost[2.0] < 0.25 * lost[None] and lost[2.0] < 0.02 * np.isfinite(ref.t).sum()

@@ -87,6 +87,10 @@ class Repeat(Unary):
     def _limit(self) -> np.ndarray:
         return np.where(self.n < 0, 1e30, self.n.astype(float))
 
+    def _half_gap(self) -> np.ndarray:
+        """Per axis, how far the next copy's bounds are from a cell's centre plane (1e30: none)."""
+        return np.where((self.s > 0) & (self.n != 0), self.s / 2 + self.gap, 1e30)
+
     def _neighbours(self) -> list[np.ndarray]:
         """Per-axis 0/1 picks of the neighbour cells to visit besides the point's own."""
         picks = []
@@ -107,8 +111,12 @@ class Repeat(Unary):
         fn = em.function(self.child)
         own = em.assign("float" if em.mode == "dist" else "vec4", f"{fn}({local})")
         if self.cheap:
-            half_gap = em.vec(np.where(self.s > 0, self.s / 2 + self.gap, 1e30))
+            # the next copy is at least half a cell plus the gap away, measured from this
+            # cell's walls; at the ends of a finite row only the inward neighbour exists
+            half_gap = em.vec(self._half_gap())
             wall = em.assign("vec3", f"{half_gap} - abs({local})")
+            wall = em.assign("vec3", f"mix({wall}, {half_gap} + {local}, vec3(equal({cell}, {lim})))")
+            wall = em.assign("vec3", f"mix({wall}, {half_gap} - {local}, vec3(equal({cell}, -{lim})))")
             cap = f"min({wall}.x, min({wall}.y, {wall}.z))"
             if em.mode == "dist":
                 return em.assign("float", f"min({own}, {cap})")
@@ -132,7 +140,10 @@ class Repeat(Unary):
         local = p - self.s * cell
         own = self.child._distance(local)
         if self.cheap:
-            wall = np.where(self.s > 0, self.s / 2 + self.gap, 1e30) - np.abs(local)
+            hg = self._half_gap()
+            wall = hg - np.abs(local)
+            wall = np.where(cell == lim, hg + local, wall)
+            wall = np.where(cell == -lim, hg - local, wall)
             return np.minimum(own, wall.min(axis=-1))
         side = np.sign(local) * self._mask()
         acc = own

@@ -1,0 +1,182 @@
+"""Implicit surfaces from an expression, and rational parametric surfaces implicitized
+with a Groebner basis (sympy).
+
+An implicit f(x, y, z) = 0 is rendered through f / |grad f|, a first-order distance
+estimate with the gradient derived symbolically. It is no guaranteed bound (exactness
+"implicit"), so the Newton methods or the reference march render it.
+"""
+from __future__ import annotations
+
+import multiprocessing as mp
+import time
+from typing import TYPE_CHECKING, Any, Sequence
+
+import numpy as np
+import sympy as sp
+from sympy.printing.glsl import GLSLPrinter
+
+from ..errors import ParameterError
+from .base import IMPLICIT, Node
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ..codegen import Emitter
+
+X, Y, Z = sp.symbols("x y z", real=True)
+MAX_TERMS = 400  # an implicit equation bigger than this is refused as too large
+
+
+class _Printer(GLSLPrinter):
+    """sympy's GLSL printer, but integer powers become products (GLSL's pow(x, 2.0) is
+    undefined for negative x) and every number is a float literal."""
+
+    def _print_Pow(self, expr: sp.Pow) -> str:  # noqa: N802 - sympy's naming
+        base, exp = expr.as_base_exp()
+        if exp.is_Integer and 0 < abs(int(exp)) <= 8:
+            prod = " * ".join([f"({self._print(base)})"] * abs(int(exp)))
+            return f"({prod})" if exp > 0 else f"(1.0 / ({prod}))"
+        if exp == sp.Rational(1, 2):
+            return f"sqrt({self._print(base)})"
+        return f"pow({self._print(base)}, {self._print(sp.Float(exp))})"
+
+    def _print_Integer(self, expr: sp.Integer) -> str:  # noqa: N802
+        return f"{int(expr)}.0"
+
+    def _print_Rational(self, expr: sp.Rational) -> str:  # noqa: N802
+        return repr(float(expr))
+
+
+def _parse(expr: Any) -> sp.Expr:
+    if isinstance(expr, str):
+        try:
+            e = sp.sympify(expr, locals={"x": X, "y": Y, "z": Z})
+        except (sp.SympifyError, SyntaxError, TypeError) as exc:
+            raise ParameterError(f"implicit: cannot parse {expr!r}: {exc}") from None
+    elif isinstance(expr, sp.Expr):
+        e = expr.subs({s: {"x": X, "y": Y, "z": Z}[s.name] for s in expr.free_symbols if s.name in "xyz"})
+    else:
+        raise ParameterError(f"implicit: expected a string or a sympy expression, got {type(expr).__name__}")
+    extra = sorted(s.name for s in e.free_symbols if s not in (X, Y, Z))
+    if extra:
+        raise ParameterError(f"implicit: unknown symbol(s) {', '.join(extra)} in {expr!r}; use x, y and z")
+    return e
+
+
+class Implicit(Node):
+    """The surface f(x, y, z) = 0 (solid where f < 0), as f / |grad f|."""
+
+    kind = "implicit"
+
+    def __init__(self, expr: Any, bounds: tuple[Sequence[float], Sequence[float]] | None = None) -> None:
+        f = _parse(expr)
+        grad = [sp.diff(f, s) for s in (X, Y, Z)]
+        if all(g == 0 for g in grad):
+            raise ParameterError(f"implicit: {f} does not depend on x, y or z")
+        lo, hi = (np.full(3, -np.inf), np.full(3, np.inf)) if bounds is None else (
+            np.asarray(bounds[0], dtype=float), np.asarray(bounds[1], dtype=float))
+        if lo.shape != (3,) or hi.shape != (3,) or np.any(lo >= hi):
+            raise ParameterError(f"implicit: 'bounds' must be two 3-vectors with lo < hi, got {bounds!r}")
+        super().__init__((), expr=str(f))
+        self.f, self.grad, self.lo, self.hi = f, grad, lo, hi
+        self._np = sp.lambdify((X, Y, Z), [f, *grad], "numpy")
+
+    @property
+    def exactness(self) -> str:
+        return IMPLICIT
+
+    def label(self) -> str:
+        text = str(self.f)
+        return f"implicit({text if len(text) < 60 else text[:57] + '...'})"
+
+    def _emit(self, em: "Emitter", p: str) -> str:
+        pr = _Printer()
+        name = f"implicit{abs(hash(self.key)) % 10**8}"
+        body = (f"float {name}(vec3 p) {{\n    float x = p.x;\n    float y = p.y;\n    float z = p.z;\n"
+                f"    float f = {pr.doprint(self.f)};\n"
+                f"    vec3 g = vec3({', '.join(pr.doprint(g) for g in self.grad)});\n"
+                f"    return f / max(length(g), 1e-12);\n}}")
+        em.helper(name, f"// f = {self.f}  (an implicit surface, as f / |grad f|)\n{body}")
+        return em.with_color(em.assign("float", f"{name}({em.point(p)})"))
+
+    def _distance(self, p: np.ndarray) -> np.ndarray:
+        vals = [np.broadcast_to(np.asarray(v, dtype=np.float64), p.shape[:-1])
+                for v in self._np(p[..., 0], p[..., 1], p[..., 2])]
+        g = np.sqrt(vals[1] ** 2 + vals[2] ** 2 + vals[3] ** 2)
+        return vals[0] / np.maximum(g, 1e-12)
+
+    @property
+    def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        return self.lo, self.hi
+
+
+def implicit(expr: Any, bounds: tuple[Sequence[float], Sequence[float]] | None = None) -> Implicit:
+    """The surface ``expr`` = 0 in x, y, z (a string or sympy expression); ``bounds`` (lo, hi)
+    clips the rays to a box. Render with method="newton" or "forward_newton"."""
+    return Implicit(expr, bounds)
+
+
+def _groebner_worker(gens: list[str], out: Any) -> None:
+    u, s, t = sp.symbols("u s t")
+    polys = [sp.sympify(g, locals={"u": u, "s": s, "t": t, "x": X, "y": Y, "z": Z}) for g in gens]
+    basis = sp.groebner(polys, u, s, t, X, Y, Z, order="lex")
+    found = [str(g) for g in basis.exprs if not ({u, s, t} & g.free_symbols)]
+    out.put(found)
+
+
+def implicitize(x: Any, y: Any, z: Any, timeout: float = 20.0) -> tuple[sp.Expr, float]:
+    """The implicit equation F(x, y, z) = 0 of the rational surface (x(s, t), y(s, t), z(s, t)).
+
+    Eliminates s and t from <D x - Nx, D y - Ny, D z - Nz, 1 - u D> (D the common
+    denominator) with a lex Groebner basis. Returns (F, seconds). Raises ParameterError
+    if it does not finish within ``timeout`` seconds, finds no surface equation, or the
+    equation has more than MAX_TERMS terms."""
+    s, t, u = sp.symbols("s t u")
+    comps = []
+    for name, e in (("x", x), ("y", y), ("z", z)):
+        try:
+            ex = sp.sympify(e, locals={"s": s, "t": t}) if isinstance(e, str) else sp.sympify(e)
+        except (sp.SympifyError, SyntaxError, TypeError) as exc:
+            raise ParameterError(f"parametric: cannot parse {name} = {e!r}: {exc}") from None
+        extra = sorted(v.name for v in ex.free_symbols if v.name not in ("s", "t"))
+        if extra:
+            raise ParameterError(f"parametric: {name} uses unknown symbol(s) {', '.join(extra)}; use s and t")
+        num, den = sp.fraction(sp.together(ex))
+        if not (num.is_polynomial(s, t) and den.is_polynomial(s, t)):
+            raise ParameterError(f"parametric: {name} = {ex} is not a rational function of s and t")
+        comps.append((num, den))
+    d = sp.lcm_list([den for _, den in comps])
+    gens = [sp.expand(d * c - sp.cancel(num * d / den)) for c, (num, den) in zip((X, Y, Z), comps)]
+    gens.append(sp.expand(1 - u * d))
+    ctx = mp.get_context("fork")
+    out = ctx.Queue()
+    proc = ctx.Process(target=_groebner_worker, args=([str(g) for g in gens], out), daemon=True)
+    t0 = time.perf_counter()
+    proc.start()
+    proc.join(timeout)
+    if proc.is_alive():
+        proc.kill()
+        proc.join()
+        raise ParameterError(f"parametric: implicitization did not finish within {timeout:g} s "
+                             f"(the Groebner basis is too large); pass a larger timeout or an implicit form")
+    elapsed = time.perf_counter() - t0
+    found = out.get() if not out.empty() else None
+    if found is None:
+        raise ParameterError("parametric: the Groebner computation failed")
+    if len(found) != 1:
+        # a rational surface's elimination ideal is principal: one equation; several (or
+        # none) mean the image is a curve or a point
+        raise ParameterError(f"parametric: the elimination gave {len(found)} equations in x, y, z, not one: "
+                             f"the parametrization does not describe a surface (a curve or a point?)")
+    eq = min((sp.sympify(g, locals={"x": X, "y": Y, "z": Z}) for g in found), key=lambda g: sp.total_degree(g))
+    if len(sp.Add.make_args(sp.expand(eq))) > MAX_TERMS:
+        raise ParameterError(f"parametric: the implicit equation has more than {MAX_TERMS} terms; too large to render")
+    return eq, elapsed
+
+
+def parametric(x: Any, y: Any, z: Any, bounds: tuple[Sequence[float], Sequence[float]] | None = None,
+               timeout: float = 20.0) -> Implicit:
+    """The rational parametric surface (x(s, t), y(s, t), z(s, t)), implicitized and rendered
+    as an implicit surface. ``node.implicitization_s`` keeps the time it took."""
+    eq, seconds = implicitize(x, y, z, timeout)
+    node = Implicit(eq, bounds)
+    node.implicitization_s = seconds  # type: ignore[attr-defined]
+    return node
