@@ -11,7 +11,7 @@ from .codegen import compile
 from .errors import ContextError, ParameterError, SceneFileError, SdfglError, ShaderCompileError
 from .evaluate import evaluate
 from .nodes import (BOUND, EXACT, IMPLICIT, Node, bend, box, box_frame, capsule, circle, displace, elongate, extrude,
-                    implicit, noise, parametric,
+                    displace_expr, implicit, noise, parametric,
                     mirror, polygon, rectangle, repeat_polar, revolve, rounded, shell, sierpinski, symmetric, tree, cone, cylinder, difference, ellipsoid,
                     hex_prism, intersection, octahedron, plane, product, repeat, rounded_box, sphere, torus, twist,
                     union)
@@ -36,7 +36,7 @@ __all__ = [
     "sphere", "box", "rounded_box", "plane", "torus", "capsule", "cylinder", "cone", "ellipsoid",
     "octahedron", "hex_prism", "box_frame", "product", "twist", "bend", "repeat", "evaluate", "union",
     "circle", "rectangle", "polygon", "extrude", "revolve", "mirror", "symmetric", "repeat_polar", "elongate",
-    "rounded", "shell", "sierpinski", "tree", "displace", "noise", "implicit", "parametric", "intersection", "difference", "X", "Y", "Z",
+    "rounded", "shell", "sierpinski", "tree", "displace", "noise", "implicit", "parametric", "displace_expr", "intersection", "difference", "X", "Y", "Z",
     "EXACT", "BOUND", "IMPLICIT", "SdfglError", "ParameterError", "ShaderCompileError", "ContextError",
     "SceneFileError",
 ]

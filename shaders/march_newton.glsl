@@ -29,7 +29,7 @@ float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
         }
         float df = rayDerivative(ro, rd, t, f, steps);
         if (f < hitEpsilon(t)) {
-            return df < 0.0 ? t + min(-f / df, 2.0 * hitEpsilon(t)) : t;
+            return df < 0.0 ? t + min(-f / df, 10.0 * hitEpsilon(t)) : t;
         }
         tOut = t;
         fOut = f;

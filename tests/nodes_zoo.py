@@ -47,6 +47,8 @@ def all_nodes() -> dict[str, sg.Node]:
         "revolve": sg.revolve(sg.rectangle((0.3, 0.8), 0.05), 0.4),
         "displace": sg.sphere(0.7).displace(0.08, 3.0, 3),
         "noise_field": sg.noise(1.5, 3, 1.0, 0.2) & sg.box(2.0),
+        "displace_expr": sg.displace_expr(sg.box(0.8), "0.04*sin(9*x)*sin(9*y)*sin(9*z)"),
+        "product": sg.product(sg.sphere(0.6), sg.box(0.8).translate((0.5, 0, 0))),
         "implicit": sg.implicit("x**2 + y**2/0.5 + z**2 - 1", bounds=((-1.2, -1, -1.2), (1.2, 1, 1.2))),
     })
     return nodes

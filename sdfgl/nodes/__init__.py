@@ -4,7 +4,7 @@ from .booleans import difference, intersection, product, union
 from .deform import bend, twist
 from .domain import repeat
 from .fractals import sierpinski, tree
-from .implicit import implicit, parametric
+from .implicit import displace_expr, implicit, parametric
 from .noise import displace, noise
 from .shapes2d import circle, extrude, polygon, rectangle, revolve
 from .shaping import elongate, mirror, repeat_polar, rounded, shell, symmetric
@@ -15,4 +15,4 @@ __all__ = ["Node", "Primitive", "EXACT", "BOUND", "IMPLICIT", "sphere", "box", "
            "torus", "capsule", "cylinder", "cone", "ellipsoid", "octahedron", "hex_prism", "union",
            "intersection", "difference", "box_frame", "product", "twist", "bend", "repeat",
            "sierpinski", "tree", "circle", "rectangle", "polygon", "extrude", "revolve", "mirror", "symmetric",
-           "repeat_polar", "elongate", "rounded", "shell", "displace", "noise", "implicit", "parametric"]
+           "repeat_polar", "elongate", "rounded", "shell", "displace", "noise", "implicit", "parametric", "displace_expr"]

@@ -180,3 +180,91 @@ def parametric(x: Any, y: Any, z: Any, bounds: tuple[Sequence[float], Sequence[f
     node = Implicit(eq, bounds)
     node.implicitization_s = seconds  # type: ignore[attr-defined]
     return node
+
+
+class DisplaceExpr(Node):
+    """child + g(x, y, z) for a displacement function g given as an expression.
+
+    ``lipschitz`` is a bound of |grad g| that the caller vouches for; without it the bound
+    is taken from sympy's maximum of |grad g| over the child's bounding box when sympy can
+    find one in closed form, else the node is refused. The field is divided by
+    1 + lipschitz, in this subtree only."""
+
+    kind = "displace_expr"
+
+    def __init__(self, child: Node, expr: Any, lipschitz: float | None = None) -> None:
+        if child.exactness == IMPLICIT:
+            raise ParameterError(f"{self.kind}: the child {child.label()} is implicit (no distance bound)")
+        g = _parse(expr) if not isinstance(expr, (int, float)) else sp.Float(expr)
+        grad = [sp.diff(g, s) for s in (X, Y, Z)]
+        if lipschitz is None:
+            lipschitz = _gradient_bound(grad)
+            if lipschitz is None:
+                raise ParameterError(f"{self.kind}: cannot bound the gradient of {g} in closed form; pass "
+                                     f"lipschitz= (a bound of |grad g| you vouch for)")
+        elif isinstance(lipschitz, bool) or not isinstance(lipschitz, (int, float)) or not lipschitz >= 0:
+            raise ParameterError(f"{self.kind}: 'lipschitz' must be a number >= 0, got {lipschitz!r}")
+        super().__init__((child,), expr=str(g), lipschitz=float(lipschitz))
+        self.child, self.g, self.factor = child, g, 1.0 + float(lipschitz)
+        self._np = sp.lambdify((X, Y, Z), g, "numpy")
+        self._grow = _abs_bound(g)
+
+    @property
+    def exactness(self) -> str:
+        return "bound"
+
+    def label(self) -> str:
+        return f"displace_expr({self.g})"
+
+    def _emit(self, em: "Emitter", p: str) -> str:
+        pt = em.point(p)
+        name = f"displacement{abs(hash(self.key)) % 10**8}"
+        em.helper(name, f"float {name}(vec3 p) {{\n    float x = p.x;\n    float y = p.y;\n    float z = p.z;\n"
+                        f"    return {_Printer().doprint(self.g)};\n}}")
+        r = self.child.emit(em, p)
+        scale = em.num(1.0 / self.factor)
+        if em.mode == "dist":
+            return em.assign("float", f"({r} + {name}({pt})) * {scale}")
+        return em.assign("vec4", f"vec4({r}.rgb, ({r}.w + {name}({pt})) * {scale})")
+
+    def _distance(self, p: np.ndarray) -> np.ndarray:
+        g = np.broadcast_to(np.asarray(self._np(p[..., 0], p[..., 1], p[..., 2]), dtype=np.float64), p.shape[:-1])
+        return (self.child._distance(p) + g) / self.factor
+
+    @property
+    def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        lo, hi = self.child.bounds
+        if self._grow is None:
+            return np.full(3, -np.inf), np.full(3, np.inf)
+        return lo - self._grow, hi + self._grow
+
+
+def _abs_bound(g: sp.Expr) -> float | None:
+    """A bound of |g| when g is built from sin, cos, numbers, products and sums."""
+    if g.is_number:
+        return abs(float(g))
+    if isinstance(g, (sp.sin, sp.cos)):
+        return 1.0
+    if isinstance(g, sp.Mul):
+        parts = [_abs_bound(a) for a in g.args]
+        return None if any(x is None for x in parts) else float(np.prod(parts))
+    if isinstance(g, sp.Add):
+        parts = [_abs_bound(a) for a in g.args]
+        return None if any(x is None for x in parts) else float(sum(parts))
+    return None
+
+
+def _gradient_bound(grad: list[sp.Expr]) -> float | None:
+    """|grad g| <= sqrt(sum of squared component bounds), when each component is bounded."""
+    parts = []
+    for comp in grad:
+        b = _abs_bound(sp.expand(comp))
+        if b is None:
+            return None
+        parts.append(b)
+    return float(np.sqrt(sum(x * x for x in parts)))
+
+
+def displace_expr(node: Node, expr: Any, lipschitz: float | None = None) -> DisplaceExpr:
+    """Displace ``node`` by the function ``expr`` of x, y, z (e.g. "0.05*sin(8*x)*sin(8*y)")."""
+    return DisplaceExpr(node, expr, lipschitz)
