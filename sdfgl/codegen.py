@@ -246,28 +246,20 @@ def scene_frame(scene: Node) -> tuple[np.ndarray, np.ndarray, float]:
 def analytic_shape(scene: Node) -> tuple[str, np.ndarray] | None:
     """("sphere", (centre, radius)) or ("plane", (normal, offset)) in world space when the
     scene is one sphere or plane under rigid transforms, uniform scales and colours."""
-    from .nodes.grid import pack
+    from .nodes.grid import pack, unwrap
     from .nodes.primitives import Plane
-    from .nodes.transforms import Material, Rotate, Scale, Translate
     q = pack(scene)
     if q is not None and q.type == 0:
         return "sphere", np.array([*q.t, q.scale * q.size[0]])
-    t, r, s, node = np.zeros(3), np.eye(3), 1.0, scene
-    while isinstance(node, (Material, Translate, Rotate, Scale)):
-        if any(isinstance(v, Live) for v in node.params.values()):
-            return None
-        if isinstance(node, Translate):
-            t = t + s * (r @ node.offset)
-        elif isinstance(node, Rotate):
-            r = r @ node.m
-        elif isinstance(node, Scale):
-            s *= float(node.s)
-        node = node.child
-    if isinstance(node, Plane) and not any(isinstance(v, Live) for v in node.params.values()):
-        n = r @ node._unit_normal()
-        point = t + s * (r @ np.asarray(node.o, dtype=float))
-        return "plane", np.array([*n, float(n @ point)])
-    return None
+    peeled = unwrap(scene)
+    if peeled is None or not isinstance(peeled[0], Plane):
+        return None
+    plane, t, r, s, _ = peeled
+    if any(isinstance(v, Live) for v in plane.params.values()):
+        return None
+    n = r @ plane._unit_normal()
+    point = t + s * (r @ np.asarray(plane.o, dtype=float))
+    return "plane", np.array([*n, float(n @ point)])
 
 
 def max_steps_of(settings: Settings, scale: float, lo: np.ndarray, hi: np.ndarray) -> int:

@@ -57,17 +57,12 @@ def _shape(prim: Primitive) -> tuple[int, np.ndarray, float, np.ndarray] | None:
     return None
 
 
-def pack(node: Node) -> Packed | None:
-    """The primitive behind a chain of rigid transforms, uniform scales and colours, or None."""
+def unwrap(node: Node) -> tuple[Node, np.ndarray, np.ndarray, float, tuple[float, float, float] | None] | None:
+    """Peel rigid transforms, uniform scales and colours off ``node``: (inner node, t, R, s,
+    colour) with world = t + s * R @ local; None if a live parameter is in the way."""
     from .transforms import Material, Rotate, Scale, Translate
     t, r, s, color = np.zeros(3), np.eye(3), 1.0, None
-    while True:
-        if isinstance(node, Primitive):
-            shape = _shape(node)
-            if shape is None:
-                return None
-            kind, size, rounding, centre = shape
-            return Packed(kind, s, t + s * (r @ centre), r, size, rounding, color)
+    while isinstance(node, (Material, Translate, Rotate, Scale)):
         if any(isinstance(v, Live) for v in node.params.values()):
             return None
         if isinstance(node, Translate):
@@ -76,11 +71,23 @@ def pack(node: Node) -> Packed | None:
             r = r @ node.m
         elif isinstance(node, Scale):
             s = s * float(node.s)
-        elif isinstance(node, Material):
-            color = node.rgb  # the innermost colour wins, as in code
         else:
-            return None
+            color = node.rgb  # the innermost colour wins, as in code
         node = node.child
+    return node, t, r, s, color
+
+
+def pack(node: Node) -> Packed | None:
+    """The primitive behind a chain of rigid transforms, uniform scales and colours, or None."""
+    peeled = unwrap(node)
+    if peeled is None or not isinstance(peeled[0], Primitive):
+        return None
+    prim, t, r, s, color = peeled
+    shape = _shape(prim)
+    if shape is None:
+        return None
+    kind, size, rounding, centre = shape
+    return Packed(kind, s, t + s * (r @ centre), r, size, rounding, color)
 
 
 class Grid:
