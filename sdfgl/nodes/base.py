@@ -122,10 +122,15 @@ class Node:
     def bounds(self) -> tuple[np.ndarray, np.ndarray]:
         """Conservative axis-aligned box (lo, hi) holding the solid; components may be inf.
 
-        With live parameters, the box for their current values."""
-        lo, hi = self._bounds
-        return (np.array(np.broadcast_to(np.asarray(lo, dtype=np.float64), (3,))),
-                np.array(np.broadcast_to(np.asarray(hi, dtype=np.float64), (3,))))
+        With live parameters, the box for their current values; without, it is computed once."""
+        cached = self.__dict__.get("_bounds_cache")
+        if cached is None:
+            lo, hi = self._bounds
+            cached = (np.array(np.broadcast_to(np.asarray(lo, dtype=np.float64), (3,))),
+                      np.array(np.broadcast_to(np.asarray(hi, dtype=np.float64), (3,))))
+            if not self.live_params():
+                self.__dict__["_bounds_cache"] = cached
+        return cached[0].copy(), cached[1].copy()
 
     @property
     def _bounds(self) -> tuple[Any, Any]:
@@ -137,7 +142,13 @@ class Node:
         return any(c.has_detail for c in self.children)
 
     def live_params(self) -> list["Param"]:
-        """The live parameters anywhere in this subtree."""
+        """The live parameters anywhere in this subtree (the tree is immutable: found once)."""
+        cached = self.__dict__.get("_live_cache")
+        if cached is None:
+            cached = self.__dict__["_live_cache"] = self._find_live_params()
+        return list(cached)
+
+    def _find_live_params(self) -> list["Param"]:
         out: list[Param] = []
         for v in self.params.values():
             if isinstance(v, Live):
