@@ -1,6 +1,7 @@
 """Scene graph -> GLSL fragment shader.
 
-map() is straight-line code with every parameter baked in as a float32 constant; only
+map() is straight-line code (loops only inside the library functions of nodes that need
+them) with every parameter baked in as a float32 constant (or a uniform, for sg.param); only
 the library functions the scene uses are included; settings become #defines, and the
 code of a feature that is off (shadows, AO, ground, extra outputs) is not in the source.
 Every generated line remembers which node wrote it, so a compile error can name it.
