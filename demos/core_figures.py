@@ -3,7 +3,7 @@ end-to-end time of an 800x600 AA 2 render, cold (with compile; Mesa shader cache
 
     python demos/core_figures.py
 """
-import os, time, subprocess, sys, numpy as np
+import os, time, numpy as np
 os.environ["MESA_SHADER_CACHE_DISABLE"] = "true"
 import sdfgl as sg
 cam = sg.OrbitCamera(distance=4, yaw=0, pitch=0, fov=40)

@@ -6,7 +6,7 @@ reference; the benchmark reuses the same cases to put speed beside error.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Callable
+from typing import TYPE_CHECKING, Callable
 
 import numpy as np
 
@@ -14,6 +14,9 @@ from .camera import Camera, OrbitCamera
 from .nodes import box, box_frame, difference, plane, product, rounded_box, sphere, union
 from .nodes.base import Node
 from .reference import ErrorReport
+
+if TYPE_CHECKING:  # pragma: no cover
+    from .render import RenderResult
 
 
 @dataclass(frozen=True)
@@ -176,7 +179,7 @@ def case(name: str) -> HardCase:
 def run_case(c: HardCase, size: tuple[int, int] = (64, 48), **settings: object) -> tuple[ErrorReport, "RenderResult"]:
     """Render ``c`` (shadows and AO off: only primary rays matter) and compare with the reference."""
     from .reference import compare, trace
-    from .render import RenderResult, render  # noqa: F401 - RenderResult for the annotation
+    from .render import render
     scene, cam = c.build()
     opts = {"shadows": False, "ao": False, "max_dist": c.max_dist, **c.settings, **settings}
     res = render(scene, cam, size, outputs=("color", "depth", "normal", "steps"), **opts)

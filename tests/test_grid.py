@@ -1,6 +1,5 @@
 """Big unions kept as data: parity with the twin, the same image as code, flat compile size."""
 import numpy as np
-import pytest
 
 import sdfgl as sg
 from sdfgl.nodes.grid import GRID_MIN

@@ -15,7 +15,6 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..errors import ParameterError
-from ..params import Live
 from . import validate as v
 from .base import BOUND, IMPLICIT, Node, Unary
 from .primitives import Box
@@ -35,9 +34,7 @@ class _Warp(Unary):
 
     def __init__(self, child: Node, rate: float) -> None:
         r = v.scalar(self.kind, "rate", rate)
-        if isinstance(r, Live):
-            raise ParameterError(f"{self.kind}: 'rate' cannot be a live parameter (the step safety factor "
-                                 f"is compiled from it)")
+        v.fixed(self.kind, "the step safety factor is compiled from it", rate=r)
         lo, hi = child.bounds
         if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi))):
             raise ParameterError(f"{self.kind}: the child {child.label()} is unbounded; a warp needs finite bounds")

@@ -13,7 +13,6 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..noise import fbm3, fbm_lipschitz
-from ..params import Live
 from . import validate as v
 from .base import BOUND, IMPLICIT, Node, Primitive, Unary
 
@@ -27,11 +26,6 @@ def _octaves(node: str, name: str, n: object, lo: int = 0) -> int:
     return int(n)
 
 
-def _fixed(node: str, **values: object) -> None:
-    for name, val in values.items():
-        if isinstance(val, Live):
-            raise ParameterError(f"{node}: '{name}' cannot be a live parameter (the step factor depends on it)")
-
 
 class Displace(Unary):
     """child + amplitude * fbm(frequency * p), divided by its gradient bound."""
@@ -40,7 +34,7 @@ class Displace(Unary):
 
     def __init__(self, child: Node, amplitude: float, frequency: float = 1.0, octaves: int = 4,
                  normal_octaves: int | None = None) -> None:
-        _fixed(self.kind, amplitude=amplitude, frequency=frequency)
+        v.fixed(self.kind, "the step factor depends on it", amplitude=amplitude, frequency=frequency)
         a = v.scalar(self.kind, "amplitude", amplitude, nonnegative=True)
         f = v.scalar(self.kind, "frequency", frequency, positive=True)
         n = _octaves(self.kind, "octaves", octaves)
@@ -94,7 +88,7 @@ class NoiseField(Primitive):
     exact = False
 
     def __init__(self, frequency: float = 1.0, octaves: int = 4, amplitude: float = 1.0, offset: float = 0.0) -> None:
-        _fixed(self.kind, frequency=frequency, amplitude=amplitude, offset=offset)
+        v.fixed(self.kind, "the step factor depends on it", frequency=frequency, amplitude=amplitude, offset=offset)
         f = v.scalar(self.kind, "frequency", frequency, positive=True)
         n = _octaves(self.kind, "octaves", octaves, lo=1)
         a = v.scalar(self.kind, "amplitude", amplitude, positive=True)

@@ -77,11 +77,7 @@ class RoundedBox(Primitive):
     def __init__(self, size: float | Sequence[float] = 1.0, radius: float = 0.1) -> None:
         s = v.vector(self.kind, "size", size, positive=True)
         r = v.scalar(self.kind, "radius", radius, nonnegative=True)
-        def check() -> None:
-            if float(r) > np.min(s) / 2:
-                raise ParameterError(f"{self.kind}: parameter 'radius' ({float(r):g}) must be at most half the "
-                                     f"smallest edge ({np.min(s) / 2:g})")
-        v.watch(check, s, r)
+        v.at_most_half_edge(self.kind, "radius", r, s)
         super().__init__(size=s, radius=r)
         self.half, self.r = s / 2, r
 
@@ -344,11 +340,7 @@ class BoxFrame(Primitive):
     def __init__(self, size: float | Sequence[float] = 1.0, thickness: float = 0.05) -> None:
         s = v.vector(self.kind, "size", size, positive=True)
         e = v.scalar(self.kind, "thickness", thickness, positive=True)
-        def check() -> None:
-            if float(e) > np.min(s) / 2:
-                raise ParameterError(f"{self.kind}: parameter 'thickness' ({float(e):g}) must be at most half the "
-                                     f"smallest edge ({np.min(s) / 2:g})")
-        v.watch(check, s, e)
+        v.at_most_half_edge(self.kind, "thickness", e, s)
         super().__init__(size=s, thickness=e)
         self.half, self.e = s / 2, e / 2
 

@@ -6,7 +6,6 @@ from typing import TYPE_CHECKING, Sequence
 import numpy as np
 
 from ..errors import ParameterError
-from ..params import Live
 from . import validate as v
 from .base import EXACT, Node
 
@@ -21,9 +20,7 @@ class Shape2D:
     exactness = EXACT
 
     def __init__(self, **params: object) -> None:
-        for name, val in params.items():
-            if isinstance(val, Live):
-                raise ParameterError(f"{self.kind}: '{name}' cannot be a live parameter")
+        v.fixed(self.kind, "2D shapes are baked", **params)
         self.params = params
 
     def label(self) -> str:
@@ -78,9 +75,7 @@ class Rectangle(Shape2D):
     def __init__(self, size: float | Sequence[float] = 1.0, radius: float = 0.0) -> None:
         s = v.vector(self.kind, "size", size, 2, positive=True)
         r = v.scalar(self.kind, "radius", radius, nonnegative=True)
-        if r > s.min() / 2:
-            raise ParameterError(f"{self.kind}: parameter 'radius' ({r:g}) must be at most half the smallest "
-                                 f"side ({s.min() / 2:g})")
+        v.at_most_half_edge(self.kind, "radius", r, s, edge="side")
         super().__init__(size=s, radius=r)
         self.half, self.r = s / 2, r
 

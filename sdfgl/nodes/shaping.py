@@ -7,18 +7,12 @@ from typing import TYPE_CHECKING, Sequence
 import numpy as np
 
 from ..errors import ParameterError
-from ..params import Live
 from . import validate as v
 from .base import BOUND, IMPLICIT, Node, Unary
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..codegen import Emitter
 
-
-def _fixed(node: str, **values: object) -> None:
-    for name, val in values.items():
-        if isinstance(val, Live):
-            raise ParameterError(f"{node}: '{name}' cannot be a live parameter (it shapes the code)")
 
 
 def _box_corners(lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
@@ -35,7 +29,7 @@ class Mirror(Unary):
 
     def __init__(self, child: Node, normal: Sequence[float] = (1.0, 0.0, 0.0),
                  point: Sequence[float] = (0.0, 0.0, 0.0)) -> None:
-        _fixed(self.kind, normal=normal, point=point)
+        v.fixed(self.kind, "it shapes the code", normal=normal, point=point)
         n = v.vector(self.kind, "normal", normal, nonzero=True)
         o = v.vector(self.kind, "point", point)
         super().__init__(child, normal=n / np.linalg.norm(n), point=o)
@@ -96,7 +90,7 @@ class PolarRepeat(Unary):
     kind = "repeat_polar"
 
     def __init__(self, child: Node, count: int) -> None:
-        _fixed(self.kind, count=count)
+        v.fixed(self.kind, "it shapes the code", count=count)
         if isinstance(count, bool) or not isinstance(count, (int, np.integer)) or count < 2:
             raise ParameterError(f"{self.kind}: 'count' must be a whole number >= 2, got {count!r}")
         lo, hi = child.bounds
@@ -149,7 +143,7 @@ class Elongate(Unary):
     kind = "elongate"
 
     def __init__(self, child: Node, length: float | Sequence[float]) -> None:
-        _fixed(self.kind, length=length)
+        v.fixed(self.kind, "it shapes the code", length=length)
         h = v.vector(self.kind, "length", length)
         if np.any(h < 0):
             raise ParameterError(f"{self.kind}: parameter 'length' must be >= 0 per axis, got {tuple(h)}")

@@ -93,3 +93,19 @@ def color(node: str, value: object) -> Any:
             raise ParameterError(f"{node}: colour components must lie in [0, 1], got {tuple(c)}")
     watch(check, rgb)
     return rgb if isinstance(rgb, Live) else tuple(float(c) for c in rgb)
+
+
+def fixed(node: str, reason: str, **values: object) -> None:
+    """Refuse live parameters for values that shape the generated code (``reason`` says how)."""
+    for name, val in values.items():
+        if isinstance(val, Live):
+            raise ParameterError(f"{node}: '{name}' cannot be a live parameter ({reason})")
+
+
+def at_most_half_edge(node: str, name: str, value: Any, size: Any, edge: str = "edge") -> None:
+    """Check (now and on every live change) that ``value`` <= half the smallest of ``size``."""
+    def check() -> None:
+        if float(value) > np.min(np.asarray(size, dtype=float)) / 2:
+            raise ParameterError(f"{node}: parameter '{name}' ({float(value):g}) must be at most half the smallest "
+                                 f"{edge} ({np.min(np.asarray(size, dtype=float)) / 2:g})")
+    watch(check, size, value)
