@@ -72,6 +72,8 @@ export function createViewer(root, spec, hooks = {}) {
     lastMove: -1e9,
     dirty: true,
     frames: 0,
+    fresh: true,  // something changed since the last frame
+    reduced: 0,  // frames drawn at reduced resolution while moving
     lastMs: 0,
     drag: null,
   };
@@ -210,21 +212,28 @@ export function createViewer(root, spec, hooks = {}) {
     root.dataset.frames = String(state.frames);
     root.dataset.still = state.scale === 1 && !state.dirty ? "1" : "0";
     root.dataset.frameMs = state.lastMs.toFixed(2);
+    root.dataset.reduced = String(state.reduced);
   }
 
   let raf = 0;
   function frame() {
     raf = 0;
     if (!gl || !state.dirty) return;
-    const moving = performance.now() - state.lastMove < MOVE_HOLD_MS;
+    const idle = performance.now() - state.lastMove;
+    const moving = idle < MOVE_HOLD_MS;
+    if (moving && !state.fresh) {  // nothing new since the last low-resolution frame
+      setTimeout(schedule, MOVE_HOLD_MS - idle + 1);
+      return;
+    }
+    state.fresh = false;
     try {
       if (moving) {
         const s = state.settings;
         const key = variantKey(s.debug ? s : { ...s, aa: 1 });
         const ms = draw(key, Math.max(1, Math.round(width * state.scale)), Math.max(1, Math.round(height * state.scale)));
+        if (state.scale < 1) state.reduced++;
         state.lastMs = ms;
         state.scale = Math.min(1, Math.max(MIN_SCALE, state.scale * Math.sqrt(TARGET_MS / Math.max(ms, 1e-3))));
-        setTimeout(schedule, MOVE_HOLD_MS);
       } else {
         state.lastMs = draw(variantKey(state.settings), width, height);
         state.scale = 1;
@@ -244,6 +253,7 @@ export function createViewer(root, spec, hooks = {}) {
   }
   function changed(moved) {
     state.dirty = true;
+    state.fresh = true;
     if (moved) {
       state.lastMove = performance.now();
       if (state.scale === 1) state.scale = 0.5;
