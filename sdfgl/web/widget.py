@@ -70,6 +70,11 @@ class SceneWidget(anywidget.AnyWidget):
         for p in self._params:
             p.add_check(follow)
 
+    def __repr__(self) -> str:
+        w, h = self.spec["size"]
+        vals = ", ".join(f"{p.label}={v}" for p, v in zip(self._params, self.values))
+        return f"<sdfgl widget {w}x{h} of {self.spec['title'][:60]}{'; ' + vals if vals else ''}>"
+
     # -- Python -> view ------------------------------------------------------------------
     def _frame(self) -> dict[str, Any]:
         if not self._params:
