@@ -18,7 +18,7 @@ from sdfgl.scenefile import load_scene_file
 from sdfgl.web import assets
 from sdfgl.web.chromium import Chromium, file_url, find_chromium
 from sdfgl.web.html import save_html
-from sdfgl.web.spec import build_spec, camera_from_state
+from sdfgl.web.spec import build, build_spec, camera_from_state
 
 pytestmark = [pytest.mark.browser,
               pytest.mark.skipif(find_chromium() is None, reason="needs Chromium (./install.sh --test installs it)")]
@@ -174,3 +174,19 @@ def test_widget_script_syncs_with_its_model(browser):
     assert differing(small, turned) > 0.05
     cam = camera_from_state({**spec["camera"], "yaw": 120})
     assert differing(turned, sg.render(scene, cam, (W, H)).color) < MAX_FRACTION
+
+
+def test_several_sliders_at_once_match_egl(browser, tmp_path):
+    sf = load_scene_file(ROOT / "demos" / "live_params.py")
+    html = save_html(sf.scene, tmp_path / "live.html", sf.camera, (W, H), **sf.settings)
+    open_html(browser, html)
+    n = frames(browser)
+    browser.evaluate("(() => { const s = document.querySelectorAll('input[type=range]');"
+                     " [['1.2', 0], ['0.6', 1], ['0.2', 2]].forEach(([v, i]) => {"
+                     " s[i].value = v; s[i].dispatchEvent(new Event('input')); }); })()")
+    wait_still(browser, n)
+    params = {p.label: p for p in build(sf.scene, size=(W, H))[1]}
+    for name, value in (("radius", 1.2), ("hole", 0.6), ("blend", 0.2)):
+        params[name].value = value
+    egl = sg.render(sf.scene, sf.camera, (W, H), **egl_settings(sf.scene, **sf.settings)).color
+    assert differing(canvas(browser), egl) < MAX_FRACTION

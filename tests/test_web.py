@@ -173,3 +173,13 @@ def test_widget_syncs_params_and_camera_both_ways():
 def test_show_outside_a_notebook_still_means_a_window():
     from sdfgl.web.notebook import in_kernel
     assert not in_kernel()
+
+
+def test_clip_box_margin_covers_what_adding_sweeps_misses():
+    a, b = sg.param(1.0, "a", range=(0.5, 1.5)), sg.param(1.0, "b", range=(0.5, 1.5))
+    spec, _ = build(sg.sphere(a) & sg.sphere(b), size=(32, 32))
+    # the box of an intersection grows only when both radii grow: one sweep alone sees no change
+    assert spec["frame"]["margin"] >= 0.4
+    spec, _ = build(sg.sphere(a).translate((2, 0, 0)) | sg.sphere(b), size=(32, 32))
+    assert spec["frame"]["margin"] == 0.0  # each radius moves its own side: the sum is exact
+    assert a.value == 1.0 and b.value == 1.0

@@ -124,6 +124,55 @@ def _sweeps(scene: Node, params: tuple[Param, ...], ranges: list[tuple[float, fl
     return sweeps
 
 
+def estimate(frame: dict[str, Any], params: tuple[Param, ...], start: list[Any], values: list[Any]) -> dict[str, Any]:
+    """The frame the browser assumes at ``values``: the base frame plus each swept component's
+    change from its starting value (viewer.js computes the same, before adding the margin)."""
+    out = {k: np.array(v, dtype=np.float64) for k, v in frame["base"].items()}
+    for sw in frame["sweeps"]:
+        comp = (lambda v: np.asarray(v, dtype=np.float64)[sw["component"]]) if params[sw["param"]].dims == 3 \
+            else (lambda v: float(v))
+        v, v0 = comp(values[sw["param"]]), comp(start[sw["param"]])
+        if v == v0 or not sw["values"]:
+            continue
+        for key in out:
+            col = np.array([f[key] for f in sw["frames"]], dtype=np.float64).reshape(len(sw["values"]), -1)
+            at = [np.interp(x, sw["values"], col[:, j]) for x in (v, v0) for j in range(col.shape[1])]
+            half = len(at) // 2
+            out[key] = out[key] + (np.array(at[:half]) - np.array(at[half:])).reshape(out[key].shape)
+    return out
+
+
+MARGIN_PROBES = 24  # random combinations of slider values checked against the estimate
+
+
+def _margin(scene: Node, params: tuple[Param, ...], ranges: list[tuple[float, float]], origin: np.ndarray,
+            frame: dict[str, Any]) -> float:
+    """How far the estimated clip box may fall short of the true one: twice the largest
+    shortfall at random slider values (0 where the sweeps add up exactly, e.g. one parameter
+    that moves the box linearly)."""
+    start = [p.value for p in params]
+    rng = np.random.default_rng(0)
+    worst = 0.0
+    try:
+        for _ in range(MARGIN_PROBES):
+            values = [rng.uniform(lo, hi, np.shape(v)) if np.ndim(v) else float(rng.uniform(lo, hi))
+                      for v, (lo, hi) in zip(start, ranges)]
+            try:
+                for p, v in zip(params, values):
+                    p.value = v
+            except ParameterError:
+                continue
+            exact = live_frame(scene, origin)
+            est = estimate(frame, params, start, values)
+            short = max(float(np.max(est["uBoundsLo"] - np.asarray(exact["uBoundsLo"]))),
+                        float(np.max(np.asarray(exact["uBoundsHi"]) - est["uBoundsHi"])), 0.0)
+            worst = max(worst, short)
+    finally:
+        for p, v in zip(params, start):
+            p.value = v
+    return 2.0 * worst
+
+
 def _data_json(data: tuple[tuple[str, np.ndarray], ...]) -> list[dict[str, Any]]:
     out = []
     for name, arr in data:
@@ -178,6 +227,7 @@ def build(scene: Node, camera: Camera | None = None, size: tuple[int, int] = (64
     if first.live_bounds:
         frame["base"] = _frame_json(live_frame(scene, origin))
         frame["sweeps"] = _sweeps(scene, first.params, ranges, origin)
+        frame["margin"] = _margin(scene, first.params, ranges, origin, frame)
     return {
         "version": 1,
         "title": scene.label()[:120],

@@ -91,7 +91,7 @@ export function createViewer(root, spec, hooks = {}) {
   const sliders = el("div", "sdfgl-sliders");
   const error = el("pre", "sdfgl-error");
   const help = el("div", "sdfgl-help",
-    "drag: orbit \u00b7 right/shift drag: pan \u00b7 wheel: zoom \u00b7 A AA \u00b7 S shadows \u00b7 O AO \u00b7 D debug \u00b7 R reset");
+    "drag: orbit \u00b7 right/shift drag: pan \u00b7 wheel: zoom \u00b7 keys A, S, O, D, R as the buttons");
   panel.append(status, buttons, sliders, help, error);
   box.append(canvas, panel);
   root.append(box);
@@ -154,10 +154,9 @@ export function createViewer(root, spec, hooks = {}) {
         out[key] = Array.isArray(out[key]) ? out[key].map((x, k) => x + f[key][k] - f0[key][k]) : out[key] + f[key] - f0[key];
       }
     }
-    if (moved > 1) {  // several sweeps added: keep a margin on the clip box
-      const m = 0.05 * out.uSceneScale;
-      out.uBoundsLo = out.uBoundsLo.map((x) => x - m);
-      out.uBoundsHi = out.uBoundsHi.map((x) => x + m);
+    if (moved && spec.frame.margin > 0) {  // where the estimate fell short at export, widen the clip box
+      out.uBoundsLo = out.uBoundsLo.map((x) => x - spec.frame.margin);
+      out.uBoundsHi = out.uBoundsHi.map((x) => x + spec.frame.margin);
     }
     return out;
   }
