@@ -181,5 +181,5 @@ def test_clip_box_margin_covers_what_adding_sweeps_misses():
     # the box of an intersection grows only when both radii grow: one sweep alone sees no change
     assert spec["frame"]["margin"] >= 0.4
     spec, _ = build(sg.sphere(a).translate((2, 0, 0)) | sg.sphere(b), size=(32, 32))
-    assert spec["frame"]["margin"] == 0.0  # each radius moves its own side: the sum is exact
+    assert spec["frame"]["margin"] < 1e-9  # each radius moves its own side: the sum is exact
     assert a.value == 1.0 and b.value == 1.0
