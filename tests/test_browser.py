@@ -190,3 +190,15 @@ def test_several_sliders_at_once_match_egl(browser, tmp_path):
         params[name].value = value
     egl = sg.render(sf.scene, sf.camera, (W, H), **egl_settings(sf.scene, **sf.settings)).color
     assert differing(canvas(browser), egl) < MAX_FRACTION
+
+
+def test_union_kept_as_data_uploads_its_textures(browser, tmp_path):
+    rng = np.random.default_rng(3)
+    parts = [sg.sphere(float(rng.uniform(0.1, 0.25))).translate(tuple(rng.uniform(-1.5, 1.5, 3))).color(
+        *rng.uniform(0.2, 0.9, 3)) for _ in range(160)]
+    scene = sg.union(*parts)
+    cam = sg.OrbitCamera(distance=6.5, yaw=30, pitch=25)
+    html = save_html(scene, tmp_path / "grid.html", cam, (W, H))
+    assert "ug0Prims" in html.read_text()  # the union is data (a texture and a cell grid), not code
+    open_html(browser, html)
+    assert differing(canvas(browser), sg.render(scene, cam, (W, H)).color) < MAX_FRACTION
