@@ -73,7 +73,7 @@ def test_demo_html_is_one_small_file_without_network():
     assert not re.search(r"https?://|<script[^>]+src=|<link[^>]+href=|import\s*\(|fetch\(", html)
     spec = _spec_of(html)
     assert spec["size"] == [800, 500] and spec["settings"]["shadows"] == "soft"
-    assert "uniform" in spec["vertex"] or spec["vertex"].startswith("#version 300 es")
+    assert spec["vertex"].startswith("#version 300 es\nprecision highp float;")
 
 
 def test_unions_as_data_carry_their_textures():

@@ -62,7 +62,8 @@ function el(tag, cls, text) {
 }
 
 export function createViewer(root, spec, hooks = {}) {
-  const [width, height] = spec.size;
+  const [width, height] = spec.size;  // CSS pixels; the drawing buffer has devicePixelRatio times more
+  const dpr = Math.min(window.devicePixelRatio || 1, 2);
   const state = {
     settings: { ...spec.settings },
     camera: JSON.parse(JSON.stringify(spec.camera)),
@@ -80,8 +81,8 @@ export function createViewer(root, spec, hooks = {}) {
 
   const box = el("div", "sdfgl-view");
   const canvas = el("canvas", "sdfgl-canvas");
-  canvas.width = width;
-  canvas.height = height;
+  canvas.width = Math.round(width * dpr);
+  canvas.height = Math.round(height * dpr);
   canvas.style.width = `${width}px`;
   canvas.style.height = `${height}px`;
   canvas.tabIndex = 0;
@@ -229,12 +230,13 @@ export function createViewer(root, spec, hooks = {}) {
       if (moving) {
         const s = state.settings;
         const key = variantKey(s.debug ? s : { ...s, aa: 1 });
-        const ms = draw(key, Math.max(1, Math.round(width * state.scale)), Math.max(1, Math.round(height * state.scale)));
+        const k = state.scale * dpr;
+        const ms = draw(key, Math.max(1, Math.round(width * k)), Math.max(1, Math.round(height * k)));
         if (state.scale < 1) state.reduced++;
         state.lastMs = ms;
         state.scale = Math.min(1, Math.max(MIN_SCALE, state.scale * Math.sqrt(TARGET_MS / Math.max(ms, 1e-3))));
       } else {
-        state.lastMs = draw(variantKey(state.settings), width, height);
+        state.lastMs = draw(variantKey(state.settings), Math.round(width * dpr), Math.round(height * dpr));
         state.scale = 1;
         state.dirty = false;
       }
