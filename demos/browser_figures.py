@@ -1,7 +1,9 @@
 """The browser view's figures: WebGL2 (headless Chromium, SwiftShader) against EGL for every
 gallery scene, HTML sizes and frame times, and the README screenshot docs/browser.png.
 
-    python demos/browser_figures.py [--size 320x240] [--no-screenshot]
+    python demos/browser_figures.py [--size 320x240] [--no-screenshot] [--nodes]
+
+--nodes also compares every node type of the test zoo (tests/nodes_zoo.py) at 96x72.
 """
 import argparse
 import statistics
@@ -64,6 +66,23 @@ def compare(size: tuple[int, int], tmp: Path) -> None:
                   f"{d.mean():.3f} | {ms:.0f} | {egl_ms:.0f} |")
 
 
+def compare_nodes(tmp: Path, size: tuple[int, int] = (96, 72)) -> None:
+    import sys
+    sys.path.insert(0, str(ROOT))
+    from tests.nodes_zoo import all_nodes
+    print("| node | pixels > 8/255 | max diff |\n|---|---|---|")
+    with Chromium(size=(size[0] + 360, size[1] + 300)) as b:
+        for name, node in all_nodes().items():
+            html = save_html(node, tmp / "node.html", None, size)
+            b.goto(file_url(html))
+            still_after(b, 0)
+            web = b.screenshot((0, 0, *size))
+            implicit = node.exactness == sg.IMPLICIT
+            st = {"shadows": "soft", "ao": not implicit, **({"method": "newton"} if implicit else {})}
+            d = np.abs(web.astype(int) - sg.render(node, None, size, **st).color.astype(int)).max(axis=2)
+            print(f"| {name} | {100 * (d > 8).mean():.3f}% | {d.max()} |")
+
+
 def screenshot(tmp: Path) -> None:
     sf = load_scene_file(ROOT / "demos" / "live_params.py")
     html = save_html(sf.scene, tmp / "live.html", sf.camera, (560, 360), **sf.settings)
@@ -79,6 +98,7 @@ def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("--size", default="320x240")
     p.add_argument("--no-screenshot", action="store_true")
+    p.add_argument("--nodes", action="store_true", help="also compare every node type of the test zoo")
     a = p.parse_args()
     size = tuple(int(x) for x in a.size.split("x"))
     with tempfile.TemporaryDirectory() as d:
@@ -88,6 +108,8 @@ def main() -> None:
         print(f"demo scene HTML (800x500 view): {demo.stat().st_size / 1024:.1f} KiB, "
               f"written in {1000 * (time.perf_counter() - t0):.0f} ms")
         compare(size, tmp)  # type: ignore[arg-type]
+        if a.nodes:
+            compare_nodes(tmp)
         if not a.no_screenshot:
             screenshot(tmp)
 
