@@ -183,3 +183,9 @@ def test_clip_box_margin_covers_what_adding_sweeps_misses():
     spec, _ = build(sg.sphere(a).translate((2, 0, 0)) | sg.sphere(b), size=(32, 32))
     assert spec["frame"]["margin"] < 1e-9  # each radius moves its own side: the sum is exact
     assert a.value == 1.0 and b.value == 1.0
+
+
+def test_a_browser_that_fails_to_start_says_so():
+    from sdfgl.web.chromium import Chromium
+    with pytest.raises(sg.SdfglError, match=r"Chromium exited \(status 1\)"):
+        Chromium(executable="/bin/false", timeout=10)

@@ -67,8 +67,10 @@ class Chromium:
         args = [*FLAGS, f"--user-data-dir={self._profile.name}", f"--window-size={size[0]},{size[1]}", "about:blank"]
         # bash moves the pipe ends to fds 3 and 4, where Chromium expects them
         script = f'exec "$0" "$@" 3<&{to_child} 4>&{from_child} {to_child}<&- {from_child}>&-'
+        # the browser's log goes to a file: a pipe nobody reads could fill up and stall it
+        self._log = open(Path(self._profile.name) / "stderr.log", "w+b")  # noqa: SIM115 - closed in close()
         self.proc = subprocess.Popen(["bash", "-c", script, exe, *args], pass_fds=(to_child, from_child),
-                                     stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+                                     stdout=subprocess.DEVNULL, stderr=self._log)
         os.close(to_child)
         os.close(from_child)
         self._buffer = b""
@@ -94,8 +96,9 @@ class Chromium:
                 raise SdfglError("Chromium did not answer in time")
             chunk = os.read(self._read, 1 << 20)
             if not chunk:
-                err = self.proc.stderr.read().decode(errors="replace")[-2000:] if self.proc.stderr else ""
-                raise SdfglError(f"Chromium exited (status {self.proc.poll()}): {err}")
+                self._log.seek(0)
+                err = self._log.read().decode(errors="replace")[-2000:]
+                raise SdfglError(f"Chromium exited (status {self.proc.wait()}): {err}")
             self._buffer += chunk
         raw, _, self._buffer = self._buffer.partition(b"\0")
         return json.loads(raw)
@@ -165,8 +168,7 @@ class Chromium:
                 os.close(fd)
             except OSError:
                 pass
-        if self.proc.stderr:
-            self.proc.stderr.close()
+        self._log.close()
         self._profile.cleanup()
 
     def __enter__(self) -> "Chromium":
