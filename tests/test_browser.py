@@ -202,3 +202,8 @@ def test_union_kept_as_data_uploads_its_textures(browser, tmp_path):
     assert "ug0Prims" in html.read_text()  # the union is data (a texture and a cell grid), not code
     open_html(browser, html)
     assert differing(canvas(browser), sg.render(scene, cam, (W, H)).color) < MAX_FRACTION
+    # key F frames the scene as OrbitCamera.framing does, keeping the angles
+    browser.evaluate("document.dispatchEvent(new KeyboardEvent('keydown', {key: 'f'}))")
+    framed = OrbitCamera.framing(*scene.bounds, yaw=30, pitch=25)
+    state = browser.evaluate("window.sdfglViewer.camera")
+    assert state["distance"] == pytest.approx(framed.distance) and state["target"] == pytest.approx(list(framed.target))

@@ -21,7 +21,7 @@ from typing import Any
 import numpy as np
 
 from ..camera import Camera, OrbitCamera
-from ..codegen import generate
+from ..codegen import GLSL_FAR, generate
 from ..errors import ParameterError
 from ..gl.dialect import WEBGL2
 from ..nodes.base import IMPLICIT, Node
@@ -239,6 +239,8 @@ def build(scene: Node, camera: Camera | None = None, size: tuple[int, int] = (64
         "toggles": {"aa": [1, 2, 3, 4], "shadows": [False, "hard", "soft"], "ao": [False] if implicit else [False, True],
                     "debug": [None, *DEBUG_VIEWS]},
         "origin": [float(x) for x in origin],
+        "bounds": [[float(x) if np.isfinite(x) else (-GLSL_FAR if i == 0 else GLSL_FAR) for x in b]
+                   for i, b in enumerate(scene.bounds)],
         "camera": _camera_state(cam),
         "params": [{"uniform": f"uP{i}", "label": p.label, "dims": p.dims,
                     "value": p.value.tolist() if p.dims == 3 else float(p.value),

@@ -1,7 +1,7 @@
 // sdfgl browser viewer: draws a scene's generated WebGL2 shader on a canvas, with the
 // native window's controls (left drag orbits, right / middle / shift drag pans, the wheel
 // zooms to the target; keys A: AA 1..4, S: shadows off / hard / soft, O: AO, D: debug
-// views, R: reset the view), a slider per live parameter, the frame time, and a reduced
+// views, F: frame the scene, R: reset the view), a slider per live parameter, the frame time, and a reduced
 // resolution while the view moves. Used by the one-file HTML page and the notebook widget;
 // `spec` is what sdfgl/web/spec.py builds.
 
@@ -92,7 +92,7 @@ export function createViewer(root, spec, hooks = {}) {
   const sliders = el("div", "sdfgl-sliders");
   const error = el("pre", "sdfgl-error");
   const help = el("div", "sdfgl-help",
-    "drag: orbit \u00b7 right/shift drag: pan \u00b7 wheel: zoom \u00b7 keys A, S, O, D, R as the buttons");
+    "drag: orbit \u00b7 right/shift drag: pan \u00b7 wheel: zoom \u00b7 keys A, S, O, D, F, R as the buttons");
   panel.append(status, buttons, sliders, help, error);
   box.append(canvas, panel);
   root.append(box);
@@ -289,9 +289,11 @@ export function createViewer(root, spec, hooks = {}) {
     buttons.append(b);
   }
   refreshButtons();
+  const frameButton = el("button", "sdfgl-toggle", "F: frame");
+  frameButton.addEventListener("click", () => frameScene());
   const reset = el("button", "sdfgl-toggle", "R: reset view");
   reset.addEventListener("click", () => setCamera(spec.camera, true));
-  buttons.append(reset);
+  buttons.append(frameButton, reset);
 
   const sliderInputs = [];
   spec.params.forEach((p, i) => {
@@ -373,11 +375,24 @@ export function createViewer(root, spec, hooks = {}) {
     state.camera.distance = Math.max(state.camera.distance * Math.pow(0.88, notches), 1e-9);
     cameraMoved();
   }, { passive: false });
+  // F: the framing of OrbitCamera.framing (camera.py) around the current scene box, same angles
+  function frameScene() {
+    const f = frameUniforms();
+    const lo = f ? f.uBoundsLo.map((x, k) => x + spec.origin[k]) : spec.bounds[0];
+    const hi = f ? f.uBoundsHi.map((x, k) => x + spec.origin[k]) : spec.bounds[1];
+    const finite = lo.map((x, k) => Math.abs(x) < 1e29 && Math.abs(hi[k]) < 1e29);
+    const a = lo.map((x, k) => (finite[k] ? x : -1)), b = hi.map((x, k) => (finite[k] ? x : 1));
+    const radius = Math.max(Math.hypot(b[0] - a[0], b[1] - a[1], b[2] - a[2]) / 2, 1e-6);
+    const c = state.camera;
+    setCamera({ ...c, target: a.map((x, k) => (x + b[k]) / 2),
+      distance: (radius / Math.sin((c.fov * Math.PI) / 360)) * 1.05 }, true);
+  }
   function onKey(e) {
     const k = e.key.toLowerCase();
     if (e.ctrlKey || e.metaKey || e.altKey) return;
     if (toggles[k]) toggle(k);
     else if (k === "r") setCamera(spec.camera, true);
+    else if (k === "f") frameScene();
     else return;
     e.preventDefault();
   }
