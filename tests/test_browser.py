@@ -202,8 +202,18 @@ def test_union_kept_as_data_uploads_its_textures(browser, tmp_path):
     assert "ug0Prims" in html.read_text()  # the union is data (a texture and a cell grid), not code
     open_html(browser, html)
     assert differing(canvas(browser), sg.render(scene, cam, (W, H)).color) < MAX_FRACTION
-    # key F frames the scene as OrbitCamera.framing does, keeping the angles
+    # key F frames the scene: the view turns to the box centre, keeps its angles, and every
+    # corner of the scene box is in view (and the page still matches EGL)
+    n = frames(browser)
     browser.evaluate("document.dispatchEvent(new KeyboardEvent('keydown', {key: 'f'}))")
-    framed = OrbitCamera.framing(*scene.bounds, yaw=30, pitch=25)
+    wait_still(browser, n)
     state = browser.evaluate("window.sdfglViewer.camera")
-    assert state["distance"] == pytest.approx(framed.distance) and state["target"] == pytest.approx(list(framed.target))
+    lo, hi = scene.bounds
+    assert state["target"] == pytest.approx(list((lo + hi) / 2)) and (state["yaw"], state["pitch"]) == (30, 25)
+    framed = camera_from_state(state)
+    r, u, f = framed.basis()
+    for corner in np.array(np.meshgrid(*zip(lo, hi))).T.reshape(-1, 3):
+        v = corner - framed.eye
+        x, y = (v @ r) / (v @ f) / framed.tan_half_fov, (v @ u) / (v @ f) / framed.tan_half_fov
+        assert abs(y) < 1 and abs(x) < W / H
+    assert differing(canvas(browser), sg.render(scene, framed, (W, H)).color) < MAX_FRACTION

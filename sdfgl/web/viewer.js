@@ -375,7 +375,7 @@ export function createViewer(root, spec, hooks = {}) {
     state.camera.distance = Math.max(state.camera.distance * Math.pow(0.88, notches), 1e-9);
     cameraMoved();
   }, { passive: false });
-  // F: the framing of OrbitCamera.framing (camera.py) around the current scene box, same angles
+  // F: the bounding sphere of the current scene box fills the view's height; the angles stay
   function frameScene() {
     const f = frameUniforms();
     const lo = f ? f.uBoundsLo.map((x, k) => x + spec.origin[k]) : spec.bounds[0];
