@@ -4,6 +4,7 @@ import json
 import re
 from pathlib import Path
 
+import moderngl
 import numpy as np
 import pytest
 from PIL import Image
@@ -43,9 +44,13 @@ def test_every_toggle_state_compiles_as_glsl_es_300(renderer):
     scene = sg.union(sg.sphere(r), sg.torus(0.6, 0.15).translate((0.8, 0, 0)), k=0.1).color(0.8, 0.3, 0.2)
     spec, params = build(scene, size=(64, 48), ground=True)
     assert params == (r,) and len(spec["variants"]) == 27  # AA 1..4 x shadows 3 x AO 2, 3 debug views
+    known = {*spec["uniforms"], "uP0", *spec["frame"]["base"]}
     for key, ids in spec["variants"].items():
         text = "".join(spec["blocks"][i] for i in ids)
-        renderer.programs.get(sg.codegen.ShaderSource(text, ("(test)",) * text.count("\n")))
+        prog = renderer.programs.get(sg.codegen.ShaderSource(text, ("(test)",) * text.count("\n")))
+        # the page sets every uniform a shader reads (a new one in a .glsl file must be added to the viewer)
+        read = {name for name in prog if isinstance(prog[name], moderngl.Uniform)}
+        assert read <= known, (key, read - known)
     # the scene's map() is stored once for all 27 shaders
     assert sum(b.count("float map(vec3 p)") for b in spec["blocks"]) == 1
 

@@ -32,6 +32,9 @@ from .. import shaderlib
 
 SHADOW_NAMES = {False: "off", "hard": "hard", "soft": "soft"}
 DEBUG_VIEWS = ("steps", "normal", "depth")
+# the uniforms viewer.js sets besides parameters, scene-box frame and data samplers
+# (render.camera_uniforms' perspective set); the page refuses a shader that reads others
+VIEWER_UNIFORMS = ("uResolution", "uEye", "uRight", "uUp", "uForward", "uTanHalfFov", "uJitter", "uZero")
 SWEEP_SAMPLES = 17  # parameter values per slider at which the scene box is tabulated
 RANGE_PROBES = 64   # values tried when a slider's default range is narrowed to valid ones
 
@@ -233,6 +236,7 @@ def build(scene: Node, camera: Camera | None = None, size: tuple[int, int] = (64
         "title": scene.label()[:120],
         "size": [w, h],
         "vertex": WEBGL2.convert(shaderlib.read("fullscreen.vert")),
+        "uniforms": list(VIEWER_UNIFORMS),
         "blocks": blocks,
         "variants": variants,
         "settings": {"aa": start.aa, "shadows": start.shadows, "ao": start.ao, "debug": start.debug},

@@ -133,6 +133,12 @@ export function createViewer(root, spec, hooks = {}) {
     gl.attachShader(prog, shader(gl.FRAGMENT_SHADER, source));
     gl.linkProgram(prog);
     if (!gl.getProgramParameter(prog, gl.LINK_STATUS)) throw new Error(`program link failed:\n${gl.getProgramInfoLog(prog)}`);
+    const known = new Set([...spec.uniforms, ...spec.params.map((p) => p.uniform), ...spec.data.map((d) => d.name),
+      ...(spec.frame.live ? Object.keys(spec.frame.base) : [])]);
+    for (let i = 0; i < gl.getProgramParameter(prog, gl.ACTIVE_UNIFORMS); i++) {
+      const name = gl.getActiveUniform(prog, i).name;
+      if (!known.has(name)) throw new Error(`the shader reads uniform ${name}, which this viewer does not set`);
+    }
     const entry = { prog, loc: new Map() };
     programs.set(key, entry);
     return entry;
