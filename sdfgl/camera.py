@@ -128,6 +128,20 @@ class OrbitCamera(Camera):
         dist = radius / math.sin(math.radians(fov) / 2) * 1.05
         return cls(centre, dist, yaw, pitch, fov)
 
+    @classmethod
+    def of(cls, camera: Camera | None, lo: np.ndarray, hi: np.ndarray) -> "OrbitCamera":
+        """An orbit camera showing what ``camera`` shows (a copy of an orbit camera; a look-at
+        camera orbits about its target from where it stands), or framing [lo, hi] if None."""
+        if isinstance(camera, OrbitCamera):
+            return cls(camera.target, camera.distance, camera.yaw, camera.pitch, camera.fov)
+        if camera is not None:
+            off = camera.eye - camera.target
+            dist = float(np.linalg.norm(off))
+            yaw = math.degrees(math.atan2(off[0], off[2]))
+            pitch = math.degrees(math.asin(max(-0.999, min(0.999, off[1] / dist))))
+            return cls(camera.target, dist, yaw, pitch, camera.fov)
+        return cls.framing(lo, hi)
+
     def __repr__(self) -> str:
         return (f"OrbitCamera(target={tuple(self.target)}, distance={self.distance:g}, yaw={self.yaw:g}, "
                 f"pitch={self.pitch:g}, fov={self.fov:g})")

@@ -16,12 +16,12 @@ import numpy as np
 
 from . import shaderlib
 from .errors import ParameterError
+from .gl.dialect import dialect as _dialect
 from .nodes.base import IMPLICIT, Node
 from .params import Live, Param
 from .settings import DEFAULT_OMEGA, DISTANCE_METHODS, Settings
 
 DEFAULT_COLOR = (0.7, 0.68, 0.64)
-GLSL_VERSION = "#version 330 core"
 FLOAT32_MAX = float(np.finfo(np.float32).max)
 # Stand-in for an infinite bound inside GLSL: finite in float32, so no inf*0 arises.
 GLSL_FAR = 1e30
@@ -368,12 +368,15 @@ def _emit_map(scene: Node, mode: str, origin: np.ndarray, params: list[Param], s
 
 
 def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.0, 0.0),
-             target: str = "render") -> ShaderSource:
+             target: str = "render", dialect: str = "desktop") -> ShaderSource:
     """Build the fragment shader for ``scene``.
 
     ``origin`` (float64) is the world point that the shader's coordinates are relative
-    to; ``target`` is ``"render"`` (the image) or ``"evaluate"`` (map() at given points).
+    to; ``target`` is ``"render"`` (the image) or ``"evaluate"`` (map() at given points);
+    ``dialect`` is ``"desktop"`` (GLSL 3.30) or ``"webgl2"`` (GLSL ES 3.00): the same
+    code under another header (see :mod:`sdfgl.gl.dialect`).
     """
+    header = _dialect(dialect).header()
     if not isinstance(scene, Node):
         raise ParameterError(f"scene must be an sdfgl node, got {type(scene).__name__} {scene!r}")
     if scene.exactness == IMPLICIT and target == "render":
@@ -398,7 +401,7 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     live = bool(params)
 
     b = _Builder()
-    b.add(GLSL_VERSION, "(codegen)")
+    b.add(header, "(codegen)")
     b.add(f"// sdfgl scene: {scene.label()}  [{scene.exactness}, L={scene.lipschitz:g}]", "(codegen)")
     b.add("\n".join(_defines(scene, settings, org, live)), "(settings)")
     for i, prm in enumerate(params):

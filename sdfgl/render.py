@@ -1,6 +1,7 @@
 """render(): scene + camera + settings -> program -> one draw -> RenderResult."""
 from __future__ import annotations
 
+import io
 import math
 import time
 from dataclasses import dataclass, field
@@ -50,6 +51,19 @@ class RenderResult:
     settings: Settings | None = None
     camera: Camera | None = None
     timings: dict[str, float] = field(default_factory=dict)
+
+    def __repr__(self) -> str:
+        h, w = self.color.shape[:2]
+        outs = ", ".join(n for n in ("color", "depth", "normal", "steps") if getattr(self, n) is not None)
+        ms = f", {1000 * self.timings['total_s']:.1f} ms" if "total_s" in self.timings else ""
+        lines = f", {len(self.source.owners)} GLSL lines" if self.source is not None else ""
+        return f"<RenderResult {w}x{h} [{outs}]{ms}{lines}>"
+
+    def _repr_png_(self) -> bytes:
+        """The colour image as PNG: Jupyter shows a result inline."""
+        buf = io.BytesIO()
+        Image.fromarray(self.color).save(buf, format="PNG")
+        return buf.getvalue()
 
     def save(self, path: str | Path) -> Path:
         """Write the colour image as PNG (or any format Pillow knows from the suffix)."""
@@ -103,12 +117,16 @@ def scene_uniforms(prog: moderngl.Program, source: ShaderSource, scene: Node, or
         val = prm.value
         _set_uniform(prog, f"uP{i}", float(val) if np.ndim(val) == 0 else tuple(float(x) for x in val))
     if source.live_bounds:
-        lo, hi, scale = scene_frame(scene)
-        pad = BOUNDS_PAD * scale
-        _set_uniform(prog, "uBoundsLo", tuple((lo - pad - origin).tolist()))
-        _set_uniform(prog, "uBoundsHi", tuple((hi + pad - origin).tolist()))
-        _set_uniform(prog, "uGroundY", float((lo[1] if lo[1] > -GLSL_FAR else 0.0) - origin[1]))
-        _set_uniform(prog, "uSceneScale", float(scale))
+        for name, value in live_frame(scene, origin).items():
+            _set_uniform(prog, name, value)
+
+
+def live_frame(scene: Node, origin: np.ndarray) -> dict[str, object]:
+    """The uniforms a shader with live parameters reads for the scene box, at the current values."""
+    lo, hi, scale = scene_frame(scene)
+    pad = BOUNDS_PAD * scale
+    return {"uBoundsLo": tuple((lo - pad - origin).tolist()), "uBoundsHi": tuple((hi + pad - origin).tolist()),
+            "uGroundY": float((lo[1] if lo[1] > -GLSL_FAR else 0.0) - origin[1]), "uSceneScale": float(scale)}
 
 
 _data_textures: dict[int, tuple[ShaderSource, list[moderngl.Texture]]] = {}

@@ -108,15 +108,7 @@ class Viewer:
     # -- set-up ---------------------------------------------------------------------
     @staticmethod
     def _orbit_of(camera: Camera | None, scene: Node) -> OrbitCamera:
-        if isinstance(camera, OrbitCamera):
-            return OrbitCamera(camera.target, camera.distance, camera.yaw, camera.pitch, camera.fov)
-        if camera is not None:  # a look-at camera: orbit about its target from where it stands
-            off = camera.eye - camera.target
-            dist = float(np.linalg.norm(off))
-            yaw = math.degrees(math.atan2(off[0], off[2]))
-            pitch = math.degrees(math.asin(max(-0.999, min(0.999, off[1] / dist))))
-            return OrbitCamera(camera.target, dist, yaw, pitch, camera.fov)
-        return OrbitCamera.framing(*scene.bounds)
+        return OrbitCamera.of(camera, *scene.bounds)
 
     def _open_window(self) -> None:
         if not glfw.init():

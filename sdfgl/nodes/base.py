@@ -81,6 +81,11 @@ class Node:
             return self.label()
         return f"{self.label()}[{', '.join(repr(c) for c in self.children)}]"
 
+    def _repr_png_(self) -> bytes | None:
+        """A small render, shown inline by Jupyter (``sg.set_preview(False)`` turns it off)."""
+        from ..web.notebook import preview_png
+        return preview_png(self)
+
     # -- the five things every node provides ----------------------------------------------
     def emit(self, em: "Emitter", p: str) -> str:
         """Append GLSL for this node's field at point variable ``p``; return the result variable.
