@@ -10,6 +10,7 @@ from .camera import Camera, OrbitCamera
 from .codegen import compile
 from .errors import ContextError, ParameterError, SceneFileError, SdfglError, ShaderCompileError
 from .evaluate import evaluate
+from .look import directional_light, point_light
 from .nodes import (BOUND, EXACT, IMPLICIT, Node, bend, box, box_frame, capsule, circle, displace, elongate, extrude,
                     displace_expr, implicit, noise, parametric,
                     mirror, polygon, rectangle, repeat_polar, revolve, rounded, shell, sierpinski, symmetric, tree, cone, cylinder, difference, ellipsoid,
@@ -32,7 +33,7 @@ Z = _np.array([0.0, 0.0, 1.0])
 __version__ = "0.1.0"
 
 __all__ = [
-    "Camera", "OrbitCamera", "compile", "render", "show", "param", "Param", "Renderer", "RenderResult", "Node",
+    "Camera", "OrbitCamera", "compile", "directional_light", "point_light", "render", "show", "param", "Param", "Renderer", "RenderResult", "Node",
     "sphere", "box", "rounded_box", "plane", "torus", "capsule", "cylinder", "cone", "ellipsoid",
     "octahedron", "hex_prism", "box_frame", "product", "twist", "bend", "repeat", "evaluate", "union",
     "circle", "rectangle", "polygon", "extrude", "revolve", "mirror", "symmetric", "repeat_polar", "elongate",

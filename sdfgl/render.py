@@ -42,7 +42,7 @@ def shader_origin(scene: Node, eye: np.ndarray) -> np.ndarray:
 class RenderResult:
     """Images of one draw. Row 0 is the top row of the image."""
 
-    color: np.ndarray                      # uint8 (H, W, 3), gamma-corrected
+    color: np.ndarray                      # uint8 (H, W, 3), gamma-corrected; (H, W, 4) with alpha=True
     depth: np.ndarray | None = None        # float32 (H, W): ray t of the pixel centre, inf on a miss
     normal: np.ndarray | None = None       # float32 (H, W, 3): unit normal, 0 on a miss
     steps: np.ndarray | None = None        # int32 (H, W): map() calls of the pixel-centre ray
@@ -185,7 +185,7 @@ class Renderer:
         self.vao(prog).render(moderngl.TRIANGLES, vertices=3)
         self.ctx.finish()
         t3 = time.perf_counter()
-        res = RenderResult(color=np.ascontiguousarray(targets.read("color")[..., :3]), source=source,
+        res = RenderResult(color=np.ascontiguousarray(targets.read("color")[..., :4 if st.alpha else 3]), source=source,
                            settings=st, camera=cam)
         if "depth" in st.outputs:
             d = targets.read("depth")[..., 0].copy()

@@ -25,6 +25,7 @@ def all_nodes() -> dict[str, sg.Node]:
         "scale": sg.octahedron(0.5).scale(1.7),
         "scale_axes": sg.sphere(0.5).scale((1.5, 0.6, 1.0)),
         "color": (a.color(1, 0, 0) | b.color(0, 0, 1)),
+        "material": sg.union(a.material("gold", metallic=1, roughness=0.4), b.material(emission="#203040"), k=0.2),
         "twist": sg.box((0.6, 1.6, 0.4)).twist(90),
         "bend": sg.box((1.6, 0.3, 0.4)).bend(40),
         "repeat": sg.sphere(0.5).repeat((1.0, 0, 1.0)),

@@ -258,6 +258,20 @@ class Node:
         rgb = r if g is None and b is None else (r, g, b)
         return Material(self, rgb)
 
+    def material(self, color: object = None, *, specular: object = None, roughness: object = None,
+                 shininess: object = None, metallic: object = None, emission: object = None) -> "Node":
+        """Give every part of this node that does not set them itself these material fields.
+
+        ``color`` as for :meth:`color`; ``specular`` (>= 0, default 0.25) scales the
+        highlight; ``roughness`` in [0.05, 1] or ``shininess`` (the Blinn-Phong exponent,
+        1..10000, default 48) sets its size; ``metallic`` in [0, 1] tints the highlight by
+        the colour and removes the diffuse part; ``emission`` a colour added unlit. Fields
+        left out keep what an outer node (or the default) says.
+        """
+        from .material import SurfaceMaterial
+        return SurfaceMaterial(self, color, specular=specular, roughness=roughness, shininess=shininess,
+                               metallic=metallic, emission=emission)
+
 
 class Unary(Node):
     """A node with one child whose exactness and Lipschitz factor it keeps unless it says otherwise."""

@@ -129,8 +129,7 @@ class Union(_Boolean):
         if grid is None:
             return super()._emit(em, p)
         pt = em.point(p)
-        acc = em.assign("vec4", f"{em.grid_name(grid)}Union({pt})")
-        acc = acc if em.mode == "color" else em.assign("float", f"{acc}.w")
+        acc = em.grid_union(grid, pt)
         for c in self.children:
             if not any(c is g for g in grid.children):
                 acc = self._combine(em, acc, c.emit(em, pt))
