@@ -77,7 +77,7 @@ class FrameTimer:
         st = Settings.build(**v.settings)
         origin = shader_origin(v.node, v.camera.eye)
         t0 = time.perf_counter()
-        source = generate(v.node, st, origin)
+        source = generate(v.node, st, origin, projection=v.camera.projection)
         if v.source is not None:
             source = v.source(source)
         prog = self.r.programs.get(source)

@@ -313,7 +313,7 @@ def ref_step(settings: Settings, scale: float) -> float:
 BOUNDS_PAD = 1e-3  # the ray clip box grows by this share of the scene size
 
 
-def _defines(scene: Node, settings: Settings, origin: np.ndarray, live: bool) -> list[str]:
+def _defines(scene: Node, settings: Settings, origin: np.ndarray, live: bool, projection: str) -> list[str]:
     lo, hi, scale = scene_frame(scene)
     pad = BOUNDS_PAD * scale
     bounds = (["#define BOUNDS_LO uBoundsLo", "#define BOUNDS_HI uBoundsHi"] if live else [
@@ -353,6 +353,8 @@ def _defines(scene: Node, settings: Settings, origin: np.ndarray, live: bool) ->
         d += ["#define DEBUG_VIEW", f"#define DEBUG_{settings.debug.upper()}"]
     d += [f"#define DEFAULT_SPECULAR {glsl_float(DEFAULT_SURFACE['specular'])}",
           f"#define DEFAULT_SHININESS {glsl_float(DEFAULT_SURFACE['shininess'])}"]
+    if projection == "orthographic":
+        d.append("#define ORTHOGRAPHIC")
     if settings.alpha:
         d.append("#define ALPHA")
     if settings.fog is not None:
@@ -434,11 +436,12 @@ def _emit_map(scene: Node, mode: str, origin: np.ndarray, params: list[Param], s
 
 
 def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.0, 0.0),
-             target: str = "render") -> ShaderSource:
+             target: str = "render", projection: str = "perspective") -> ShaderSource:
     """Build the fragment shader for ``scene``.
 
     ``origin`` (float64) is the world point that the shader's coordinates are relative
-    to; ``target`` is ``"render"`` (the image) or ``"evaluate"`` (map() at given points).
+    to; ``target`` is ``"render"`` (the image) or ``"evaluate"`` (map() at given points);
+    ``projection`` is the camera's ("perspective" or "orthographic": it shapes the rays).
     """
     if not isinstance(scene, Node):
         raise ParameterError(f"scene must be an sdfgl node, got {type(scene).__name__} {scene!r}")
@@ -470,7 +473,7 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     b = _Builder()
     b.add(GLSL_VERSION, "(codegen)")
     b.add(f"// sdfgl scene: {scene.label()}  [{scene.exactness}, L={scene.lipschitz:g}]", "(codegen)")
-    b.add("\n".join(_defines(scene, settings, org, live)), "(settings)")
+    b.add("\n".join(_defines(scene, settings, org, live, projection)), "(settings)")
     for i, prm in enumerate(params):
         b.add(f"uniform {'vec3' if prm.dims == 3 else 'float'} uP{i};  // param {prm.label}", "(live parameters)")
     if live:

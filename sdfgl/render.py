@@ -87,6 +87,7 @@ def camera_uniforms(prog: moderngl.Program, camera: Camera, size: tuple[int, int
     _set_uniform(prog, "uUp", tuple(u.tolist()))
     _set_uniform(prog, "uForward", tuple(f.tolist()))
     _set_uniform(prog, "uTanHalfFov", camera.tan_half_fov)
+    _set_uniform(prog, "uOrthoHalfHeight", 0.5 * camera.ortho_height)
     _set_uniform(prog, "uJitter", jitter)
     _set_uniform(prog, "uZero", 0)
 
@@ -166,13 +167,13 @@ class Renderer:
             raise ParameterError(f"render: 'scene' must be an sdfgl node, got {type(scene).__name__} {scene!r}")
         st = Settings.build(**settings)
         wh = _check_size(size)
-        cam = camera if camera is not None else OrbitCamera.framing(*scene.bounds)
+        cam = camera if camera is not None else OrbitCamera.framing(*scene.bounds, aspect=wh[0] / wh[1])
         if not isinstance(cam, Camera):
             raise ParameterError(f"render: 'camera' must be an sdfgl Camera, got {type(cam).__name__}")
         origin = shader_origin(scene, cam.eye)
 
         t0 = time.perf_counter()
-        source = generate(scene, st, origin)
+        source = generate(scene, st, origin, projection=cam.projection)
         t1 = time.perf_counter()
         prog = self.programs.get(source)
         compile_s = self.programs.last_compile_s

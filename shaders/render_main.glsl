@@ -1,7 +1,7 @@
 // The image: trace each sample, shade, average, gamma-correct; write depth, normal and
 // step count of the pixel-centre ray when those outputs are on.
 void main() {
-    vec3 ro = uEye;
+    vec3 ro = rayOrigin(gl_FragCoord.xy);
 #ifdef DEBUG_VIEW
     outColor = vec4(pow(debugView(ro, rayDir(gl_FragCoord.xy)), vec3(1.0 / 2.2)), 1.0);
     return;
@@ -15,8 +15,9 @@ void main() {
     for (int j = 0; j < AA; j++) {
         for (int i = 0; i < AA; i++) {
             vec2 off = (vec2(float(i), float(j)) + 0.5) / float(AA) - 0.5;
+            vec3 ros = rayOrigin(gl_FragCoord.xy + off);
             vec3 rds = rayDir(gl_FragCoord.xy + off);
-            col += sampleColor(ro, rds, tracePrimary(ro, rds));
+            col += sampleColor(ros, rds, tracePrimary(ros, rds));
         }
     }
     col /= float(AA * AA);
