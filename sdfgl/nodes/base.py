@@ -201,15 +201,23 @@ class Node:
         from .transforms import scale
         return scale(self, factor)
 
-    def twist(self, rate: float) -> "Node":
-        """Twist about Y by ``rate`` degrees per unit of height (a bound; steps shortened here only)."""
+    def twist(self, rate: float, axis: str = "y") -> "Node":
+        """Twist about ``axis`` (x, y or z) by ``rate`` degrees per unit along it (a bound; steps
+        shortened here only)."""
         from .deform import Twist
-        return Twist(self, rate)
+        return Twist(self, rate, axis)
 
-    def bend(self, rate: float) -> "Node":
-        """Bend in the XY plane by ``rate`` degrees per unit along X (a bound)."""
+    def bend(self, rate: float, axis: str = "z") -> "Node":
+        """Bend about ``axis`` by ``rate`` degrees per unit: about Z the XY plane turns by
+        rate * x, about X the YZ plane by rate * y, about Y the ZX plane by rate * z (a bound)."""
         from .deform import Bend
-        return Bend(self, rate)
+        return Bend(self, rate, axis)
+
+    def taper(self, rate: float, axis: str | Sequence[float] = "y", origin: float = 0.0) -> "Node":
+        """Scale the cross-section across ``axis`` ("x", "y" or "z") by 1 + rate (u - origin)
+        along it (a bound; only this subtree's steps shrink)."""
+        from .deform import Taper
+        return Taper(self, rate, axis, origin)
 
     def repeat(self, period: float | Sequence[float], count: int | Sequence[int] | None = None) -> "Node":
         """Copies every ``period`` along the axes with a non-zero period; ``count`` limits them."""
