@@ -15,7 +15,9 @@ from .nodes import (BOUND, EXACT, IMPLICIT, Node, bend, box, box_frame, capsule,
                     displace_expr, implicit, noise, parametric,
                     mirror, polygon, rectangle, repeat_polar, revolve, rounded, shell, sierpinski, symmetric, tree, cone, cylinder, difference, ellipsoid,
                     hex_prism, intersection, octahedron, plane, product, repeat, rounded_box, sphere, torus, twist,
-                    union, Shape2D, arc, capsule2, ellipse, regular_polygon, star, triangle, slice)
+                    union, Shape2D, arc, capsule2, ellipse, regular_polygon, star, triangle, slice,
+                    bezier_tube, capped_torus, dodecahedron, gyroid, icosahedron, pyramid, slab, tetrahedron, tube,
+                    morph, taper)
 from .params import Param, param
 from .render import RenderResult, Renderer, render
 
@@ -40,4 +42,6 @@ __all__ = [
     "rounded", "shell", "sierpinski", "tree", "displace", "noise", "implicit", "parametric", "displace_expr", "intersection", "difference", "X", "Y", "Z",
     "EXACT", "BOUND", "IMPLICIT", "SdfglError", "ParameterError", "ShaderCompileError", "ContextError",
     "SceneFileError", "Shape2D", "arc", "capsule2", "ellipse", "regular_polygon", "star", "triangle", "slice",
+    "bezier_tube", "capped_torus", "dodecahedron", "gyroid", "icosahedron", "pyramid", "slab", "tetrahedron", "tube",
+    "morph", "taper",
 ]

@@ -9,6 +9,10 @@ from .noise import displace, noise
 from .shapes2d import Shape2D, circle, extrude, polygon, rectangle, revolve
 from .shapes2d_more import arc, capsule2, ellipse, regular_polygon, star, triangle
 from .shapes2d_ops import slice
+from .primitives_more import (bezier_tube, capped_torus, dodecahedron, gyroid, icosahedron, pyramid, slab,
+                              tetrahedron, tube)
+from .operators import morph
+from .deform import taper
 from .shaping import elongate, mirror, repeat_polar, rounded, shell, symmetric
 from .primitives import (box, box_frame, capsule, cone, cylinder, ellipsoid, hex_prism, octahedron, plane,
                          rounded_box, sphere, torus)
@@ -18,4 +22,6 @@ __all__ = ["Node", "Primitive", "EXACT", "BOUND", "IMPLICIT", "sphere", "box", "
            "intersection", "difference", "box_frame", "product", "twist", "bend", "repeat",
            "sierpinski", "tree", "circle", "rectangle", "polygon", "extrude", "revolve", "mirror", "symmetric",
            "repeat_polar", "elongate", "rounded", "shell", "displace", "noise", "implicit", "parametric", "displace_expr",
-           "Shape2D", "arc", "capsule2", "ellipse", "regular_polygon", "star", "triangle", "slice"]
+           "Shape2D", "arc", "capsule2", "ellipse", "regular_polygon", "star", "triangle", "slice",
+           "bezier_tube", "capped_torus", "dodecahedron", "gyroid", "icosahedron", "pyramid", "slab",
+           "tetrahedron", "tube", "morph", "taper"]

@@ -219,6 +219,21 @@ class Node:
         from .deform import Taper
         return Taper(self, rate, axis, origin)
 
+    def dilate(self, radius: float) -> "Node":
+        """Grow by ``radius`` (f - r; the same node as :meth:`round`)."""
+        return self.round(radius)
+
+    def erode(self, radius: float) -> "Node":
+        """Shrink by ``radius`` (f + r; a bound)."""
+        from .operators import Erode
+        return Erode(self, radius)
+
+    def shear(self, amount: float, along: str = "x", by: str = "y") -> "Node":
+        """Move coordinate ``along`` by ``amount`` times coordinate ``by`` (a bound; only this
+        subtree's steps shrink)."""
+        from .operators import Shear
+        return Shear(self, amount, along, by)
+
     def repeat(self, period: float | Sequence[float], count: int | Sequence[int] | None = None) -> "Node":
         """Copies every ``period`` along the axes with a non-zero period; ``count`` limits them."""
         from .domain import Repeat
