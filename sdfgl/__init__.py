@@ -17,7 +17,7 @@ from .nodes import (BOUND, EXACT, IMPLICIT, Node, bend, box, box_frame, capsule,
                     hex_prism, intersection, octahedron, plane, product, repeat, rounded_box, sphere, torus, twist,
                     union, Shape2D, arc, capsule2, ellipse, regular_polygon, star, triangle, slice,
                     bezier_tube, capped_torus, dodecahedron, gyroid, icosahedron, pyramid, slab, tetrahedron, tube,
-                    morph, taper)
+                    morph, taper, glsl)
 from .params import Param, param
 from .render import RenderResult, Renderer, render
 
@@ -43,5 +43,5 @@ __all__ = [
     "EXACT", "BOUND", "IMPLICIT", "SdfglError", "ParameterError", "ShaderCompileError", "ContextError",
     "SceneFileError", "Shape2D", "arc", "capsule2", "ellipse", "regular_polygon", "star", "triangle", "slice",
     "bezier_tube", "capped_torus", "dodecahedron", "gyroid", "icosahedron", "pyramid", "slab", "tetrahedron", "tube",
-    "morph", "taper",
+    "morph", "taper", "glsl",
 ]

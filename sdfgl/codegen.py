@@ -119,8 +119,9 @@ class Emitter:
             self.functions[key] = (name, lines)
         return self.functions[key][0]
 
-    def helper(self, name: str, code: str) -> None:
-        """Include a generated helper function (e.g. a polygon of N vertices) once."""
+    def helper(self, name: str, code: str | list[tuple[str, str]]) -> None:
+        """Include a generated helper function (e.g. a polygon of N vertices) once; ``code``
+        may be (line, owner) pairs, so compile errors name the owner of each line."""
         self.helpers.setdefault(name, code)
 
     def grid_name(self, grid: Any) -> str:
@@ -483,7 +484,11 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     for name in libs:
         b.add_file(f"lib/{name}")
     for name, code in helpers.items():
-        b.add(code, f"(generated helper {name})")
+        if isinstance(code, str):
+            b.add(code, f"(generated helper {name})")
+        else:  # (line, owner) pairs: user code whose lines keep their own numbers
+            for line, owner in code:
+                b.add(line, owner)
     data = _grid_code(b, grids, org)
     done: set[str] = set()
     _helpers(b, dist, done)

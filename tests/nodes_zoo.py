@@ -85,6 +85,11 @@ def all_nodes() -> dict[str, sg.Node]:
         "erode": sg.box(1.0).erode(0.1),
         "morph": sg.morph(sg.box(0.9), sg.sphere(0.6).translate((0.2, 0, 0)), 0.35),
         "shear": sg.box((0.6, 1.0, 0.5)).shear(0.7, "x", "y"),
+        "glsl": sg.glsl("float r = length(p.xz) - 0.6;\nreturn length(vec2(r, p.y)) - 0.2;",
+                        twin=lambda p: np.hypot(np.hypot(p[:, 0], p[:, 2]) - 0.6, p[:, 1]) - 0.2,
+                        bounds=((-0.8, -0.2, -0.8), (0.8, 0.2, 0.8)), exact=True),
+        "glsl_steep": sg.glsl("2.0 * (length(p) - 0.5)", twin=lambda p: 2.0 * (np.linalg.norm(p, axis=-1) - 0.5),
+                              lipschitz=2.0, bounds=((-0.5, -0.5, -0.5), (0.5, 0.5, 0.5))),
         "product": sg.product(sg.sphere(0.6), sg.box(0.8).translate((0.5, 0, 0))),
         "implicit": sg.implicit("x**2 + y**2/0.5 + z**2 - 1", bounds=((-1.2, -1, -1.2), (1.2, 1, 1.2))),
     })

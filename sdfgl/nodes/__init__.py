@@ -13,6 +13,7 @@ from .primitives_more import (bezier_tube, capped_torus, dodecahedron, gyroid, i
                               tetrahedron, tube)
 from .operators import morph
 from .deform import taper
+from .user_glsl import glsl
 from .shaping import elongate, mirror, repeat_polar, rounded, shell, symmetric
 from .primitives import (box, box_frame, capsule, cone, cylinder, ellipsoid, hex_prism, octahedron, plane,
                          rounded_box, sphere, torus)
@@ -24,4 +25,4 @@ __all__ = ["Node", "Primitive", "EXACT", "BOUND", "IMPLICIT", "sphere", "box", "
            "repeat_polar", "elongate", "rounded", "shell", "displace", "noise", "implicit", "parametric", "displace_expr",
            "Shape2D", "arc", "capsule2", "ellipse", "regular_polygon", "star", "triangle", "slice",
            "bezier_tube", "capped_torus", "dodecahedron", "gyroid", "icosahedron", "pyramid", "slab",
-           "tetrahedron", "tube", "morph", "taper"]
+           "tetrahedron", "tube", "morph", "taper", "glsl"]
