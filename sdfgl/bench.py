@@ -332,6 +332,12 @@ def pareto_plot(variants: Sequence[Variant], path: Path) -> None:
     plt.close(fig)
 
 
+def _json_value(o: object) -> object:
+    """JSON for what json does not know: numpy numbers, and lights (dataclasses) in settings."""
+    from dataclasses import asdict, is_dataclass
+    return asdict(o) if is_dataclass(o) and not isinstance(o, type) else float(o)  # type: ignore[arg-type]
+
+
 def run(quick: bool, size: tuple[int, int] | None, out: Path, progress: bool = True,
         scenes: Sequence[str] | None = None) -> dict:
     """Run the benchmark, write bench.json, bench.md and pareto.png into ``out``; return the data.
@@ -381,7 +387,7 @@ def run(quick: bool, size: tuple[int, int] | None, out: Path, progress: bool = T
                           **{k: val for k, val in v.result.items() if not k.startswith("_")}} for v in variants],
             "features": [{"label": v.label, "settings": v.settings,
                           **{k: val for k, val in v.result.items() if not k.startswith("_")}} for v in features]}
-    (out / "bench.json").write_text(json.dumps(data, indent=1, default=float))
+    (out / "bench.json").write_text(json.dumps(data, indent=1, default=_json_value))
     pareto_plot(variants, out / "pareto.png")
     print(md)
     print(f"\nwrote {out / 'bench.md'}, {out / 'bench.json'}, {out / 'pareto.png'}")
