@@ -526,7 +526,8 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     b.add_file("shade")
     b.add(_surface_function(channels), "(codegen: material)")
     b.add(*background_code(settings.background, glsl_float))
-    b.add(shade_function(settings.lights, settings.ambient, settings.shadows, implicit, glsl_float), "(look: lights)")
+    b.add(shade_function(settings.lights, settings.ambient, settings.shadows, implicit, glsl_float,
+                         metals="surface" in channels), "(look: lights)")
     if settings.ground:
         b.add_file("ground")
     b.add_file("render_main_head")

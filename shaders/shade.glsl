@@ -23,7 +23,8 @@ float occlusion(vec3 pos, vec3 nor) {
 
 // Linear colour of surface s from the sums of the lights' diffuse and highlight terms
 // and the ambient light (the lights' code is generated, see shadeSurface). A metal has no
-// diffuse part; it reflects the ambient light tinted by its albedo instead.
+// diffuse part; it reflects its surroundings tinted by its albedo instead (shadeSurface
+// puts the background seen along the mirror direction into ambient for metals).
 vec3 combineLight(Surface s, vec3 diffuse, vec3 ambient, vec3 highlight) {
     vec3 specColor = mix(vec3(s.specular), s.albedo, s.metallic);
     return s.albedo * ((1.0 - s.metallic) * diffuse + ambient) + specColor * highlight + s.emission;

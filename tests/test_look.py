@@ -99,6 +99,12 @@ def test_surface_fields_change_the_highlight():
     assert abs(int(shiny[32, 55].sum()) - int(matte[32, 55].sum())) <= 6   # away from it, little changes
     gold = sg.render(sg.sphere(1).material("gold", metallic=1.0, shininess=50), CAM, (64, 64), **base).color
     assert gold[32, 32, 0] > gold[32, 32, 2] + 40                 # a metal's highlight takes its colour
+    # with no light at all, a metal shows its surroundings (the background along the mirror ray)
+    dark = dict(lights=[], ambient="black", ao=False)
+    metal = sg.sphere(1).material("white", metallic=1.0)
+    on_white = sg.render(metal, CAM, (32, 32), background="white", **dark).color[16, 16].astype(int)
+    on_black = sg.render(metal, CAM, (32, 32), background="black", **dark).color[16, 16].astype(int)
+    assert on_white.min() > 200 and on_black.max() < 10
 
 
 def test_lights_colour_intensity_and_falloff():

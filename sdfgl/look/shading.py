@@ -54,8 +54,11 @@ def _light_block(i: int, lt: Light, kind: Any, f: Fmt) -> str:
     return body + "    }\n"
 
 
-def shade_function(lights: tuple[Light, ...] | None, ambient: Any, setting: Any, implicit: bool, f: Fmt) -> str:
-    """GLSL of ``vec3 shadeSurface(pos, nor, rd, Surface s, t)`` for these lights."""
+def shade_function(lights: tuple[Light, ...] | None, ambient: Any, setting: Any, implicit: bool, f: Fmt,
+                   metals: bool = False) -> str:
+    """GLSL of ``vec3 shadeSurface(pos, nor, rd, Surface s, t)`` for these lights; with
+    ``metals`` (some node sets surface fields), metallic surfaces reflect the background
+    along the mirror direction in place of the ambient light."""
     rig = DEFAULT_LIGHTS if lights is None else lights
     sky, ground = DEFAULT_AMBIENT if ambient is None else ambient
     out = ["vec3 shadeSurface(vec3 pos, vec3 nor, vec3 rd, Surface s, float t) {",
@@ -70,6 +73,8 @@ def shade_function(lights: tuple[Light, ...] | None, ambient: Any, setting: Any,
         out.append(f"    ambient += {_vec3(sky, f)} * ((0.5 + 0.5 * nor.y) * occ);")
     if any(ground):
         out.append(f"    ambient += {_vec3(ground, f)} * ((0.5 - 0.5 * nor.y) * occ);")
+    if metals:
+        out.append("    ambient = mix(ambient, background(reflect(rd, nor)) * occ, s.metallic);")
     out += ["    return combineLight(s, diffuse, ambient, highlight);", "}"]
     return "\n".join(out)
 
