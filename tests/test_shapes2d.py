@@ -89,6 +89,8 @@ def test_slice_of_a_3d_node():
     assert s.exactness == sg.BOUND
     with pytest.raises(sg.ParameterError, match="unbounded"):
         sg.slice(sg.plane((1, 0, 0)))
+    with pytest.raises(sg.ParameterError, match="baked"):
+        sg.slice(sg.sphere(sg.param(1.0, name="r")))
 
 
 def test_extrude_taper_and_twist_shape_the_solid():

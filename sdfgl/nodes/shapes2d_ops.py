@@ -283,6 +283,9 @@ class Slice(Shape2D):
     def __init__(self, node: Node) -> None:
         if not isinstance(node, Node):
             raise ParameterError(f"{self.kind}: needs a 3D sdfgl node, got {type(node).__name__} {node!r}")
+        if node.live_params():
+            raise ParameterError(f"{self.kind}: the node has live parameters "
+                                 f"({', '.join(p.label for p in node.live_params())}); 2D shapes are baked")
         super().__init__()
         self.node = node
         self.bounds2  # refuse an unbounded node now, not at render time
