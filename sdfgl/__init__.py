@@ -10,11 +10,14 @@ from .camera import Camera, OrbitCamera
 from .codegen import compile
 from .errors import ContextError, ParameterError, SceneFileError, SdfglError, ShaderCompileError
 from .evaluate import evaluate
+from .look import directional_light, point_light
 from .nodes import (BOUND, EXACT, IMPLICIT, Node, bend, box, box_frame, capsule, circle, displace, elongate, extrude,
                     displace_expr, implicit, noise, parametric,
                     mirror, polygon, rectangle, repeat_polar, revolve, rounded, shell, sierpinski, symmetric, tree, cone, cylinder, difference, ellipsoid,
                     hex_prism, intersection, octahedron, plane, product, repeat, rounded_box, sphere, torus, twist,
-                    union)
+                    union, Shape2D, arc, capsule2, ellipse, regular_polygon, star, triangle, slice,
+                    bezier_tube, capped_torus, dodecahedron, gyroid, icosahedron, pyramid, slab, tetrahedron, tube,
+                    morph, taper, glsl)
 from .params import Param, param
 from .render import RenderResult, Renderer, render
 
@@ -64,11 +67,14 @@ Z = _np.array([0.0, 0.0, 1.0])
 __version__ = "0.1.0"
 
 __all__ = [
-    "Camera", "OrbitCamera", "compile", "render", "show", "widget", "save_html", "set_preview", "param", "Param", "Renderer", "RenderResult", "Node",
+    "Camera", "OrbitCamera", "compile", "directional_light", "point_light", "render", "show", "widget", "save_html",
+    "set_preview", "param", "Param", "Renderer", "RenderResult", "Node",
     "sphere", "box", "rounded_box", "plane", "torus", "capsule", "cylinder", "cone", "ellipsoid",
     "octahedron", "hex_prism", "box_frame", "product", "twist", "bend", "repeat", "evaluate", "union",
     "circle", "rectangle", "polygon", "extrude", "revolve", "mirror", "symmetric", "repeat_polar", "elongate",
     "rounded", "shell", "sierpinski", "tree", "displace", "noise", "implicit", "parametric", "displace_expr", "intersection", "difference", "X", "Y", "Z",
     "EXACT", "BOUND", "IMPLICIT", "SdfglError", "ParameterError", "ShaderCompileError", "ContextError",
-    "SceneFileError",
+    "SceneFileError", "Shape2D", "arc", "capsule2", "ellipse", "regular_polygon", "star", "triangle", "slice",
+    "bezier_tube", "capped_torus", "dodecahedron", "gyroid", "icosahedron", "pyramid", "slab", "tetrahedron", "tube",
+    "morph", "taper", "glsl",
 ]

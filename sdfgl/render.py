@@ -43,7 +43,7 @@ def shader_origin(scene: Node, eye: np.ndarray) -> np.ndarray:
 class RenderResult:
     """Images of one draw. Row 0 is the top row of the image."""
 
-    color: np.ndarray                      # uint8 (H, W, 3), gamma-corrected
+    color: np.ndarray                      # uint8 (H, W, 3), gamma-corrected; (H, W, 4) with alpha=True
     depth: np.ndarray | None = None        # float32 (H, W): ray t of the pixel centre, inf on a miss
     normal: np.ndarray | None = None       # float32 (H, W, 3): unit normal, 0 on a miss
     steps: np.ndarray | None = None        # int32 (H, W): map() calls of the pixel-centre ray
@@ -101,6 +101,7 @@ def camera_uniforms(prog: moderngl.Program, camera: Camera, size: tuple[int, int
     _set_uniform(prog, "uUp", tuple(u.tolist()))
     _set_uniform(prog, "uForward", tuple(f.tolist()))
     _set_uniform(prog, "uTanHalfFov", camera.tan_half_fov)
+    _set_uniform(prog, "uOrthoHalfHeight", 0.5 * camera.ortho_height)
     _set_uniform(prog, "uJitter", jitter)
     _set_uniform(prog, "uZero", 0)
 
@@ -184,13 +185,13 @@ class Renderer:
             raise ParameterError(f"render: 'scene' must be an sdfgl node, got {type(scene).__name__} {scene!r}")
         st = Settings.build(**settings)
         wh = _check_size(size)
-        cam = camera if camera is not None else OrbitCamera.framing(*scene.bounds)
+        cam = camera if camera is not None else OrbitCamera.framing(*scene.bounds, aspect=wh[0] / wh[1])
         if not isinstance(cam, Camera):
             raise ParameterError(f"render: 'camera' must be an sdfgl Camera, got {type(cam).__name__}")
         origin = shader_origin(scene, cam.eye)
 
         t0 = time.perf_counter()
-        source = generate(scene, st, origin)
+        source = generate(scene, st, origin, projection=cam.projection)
         t1 = time.perf_counter()
         prog = self.programs.get(source)
         compile_s = self.programs.last_compile_s
@@ -203,7 +204,7 @@ class Renderer:
         self.vao(prog).render(moderngl.TRIANGLES, vertices=3)
         self.ctx.finish()
         t3 = time.perf_counter()
-        res = RenderResult(color=np.ascontiguousarray(targets.read("color")[..., :3]), source=source,
+        res = RenderResult(color=np.ascontiguousarray(targets.read("color")[..., :4 if st.alpha else 3]), source=source,
                            settings=st, camera=cam)
         if "depth" in st.outputs:
             d = targets.read("depth")[..., 0].copy()
