@@ -47,9 +47,11 @@ class Turntable(CameraPath):
 
     def camera(self, t: float, duration: float, scene: Node | None = None) -> OrbitCamera:
         target, distance = self.target, self.distance
-        if target is None or distance is None:
-            if scene is None:
-                raise ParameterError("turntable: give 'distance' and 'target', or a scene to frame")
+        if scene is None:  # nothing to frame: orbit the origin
+            if distance is None:
+                raise ParameterError("turntable: give 'distance', or a scene to frame")
+            target = np.zeros(3) if target is None else target
+        elif target is None or distance is None:
             frame = OrbitCamera.framing(*scene.bounds, fov=self.fov)
             target = frame.target if target is None else target
             distance = frame.distance if distance is None else distance
@@ -67,7 +69,8 @@ def turntable(distance: float | None = None, pitch: float = 20.0, target: Sequen
 
     It makes ``turns`` turns over the animation (frames at i / fps, so a 1-turn clip loops
     without a repeated frame), or one turn per ``period`` seconds if given. Without
-    ``distance`` / ``target`` it frames the scene's bounds.
+    ``distance`` / ``target`` it frames the scene's bounds (the target is the centre of the
+    scene's box).
     """
     return Turntable(distance, pitch, target, fov, yaw, turns, period)
 

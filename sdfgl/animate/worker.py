@@ -109,7 +109,7 @@ def _apply_params(job: Job, sf: SceneFile, initial: dict[Param, Any]) -> None:
     for name, val in job.params.items():
         if name not in named:
             known = ", ".join(sorted(named)) or "none"
-            raise ParameterError(f"the scene has no parameter named '{name}' (named parameters: {known})")
+            raise ParameterError(f"scene '{job.scene}' has no parameter named '{name}' (named parameters: {known})")
         named[name].value = val
     if job.time is not None:
         for prm in initial:
