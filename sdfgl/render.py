@@ -143,6 +143,7 @@ class Renderer:
         self.programs = ProgramCache(self.ctx)
         self._targets: Targets | None = None
         self._vao: dict[int, moderngl.VertexArray] = {}
+        self._last_source: tuple | None = None  # (key, scene, source): frames of one scene skip codegen
 
     def _targets_for(self, size: tuple[int, int], outputs: tuple[str, ...]) -> Targets:
         t = self._targets
@@ -172,7 +173,13 @@ class Renderer:
         origin = shader_origin(scene, cam.eye)
 
         t0 = time.perf_counter()
-        source = generate(scene, st, origin)
+        key = (id(scene), st, origin.tobytes())  # nodes are immutable and params are uniforms:
+        last = self._last_source                  # the same scene, settings and origin give the same source
+        if last is not None and last[0] == key and last[1] is scene:
+            source = last[2]
+        else:
+            source = generate(scene, st, origin)
+            self._last_source = (key, scene, source)
         t1 = time.perf_counter()
         prog = self.programs.get(source)
         compile_s = self.programs.last_compile_s
