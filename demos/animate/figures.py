@@ -49,6 +49,17 @@ def single_renders(frames: int, size: tuple[int, int], every: int) -> float:
     return sum(times) / len(times)
 
 
+def paired(out: Path, rounds: int, frames: int, size: tuple[int, int]) -> dict[str, list[float]]:
+    """Per round and writer: a ``frames``-frame clip, then single render()s of the same frames right after;
+    the ratio of their times per frame (pairs taken close in time cancel most of the machine's load drift)."""
+    ratios: dict[str, list[float]] = {"mp4": [], "gif": []}
+    for r in range(rounds):
+        for kind in (("mp4", "gif") if r % 2 == 0 else ("gif", "mp4")):
+            clip = sdfgl_clip(out / f"paired.{kind}", frames, size)["per_frame_s"]
+            ratios[kind].append(clip / single_renders(frames, size, 1))
+    return ratios
+
+
 def distforge_clip(out: Path, frames: int, size: tuple[int, int], display: str) -> dict:
     r = subprocess.run([sys.executable, str(HERE / "distforge_demo.py"), str(out), str(frames), str(size[0]),
                         str(size[1])], env={**os.environ, "DISPLAY": display}, capture_output=True, text=True,
@@ -67,6 +78,8 @@ def main() -> None:
     ap.add_argument("--every", type=int, default=4, help="single renders of every N-th frame")
     ap.add_argument("--out", default="bench-out/animate")
     ap.add_argument("--no-distforge", action="store_true")
+    ap.add_argument("--paired", type=int, default=6, help="rounds of short clip / single-render pairs")
+    ap.add_argument("--paired-frames", type=int, default=24)
     a = ap.parse_args()
     size = tuple(int(x) for x in a.size.split("x"))
     out = Path(a.out)
@@ -90,6 +103,7 @@ def main() -> None:
     finally:
         if xvfb:
             xvfb.kill()
+    pairs = paired(out, a.paired, a.paired_frames, size) if a.paired else {}
     n, secs = imageio_ffmpeg.count_frames_and_secs(str(out / "turntable.mp4"))
     reader = imageio_ffmpeg.read_frames(str(out / "turntable.mp4"))
     meta = next(reader)
@@ -100,7 +114,9 @@ def main() -> None:
                "mp4_read_back": {"frames": n, "seconds": secs, "size": list(meta["size"])},
                "mp4_bytes": (out / "turntable.mp4").stat().st_size, "gif_bytes": (out / "turntable.gif").stat().st_size,
                "ratio_mp4_to_single_render": med["mp4"] / med["single"],
-               "ratio_gif_to_single_render": med["gif"] / med["single"], "rows": rows}
+               "ratio_gif_to_single_render": med["gif"] / med["single"],
+               "paired_ratio_median": {k: statistics.median(v) for k, v in pairs.items()},
+               "paired_ratios": pairs, "rows": rows}
     if "distforge_mp4" in med:
         summary["fps"] = {"sdfgl_mp4": 1 / med["mp4"], "sdfgl_gif": 1 / med["gif"],
                           "distforge_mp4": 1 / med["distforge_mp4"]}

@@ -118,7 +118,7 @@ class GifWriter(FrameWriter):
         if self.count == 0:
             header, _ = GifImagePlugin.getheader(im, info={"loop": self.loop})
             self._fp.write(b"".join(header))
-        for chunk in GifImagePlugin.getdata(im, duration=self._duration, disposal=1):
+        for chunk in GifImagePlugin.getdata(im, duration=self._duration, disposal=1, include_color_table=True):
             self._fp.write(chunk)
 
     def close(self) -> None:
