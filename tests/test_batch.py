@@ -143,6 +143,7 @@ def test_a_killed_run_resumes_without_redoing_finished_jobs(folder):
     assert s.skipped == len(first) and s.done == 40 - len(first) and not s.failed
     assert all((out / n).stat().st_mtime_ns == m for n, m in first.items())  # finished jobs untouched
     assert len(list(out.glob("*.png"))) == 40
+    assert not [p.name for p in out.iterdir() if p.name.startswith(".")]  # the killed run's partial files are gone
 
 
 def test_the_same_job_file_on_a_local_ray_cluster_gives_identical_images(folder):

@@ -52,6 +52,15 @@ class BatchSummary:
         return {**asdict(self), "failed_count": len(self.failed), "throughput": self.throughput}
 
 
+def clear_partial(job: Job) -> None:
+    """Remove temporary files a killed earlier run left beside the job's outputs."""
+    for out in job.outputs:
+        p = Path(out)
+        if p.parent.is_dir():
+            for tmp in p.parent.glob(f".{p.name}.tmp-*"):
+                tmp.unlink(missing_ok=True)
+
+
 def finished(job: Job) -> bool:
     """All of the job's files exist (they are written atomically, so existing means complete)."""
     return all(os.path.exists(p) for p in job.outputs)
@@ -133,6 +142,8 @@ def run_batch(jobs: str | Path | Iterable[Job], workers: int | None = None, ray:
     if isinstance(retries, bool) or not isinstance(retries, int) or retries < 0:
         raise ParameterError(f"batch: 'retries' must be a non-negative integer, got {retries!r}")
     pending = [j for j in all_jobs if force or not finished(j)]
+    for j in pending:
+        clear_partial(j)
     n_workers = workers or os.cpu_count() or 1
     summary = BatchSummary(total=len(all_jobs), skipped=len(all_jobs) - len(pending),
                            workers=min(n_workers, max(len(pending), 1)), backend="ray" if ray else "local")
