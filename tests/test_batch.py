@@ -1,6 +1,7 @@
 """Batch jobs: the job file, local process pool, resume, failures, Ray."""
 import json
 import os
+import re
 import signal
 import subprocess
 import sys
@@ -97,16 +98,19 @@ def test_unreadable_job_file_names_file_and_line(tmp_path):
 
 def test_data_outputs_params_time_and_a_broken_scene_reported_while_the_rest_finish(folder, renderer):
     (folder / "broken.py").write_text("import sdfgl as sg\nscene = sg.sphere(-1)\n")
+    (folder / "hangs.py").write_text("while True:\n    pass\n")
     jf = write(folder, {"defaults": {"scene": "scene.py", "size": [40, 30], "settings": {"shadows": False}},
                         "jobs": [{"params": {"r": 0.5}, "time": 1.5, "output": "a.png", "data": "a.npz"},
                                  {"scene": "broken.py", "output": "b.png"},
                                  {"params": {"nope": 1}, "output": "c.png"},
-                                 {"output": "d.png", "data": "d.npz", "channels": ["depth"]}]})
-    s = run_batch(jf, workers=2, retries=1)
-    assert s.done == 2 and len(s.failed) == 2 and s.retried == 2
+                                 {"output": "d.png", "data": "d.npz", "channels": ["depth"]},
+                                 {"scene": "hangs.py", "output": "e.png"}]})
+    s = run_batch(jf, workers=2, retries=1, timeout=3)
+    assert s.done == 2 and len(s.failed) == 3 and s.retried == 3
     fails = {f["label"]: f for f in s.failed}
     assert "broken.py', line 2: sphere: parameter 'radius' must be > 0" in fails["jobs[1]"]["error"]
     assert fails["jobs[1]"]["attempts"] == 2
+    assert re.search(r"hangs.py', line [12]: the job ran past its time limit of 3 s", fails["jobs[4]"]["error"])
     assert "scene.py' has no parameter named 'nope' (named parameters: r, time)" in fails["jobs[2]"]["error"]
     ns = {}
     exec(SCENE, ns)
@@ -120,7 +124,7 @@ def test_data_outputs_params_time_and_a_broken_scene_reported_while_the_rest_fin
     assert np.load(folder / "d.npz").files == ["depth"]
     assert not (folder / "b.png").exists()
     # the CLI says the same and exits 1
-    assert main(["batch", str(jf), "--workers", "1", "--retries", "0", "--no-progress"]) == 1
+    assert main(["batch", str(jf), "--workers", "1", "--retries", "0", "--timeout", "1", "--no-progress"]) == 1
 
 
 def test_a_killed_run_resumes_without_redoing_finished_jobs(folder):

@@ -97,7 +97,7 @@ class _Tracker:
         return False
 
 
-def _run_local(jobs: list[Job], workers: int, tracker: _Tracker) -> None:
+def _run_local(jobs: list[Job], workers: int, tracker: _Tracker, timeout: float | None) -> None:
     threads = max(1, (os.cpu_count() or 1) // workers)
     queue = list(jobs)
     while queue:
@@ -109,7 +109,7 @@ def _run_local(jobs: list[Job], workers: int, tracker: _Tracker) -> None:
                 while queue and len(running) < 2 * workers:  # a short queue keeps every worker fed
                     job = queue.pop(0)
                     tracker.started(job)
-                    running[pool.submit(run_job, job)] = job
+                    running[pool.submit(run_job, job, True, None, timeout)] = job
                 done, _ = wait(running, return_when=FIRST_COMPLETED)
                 for fut in done:
                     job = running.pop(fut)
@@ -127,7 +127,7 @@ def _run_local(jobs: list[Job], workers: int, tracker: _Tracker) -> None:
 
 
 def run_batch(jobs: str | Path | Iterable[Job], workers: int | None = None, ray: str | None = None,
-              retries: int = 1, force: bool = False, progress: bool = False,
+              retries: int = 1, force: bool = False, progress: bool = False, timeout: float | None = 600.0,
               on_skip: Callable[[Job], None] | None = None) -> BatchSummary:
     """Render every unfinished job; return the summary. Never stops at a failing job.
 
@@ -135,12 +135,15 @@ def run_batch(jobs: str | Path | Iterable[Job], workers: int | None = None, ray:
     processes (default: the CPU count). ``ray``: a Ray cluster address ("auto" for the
     running one, "local" to start one here with ``workers`` CPUs); needs ``sdfgl[ray]``.
     ``retries``: extra attempts for a failing job. ``force``: redo finished jobs too.
+    ``timeout``: seconds one attempt may take (None: no limit); a job past it fails and is retried.
     """
     all_jobs = load_jobs(jobs) if isinstance(jobs, (str, Path)) else list(jobs)
     if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 1):
         raise ParameterError(f"batch: 'workers' must be a positive integer, got {workers!r}")
     if isinstance(retries, bool) or not isinstance(retries, int) or retries < 0:
         raise ParameterError(f"batch: 'retries' must be a non-negative integer, got {retries!r}")
+    if timeout is not None and not (isinstance(timeout, (int, float)) and timeout > 0):
+        raise ParameterError(f"batch: 'timeout' must be a positive number of seconds or None, got {timeout!r}")
     pending = [j for j in all_jobs if force or not finished(j)]
     for j in pending:
         clear_partial(j)
@@ -158,9 +161,9 @@ def run_batch(jobs: str | Path | Iterable[Job], workers: int | None = None, ray:
     if pending:
         if ray:
             from .raypool import run_ray
-            summary.workers = run_ray(pending, ray, workers, tracker)
+            summary.workers = run_ray(pending, ray, workers, tracker, timeout)
         else:
-            _run_local(pending, summary.workers, tracker)
+            _run_local(pending, summary.workers, tracker, timeout)
     if bar:
         bar.close()
     summary.seconds = time.perf_counter() - t0

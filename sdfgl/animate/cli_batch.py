@@ -14,7 +14,7 @@ def cmd_batch(a: argparse.Namespace) -> int:
             print(f"{j.index}\t{j.label}\t{j.scene}\t{j.size[0]}x{j.size[1]}\t{cam}\t{', '.join(j.outputs)}")
         return 0
     summary = run_batch(jobs, workers=a.workers, ray=a.ray, retries=a.retries, force=a.force,
-                        progress=not a.no_progress)
+                        progress=not a.no_progress, timeout=a.timeout or None)
     print(summary.text())
     if a.report:
         write_report(summary, a.report)
@@ -32,6 +32,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    help="run on a Ray cluster: 'auto' (the running one), HOST:PORT, ray://..., or 'local' "
                         "(start one here with --workers CPUs); needs sdfgl[ray]")
     p.add_argument("--retries", type=int, default=1, help="extra attempts for a failing job (default 1)")
+    p.add_argument("--timeout", type=float, default=600.0,
+                   help="seconds one attempt at a job may take, 0 for no limit (default 600)")
     p.add_argument("--force", action="store_true", help="render finished jobs again")
     p.add_argument("--report", help="also write the summary as JSON to this file")
     p.add_argument("--list", action="store_true", help="print the expanded jobs and exit")

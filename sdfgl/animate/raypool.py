@@ -18,9 +18,9 @@ if TYPE_CHECKING:  # pragma: no cover
     from .batch import _Tracker
 
 
-def _task(job: Job, scene_text: bytes, threads: int) -> Outcome:
+def _task(job: Job, scene_text: bytes, threads: int, timeout: float | None) -> Outcome:
     init_worker(threads)
-    return run_job(job, write=False, scene_text=scene_text)
+    return run_job(job, write=False, scene_text=scene_text, timeout=timeout)
 
 
 def _connect(address: str, workers: int | None) -> Any:
@@ -41,7 +41,7 @@ def _connect(address: str, workers: int | None) -> Any:
     return ray
 
 
-def run_ray(jobs: list[Job], address: str, workers: int | None, tracker: "_Tracker") -> int:
+def run_ray(jobs: list[Job], address: str, workers: int | None, tracker: "_Tracker", timeout: float | None) -> int:
     """Run ``jobs`` as Ray tasks (one CPU each); returns the cluster's CPU count."""
     ray = _connect(address, workers)
     cpus = int(ray.cluster_resources().get("CPU", 1))
@@ -58,7 +58,7 @@ def run_ray(jobs: list[Job], address: str, workers: int | None, tracker: "_Track
         while queue and len(running) < 2 * cpus:
             job = queue.pop(0)
             tracker.started(job)
-            running[task.remote(job, texts[job.scene], threads)] = job
+            running[task.remote(job, texts[job.scene], threads, timeout)] = job
         ready, _ = ray.wait(list(running), num_returns=1)
         for ref in ready:
             job = running.pop(ref)

@@ -6,10 +6,13 @@ before its context exists, so N workers share the cores instead of each taking a
 """
 from __future__ import annotations
 
+import contextlib
 import hashlib
 import io
 import os
+import signal
 import tempfile
+import threading
 import time
 import traceback
 from dataclasses import dataclass, field
@@ -148,12 +151,36 @@ def write_atomic(path: str, data: bytes) -> None:
         tmp.unlink(missing_ok=True)
 
 
-def run_job(job: Job, write: bool = True, scene_text: bytes | None = None) -> Outcome:
+class JobTimeout(SdfglError):
+    """A job ran past its time limit."""
+
+
+@contextlib.contextmanager
+def time_limit(seconds: float | None):
+    """Raise JobTimeout in this (main) thread after ``seconds``: stops a scene file that loops forever.
+    A single GL draw in progress is not interrupted; the limit fires when it returns."""
+    if not seconds or threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def expire(_sig: int, _frame: object) -> None:
+        raise JobTimeout(f"the job ran past its time limit of {seconds:g} s")
+    old = signal.signal(signal.SIGALRM, expire)
+    signal.setitimer(signal.ITIMER_REAL, seconds)
+    try:
+        yield
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, old)
+
+
+def run_job(job: Job, write: bool = True, scene_text: bytes | None = None, timeout: float | None = None) -> Outcome:
     """One attempt at ``job``; never raises. ``write``: write the files here (same file system as the
-    driver), else return their bytes for the driver to write."""
+    driver), else return their bytes for the driver to write. ``timeout``: seconds for the attempt."""
     t0 = time.perf_counter()
     try:
-        files = render_job(job, scene_text)
+        with time_limit(timeout):
+            files = render_job(job, scene_text)
         if write:
             for path, data in files.items():
                 write_atomic(path, data)
