@@ -126,6 +126,18 @@ def test_data_outputs_params_time_and_a_broken_scene_reported_while_the_rest_fin
     assert main(["batch", str(jf), "--workers", "1", "--retries", "0", "--timeout", "1", "--no-progress"]) == 1
 
 
+def test_a_job_that_kills_its_worker_is_found_and_reported_and_no_other_job_is_charged(folder):
+    (folder / "crash.py").write_text("import os\nos._exit(3)\n")
+    jf = write(folder, {"defaults": {"scene": "scene.py", "size": [32, 24]},
+                        "jobs": [{"count": 3, "output": "ok/{index}.png"}, {"scene": "crash.py", "output": "x.png"},
+                                 {"count": 3, "output": "ok/late{index}.png"}]})
+    s = run_batch(jf, workers=2, retries=1)
+    assert s.done == 6 and len(s.failed) == 1, s.text()
+    assert s.failed[0]["label"] == "jobs[1]" and s.failed[0]["attempts"] == 2
+    assert "the worker process died while running this job" in s.failed[0]["error"]
+    assert len(list((folder / "ok").glob("*.png"))) == 6
+
+
 def test_a_killed_run_resumes_without_redoing_finished_jobs(folder):
     jf = write(folder, {"defaults": {"scene": "scene.py", "size": [160, 120], "settings": {"aa": 2}},
                         "jobs": [{"count": 40, "camera": {"yaw": {"uniform": [0, 360]}, "distance": 4},

@@ -14,7 +14,7 @@ from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wai
 from concurrent.futures.process import BrokenProcessPool
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
-from typing import Callable, Iterable
+from typing import Iterable
 
 from ..errors import ParameterError
 from .jobfile import Job, load_jobs
@@ -98,37 +98,48 @@ class _Tracker:
 
 
 def _run_local(jobs: list[Job], workers: int, tracker: _Tracker, timeout: float | None) -> None:
+    """Run ``jobs`` on a spawn process pool. When a worker dies, the pool is made anew and the jobs
+    that were in flight run again one at a time, so only the job that kills its worker is charged."""
     threads = max(1, (os.cpu_count() or 1) // workers)
-    queue = list(jobs)
-    while queue:
+    queue, suspects = list(jobs), []
+    while queue or suspects:
         ctx = multiprocessing.get_context("spawn")  # a fresh interpreter: never the parent's GL context
         with ProcessPoolExecutor(workers, mp_context=ctx, initializer=init_worker, initargs=(threads,)) as pool:
             running: dict[Future, Job] = {}
             broken = False
-            while (queue or running) and not broken:
-                while queue and len(running) < 2 * workers:  # a short queue keeps every worker fed
-                    job = queue.pop(0)
+            while (queue or suspects or running) and not broken:
+                while (suspects and not running) or (not suspects and queue and len(running) < 2 * workers):
+                    job = suspects.pop(0) if suspects else queue.pop(0)  # suspects alone: a death is theirs
                     tracker.started(job)
                     running[pool.submit(run_job, job, True, None, timeout)] = job
                 done, _ = wait(running, return_when=FIRST_COMPLETED)
+                alone = len(running) == 1
                 for fut in done:
-                    job = running.pop(fut)
                     try:
                         out = fut.result()
-                    except BrokenProcessPool as exc:  # a worker died (a crash in a driver, killed)
+                    except BrokenProcessPool:  # a worker died (a crash in a driver, killed by the OS)
                         broken = True
-                        out = Outcome(job.index, False, f"the worker process died ({exc})")
+                        continue
                     if tracker.result(out):
+                        queue.append(running[fut])
+                    del running[fut]
+            for fut, job in list(running.items()):  # finished well before the pool broke
+                if fut.done() and not fut.cancelled() and fut.exception() is None:
+                    if tracker.result(fut.result()):
                         queue.append(job)
-            for fut, job in running.items():  # the pool broke under them: count an attempt, start anew
-                fut.cancel()
-                if tracker.result(Outcome(job.index, False, "the worker process died")):
-                    queue.append(job)
+                    del running[fut]
+            for job in running.values():
+                if alone:  # it ran by itself: it killed the worker
+                    if tracker.result(Outcome(job.index, False, "the worker process died while running this job")):
+                        suspects.append(job)
+                else:  # one of these killed the pool: run each alone, this attempt uncounted
+                    tracker.attempts[job.index] -= 1
+                    suspects.append(job)
 
 
 def run_batch(jobs: str | Path | Iterable[Job], workers: int | None = None, ray: str | None = None,
-              retries: int = 1, force: bool = False, progress: bool = False, timeout: float | None = 600.0,
-              on_skip: Callable[[Job], None] | None = None) -> BatchSummary:
+              retries: int = 1, force: bool = False, progress: bool = False,
+              timeout: float | None = 600.0) -> BatchSummary:
     """Render every unfinished job; return the summary. Never stops at a failing job.
 
     ``jobs``: a job file path (docs/batch-format.md) or Job objects. ``workers``: local
@@ -150,11 +161,6 @@ def run_batch(jobs: str | Path | Iterable[Job], workers: int | None = None, ray:
     n_workers = workers or os.cpu_count() or 1
     summary = BatchSummary(total=len(all_jobs), skipped=len(all_jobs) - len(pending),
                            workers=min(n_workers, max(len(pending), 1)), backend="ray" if ray else "local")
-    if on_skip:
-        todo = {j.index for j in pending}
-        for j in all_jobs:
-            if j.index not in todo:
-                on_skip(j)
     t0 = time.perf_counter()
     bar = ProgressBar(len(pending), "job") if progress and pending else None
     tracker = _Tracker(summary, pending, retries, bar)
