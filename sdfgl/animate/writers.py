@@ -147,7 +147,7 @@ class VideoWriter(FrameWriter):
             raise SdfglError(f"writing '{self.path.name}' needs imageio-ffmpeg: pip install 'sdfgl[video]'") from None
         codec = VIDEO_SUFFIXES[self.path.suffix.lower()]
         if codec == "libx264":
-            out = ["-crf", str(18 if crf is None else crf), "-preset", "fast", "-movflags", "+faststart"]
+            out = ["-crf", str(18 if crf is None else crf), "-preset", "veryfast", "-movflags", "+faststart"]
         else:  # VP9 in constant-quality mode
             out = ["-crf", str(32 if crf is None else crf), "-b:v", "0", "-row-mt", "1", "-deadline", "realtime",
                    "-cpu-used", "8"]
