@@ -104,12 +104,12 @@ def test_data_outputs_params_time_and_a_broken_scene_reported_while_the_rest_fin
                                  {"params": {"nope": 1}, "output": "c.png"},
                                  {"output": "d.png", "data": "d.npz", "channels": ["depth"]},
                                  {"scene": "hangs.py", "output": "e.png"}]})
-    s = run_batch(jf, workers=2, retries=1, timeout=3)
+    s = run_batch(jf, workers=2, retries=1, timeout=6)  # room for a first job that makes a GL context
     assert s.done == 2 and len(s.failed) == 3 and s.retried == 3
     fails = {f["label"]: f for f in s.failed}
     assert "broken.py', line 2: sphere: parameter 'radius' must be > 0" in fails["jobs[1]"]["error"]
     assert fails["jobs[1]"]["attempts"] == 2
-    assert re.search(r"hangs.py', line [12]: the job ran past its time limit of 3 s", fails["jobs[4]"]["error"])
+    assert re.search(r"hangs.py', line [12]: the job ran past its time limit of 6 s", fails["jobs[4]"]["error"])
     assert "scene.py' has no parameter named 'nope' (named parameters: r, time)" in fails["jobs[2]"]["error"]
     ns = {}
     exec(SCENE, ns)
