@@ -18,7 +18,10 @@ from .nodes import (BOUND, EXACT, IMPLICIT, Node, bend, box, box_frame, capsule,
                     union, Shape2D, arc, capsule2, ellipse, regular_polygon, star, triangle, slice,
                     bezier_tube, capped_torus, dodecahedron, gyroid, icosahedron, pyramid, slab, tetrahedron, tube,
                     morph, taper, glsl)
-from .params import Param, param
+from .params import Param, param, time
+from .functions import (abs, clamp, cos, exp, floor, fract, log, max, min, mix, mod, pow, radians, sign, sin,
+                        smoothstep, sqrt, step, tan)
+from .animate import animate, camera_path, keyframes, turntable
 from .render import RenderResult, Renderer, render
 
 
@@ -77,4 +80,6 @@ __all__ = [
     "SceneFileError", "Shape2D", "arc", "capsule2", "ellipse", "regular_polygon", "star", "triangle", "slice",
     "bezier_tube", "capped_torus", "dodecahedron", "gyroid", "icosahedron", "pyramid", "slab", "tetrahedron", "tube",
     "morph", "taper", "glsl",
+    "time", "keyframes", "turntable", "camera_path", "animate", "sin", "cos", "tan", "abs", "sqrt", "exp", "log",
+    "sign", "floor", "fract", "radians", "min", "max", "pow", "mod", "step", "clamp", "mix", "smoothstep",
 ]

@@ -1,4 +1,4 @@
-"""Command line: ``sdfgl render | shader | view | html | bench``."""
+"""Command line: ``sdfgl render | shader | view | html | bench | animate | batch``."""
 from __future__ import annotations
 
 import argparse
@@ -177,6 +177,11 @@ def build_parser() -> argparse.ArgumentParser:
     b = sub.add_parser("bench", help="benchmark marching methods: frame time beside error")
     add_arguments(b)
     b.set_defaults(func=cmd_bench)
+
+    from .animate.cli_animate import add_parser as add_animate
+    from .animate.cli_batch import add_parser as add_batch
+    add_animate(sub)
+    add_batch(sub)
     return parser
 
 
