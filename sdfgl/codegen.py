@@ -276,6 +276,9 @@ def ref_step(settings: Settings, scale: float) -> float:
     return settings.ref_step if settings.ref_step is not None else scale / 512.0
 
 
+# targets of the mesh exporter (sdfgl.mesh): same map(), other main()s
+MESH_TARGETS = ("mesh_grid", "mesh_gradient", "mesh_color")
+
 BOUNDS_PAD = 1e-3  # the ray clip box grows by this share of the scene size
 
 
@@ -372,7 +375,9 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     """Build the fragment shader for ``scene``.
 
     ``origin`` (float64) is the world point that the shader's coordinates are relative
-    to; ``target`` is ``"render"`` (the image) or ``"evaluate"`` (map() at given points).
+    to; ``target`` is ``"render"`` (the image), ``"evaluate"`` (map() at given points) or
+    one of :data:`MESH_TARGETS` (the mesh exporter's samplers: a lattice of blocks, value and
+    gradient at points, colour at points).
     """
     if not isinstance(scene, Node):
         raise ParameterError(f"scene must be an sdfgl node, got {type(scene).__name__} {scene!r}")
@@ -391,7 +396,7 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     helpers: dict = {}
     dist, dist_result = _emit_map(scene, "dist", org, params, shared, grids, settings.grid, helpers)
     color, color_result = (_emit_map(scene, "color", org, params, shared, grids, settings.grid, helpers)
-                           if target == "render" else (None, ""))
+                           if target in ("render", "mesh_color") else (None, ""))
     detail, detail_result = (_emit_map(scene, "dist", org, params, shared, grids, settings.grid, helpers, True)
                              if target == "render" and scene.has_detail else (None, ""))
     libs = list(dict.fromkeys(dist.libs + (color.libs if color else []) + (detail.libs if detail else [])))
@@ -418,9 +423,16 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     if target == "evaluate":
         b.add_file("evaluate_main")
         return b.build(params, live, data)
+    if target in ("mesh_grid", "mesh_gradient"):
+        b.add_file("mesh_clip")
+        b.add_file(f"{target}_main")
+        return b.build(params, live, data)
     assert color is not None
     _helpers(b, color, done)
     _function(b, "vec3 mapColor(vec3 p)", color, color_result, "{}.rgb")
+    if target == "mesh_color":
+        b.add_file("mesh_color_main")
+        return b.build(params, live, data)
     if detail is not None:
         _helpers(b, detail, done)
         _function(b, "float mapDetail(vec3 p)", detail, detail_result, "{}")
