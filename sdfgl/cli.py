@@ -1,4 +1,4 @@
-"""Command line: ``sdfgl render | shader | view | bench``."""
+"""Command line: ``sdfgl render | shader | view | bench | mesh``."""
 from __future__ import annotations
 
 import argparse
@@ -151,6 +151,9 @@ def build_parser() -> argparse.ArgumentParser:
     b = sub.add_parser("bench", help="benchmark marching methods: frame time beside error")
     add_arguments(b)
     b.set_defaults(func=cmd_bench)
+
+    from .mesh.cli import add_parser as add_mesh_parser
+    add_mesh_parser(sub)
     return parser
 
 
