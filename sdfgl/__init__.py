@@ -10,7 +10,8 @@ from .camera import Camera, OrbitCamera
 from .codegen import compile
 from .errors import ContextError, ParameterError, SceneFileError, SdfglError, ShaderCompileError
 from .evaluate import evaluate
-from .mesh import Mesh, mesh
+from . import mesh  # the package is callable: sg.mesh(scene, step=0.01)
+from .mesh import Mesh
 from .nodes import (BOUND, EXACT, IMPLICIT, Node, bend, box, box_frame, capsule, circle, displace, elongate, extrude,
                     displace_expr, implicit, noise, parametric,
                     mirror, polygon, rectangle, repeat_polar, revolve, rounded, shell, sierpinski, symmetric, tree, cone, cylinder, difference, ellipsoid,

@@ -5,27 +5,43 @@ of the samples) and a normal (the GPU gradient there). Each cell that touches cr
 edges gets one vertex, the minimiser of the quadric sum((n_i . (x - p_i))^2), solved with
 small singular values cut (so flat and edge cells fall back towards the crossings' mean,
 as in Lindstrom's and Ju's treatment) and kept inside the cell. Each crossing edge gives
-one quad over the four cells around it, wound so it faces increasing field.
+one quad over the four cells around it, wound so it faces increasing field. A cell that
+two pieces of surface pass through gets one vertex per piece (sdfgl.mesh.cells), so the
+mesh stays manifold where plain dual contouring pinches two sheets into one vertex.
 """
 from __future__ import annotations
 
 import numpy as np
 
+from .cells import COMPONENT, edge_index
 from .extract_mc import separate
 from .lattice import BLOCK, Lattice
 from .sample import GPUField
 
 SVD_CUT = 0.1  # singular values below this share of the largest are dropped
+# how far (cells) a vertex may leave its cell: a corner that pokes into a cell without crossing
+# any of its edges is found from the cells beside it
+REACH = 1.0
 
 
-def crossings(chunks, lat: Lattice) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:  # noqa: ANN001
+def crossings(chunks, lat: Lattice):  # noqa: ANN001, ANN201
     """All crossing edges, each once: (lower sample (E, 3) int64, axis (E,), t in (0, 1),
-    lower end inside (E,) bool)."""
-    lows, axes, ts, ins = [], [], [], []
+    lower end inside (E,) bool), and the cells they touch: (sorted keys, case (0..255))."""
+    lows, axes, ts, ins, ckeys, cases = [], [], [], [], [], []
+    nc = np.asarray(lat.cells, np.int64)
     for ch in chunks:
         f = ch.fine.copy()
         separate(f, lat.step)
         base = (np.asarray(ch.origin, np.int64) + ch.active) * BLOCK  # (K, 3) lower sample of each block
+        inside = f < 0
+        case = np.zeros((len(f), BLOCK, BLOCK, BLOCK), np.int32)
+        for c in range(8):
+            x, y, z = c & 1, c >> 1 & 1, c >> 2 & 1
+            case |= inside[:, x:x + BLOCK, y:y + BLOCK, z:z + BLOCK].astype(np.int32) << c
+        kb, i, j, k = np.nonzero((case != 0) & (case != 255))
+        g = base[kb] + np.stack([i, j, k], 1)
+        ckeys.append((g[:, 0] * nc[1] + g[:, 1]) * nc[2] + g[:, 2])
+        cases.append(case[kb, i, j, k])
         for a in range(3):
             lo = f[:, :BLOCK, :BLOCK, :BLOCK]
             hi = np.roll(f, -1, axis=1 + a)[:, :BLOCK, :BLOCK, :BLOCK]
@@ -39,20 +55,44 @@ def crossings(chunks, lat: Lattice) -> tuple[np.ndarray, np.ndarray, np.ndarray,
             ts.append(v0 / (v0 - v1))
             ins.append(v0 < 0)
     if not lows:
-        return np.zeros((0, 3), np.int64), np.zeros(0, np.int8), np.zeros(0), np.zeros(0, bool)
-    return np.concatenate(lows), np.concatenate(axes), np.concatenate(ts), np.concatenate(ins)
+        return None
+    ck, cs = np.concatenate(ckeys), np.concatenate(cases)
+    order = np.argsort(ck)
+    return (np.concatenate(lows), np.concatenate(axes), np.concatenate(ts), np.concatenate(ins),
+            ck[order], cs[order])
 
 
-def _quad_cells(low: np.ndarray, axis: np.ndarray) -> np.ndarray:
-    """(E, 4, 3) cells around each edge, counter-clockwise seen from the +axis side."""
-    ring = np.array([(-1, -1), (0, -1), (0, 0), (-1, 0)])
+def refine(field: GPUField, lat: Lattice, low: np.ndarray, axis: np.ndarray, t: np.ndarray,
+           iterations: int = 2) -> tuple[np.ndarray, np.ndarray]:
+    """Crossing points put on the surface along their edges (Newton steps kept in the edge;
+    linear interpolation is off where the field bends, as it does beside an edge of the solid),
+    and the field gradient there."""
+    h = lat.step
+    rows = np.arange(len(t))
+    for i in range(iterations + 1):
+        f, grad = field.gradient(lat.start + (low + np.eye(3)[axis] * t[:, None]) * h, 0.02 * h)
+        if i == iterations:
+            break
+        slope = grad[rows, axis] * h
+        ok = np.abs(slope) > 1e-3 * h
+        t = np.where(ok, np.clip(t - f / np.where(ok, slope, 1.0), 0.0, 1.0), t)
+    return t, grad
+
+
+RING = np.array([(-1, -1), (0, -1), (0, 0), (-1, 0)])
+
+
+def _quad_cells(low: np.ndarray, axis: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(E, 4, 3) cells around each edge, counter-clockwise seen from the +axis side, and the
+    edge's index within each of them (E, 4)."""
     out = np.repeat(low[:, None, :], 4, axis=1)
     for a in range(3):
         sel = axis == a
         b, c = (a + 1) % 3, (a + 2) % 3
-        out[sel, :, b] += ring[:, 0]
-        out[sel, :, c] += ring[:, 1]
-    return out
+        out[sel, :, b] += RING[:, 0]
+        out[sel, :, c] += RING[:, 1]
+    local = np.array([[edge_index(a, -r[0], -r[1]) for r in RING] for a in range(3)])
+    return out, local[axis]
 
 
 def _solve(ata: np.ndarray, atb: np.ndarray, mass: np.ndarray) -> np.ndarray:
@@ -66,19 +106,22 @@ def _solve(ata: np.ndarray, atb: np.ndarray, mass: np.ndarray) -> np.ndarray:
 
 def dual_contour(chunks, lat: Lattice, field: GPUField) -> tuple[np.ndarray, np.ndarray]:  # noqa: ANN001
     """(vertices (N, 3) world, triangles (M, 3) outward-wound)."""
-    low, axis, t, inside = crossings(chunks, lat)
-    if len(low) == 0:
+    found = crossings(chunks, lat)
+    if found is None:
         return np.zeros((0, 3)), np.zeros((0, 3), np.int64)
+    low, axis, t, inside, cell_keys, cell_cases = found
     h = lat.step
-    pts = lat.start + (low + np.eye(3)[axis] * t[:, None]) * h
-    _, grad = field.gradient(pts, 0.05 * h)
+    t, grad = refine(field, lat, low, axis, t)
     n = grad / np.maximum(np.linalg.norm(grad, axis=1, keepdims=True), 1e-30)
-    cells = _quad_cells(low, axis)                       # (E, 4, 3)
+    cells, local_edge = _quad_cells(low, axis)           # (E, 4, 3), (E, 4)
     nc = np.asarray(lat.cells, np.int64)
     keys = (cells[..., 0] * nc[1] + cells[..., 1]) * nc[2] + cells[..., 2]
-    uk, inv = np.unique(keys.ravel(), return_inverse=True)
+    case = cell_cases[np.minimum(np.searchsorted(cell_keys, keys), len(cell_keys) - 1)]
+    piece = COMPONENT[case, local_edge].astype(np.int64)  # which surface piece of the cell
+    uk, inv = np.unique(keys * 4 + piece, return_inverse=True)
     inv = inv.reshape(-1, 4)
-    # quadric of each cell, accumulated over its crossing edges (in cell units about the cell corner)
+    uk //= 4
+    # quadric of each vertex, accumulated over its crossing edges (in cell units about the cell corner)
     cell_lo = np.stack([uk // (nc[1] * nc[2]), (uk // nc[2]) % nc[1], uk % nc[2]], 1)
     idx = inv.ravel()
     local = (np.repeat(low + np.eye(3)[axis] * t[:, None], 4, axis=0) - cell_lo[idx])
@@ -92,7 +135,7 @@ def dual_contour(chunks, lat: Lattice, field: GPUField) -> tuple[np.ndarray, np.
     atb = np.stack([np.bincount(idx, nn[:, i] * d, m) for i in range(3)], 1)
     cnt = np.bincount(idx, minlength=m)[:, None]
     mass = np.stack([np.bincount(idx, local[:, i], m) for i in range(3)], 1) / cnt
-    x = np.clip(_solve(ata, atb, mass), 0.0, 1.0)
+    x = np.clip(_solve(ata, atb, mass), -REACH, 1.0 + REACH)
     verts = lat.start + (cell_lo + x) * h
     quads = np.where(inside[:, None], inv, inv[:, ::-1])
     return verts, split_quads(verts, quads)

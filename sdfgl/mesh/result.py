@@ -28,7 +28,7 @@ class Mesh:
     lattice: Lattice | None = None
     mode: str = "mc"
     timings: dict[str, float] = field(default_factory=dict)
-    samples: int = 0  # map() evaluations it took
+    samples: int = 0  # lattice samples it took (the dense lattice has lattice.samples)
 
     def __repr__(self) -> str:
         return f"Mesh({len(self.vertices)} vertices, {len(self.faces)} triangles, mode={self.mode!r})"

@@ -28,7 +28,8 @@ class GPUField:
         self.origin = shader_origin(scene, centre)
         self.clip = (np.asarray(clip_lo, float) - self.origin, np.asarray(clip_hi, float) - self.origin)
         self._progs: dict[str, tuple] = {}
-        self.samples = 0  # map() evaluations asked for, for the report
+        self.samples = 0        # lattice samples taken (coarse and fine)
+        self.point_samples = 0  # map() calls for values and gradients at points
 
     def _program(self, target: str):  # -> (program, source)
         if target not in self._progs:
@@ -113,7 +114,7 @@ class GPUField:
     def gradient(self, points: np.ndarray, eps: float) -> tuple[np.ndarray, np.ndarray]:
         """(value (N,), gradient (N, 3)) of the clipped field at points; differences ``eps`` wide."""
         v = self._at_points("mesh_gradient", points, 4, eps)
-        self.samples += 5 * len(v)
+        self.point_samples += 5 * len(v)
         return v[:, 3].astype(np.float64), v[:, :3].astype(np.float64)
 
     def colors(self, points: np.ndarray) -> np.ndarray:
