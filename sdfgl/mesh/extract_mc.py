@@ -19,29 +19,37 @@ def dense(ch: Chunk) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     (sign-correct) value at their centre. Returns (volume, mask of sampled points, offset in
     samples of the crop within the chunk)."""
     b0, b1 = ch.active.min(0), ch.active.max(0) + 1
-    shape = tuple((b1 - b0) * BLOCK + 1)
-    idx = [np.minimum(np.arange(n) // BLOCK, b1[a] - b0[a] - 1) + b0[a] for a, n in enumerate(shape)]
-    vol = ch.coarse[np.ix_(*idx)].copy()
-    mask = np.zeros(shape, bool)
-    loc = (ch.active - b0) * BLOCK
-    r = np.arange(BLOCK + 1)
-    ii = loc[:, 0, None, None, None] + r[None, :, None, None]
-    jj = loc[:, 1, None, None, None] + r[None, None, :, None]
-    kk = loc[:, 2, None, None, None] + r[None, None, None, :]
-    vol[ii, jj, kk] = ch.fine
-    mask[ii, jj, kk] = True
-    return vol, mask, b0 * BLOCK
+    nb = b1 - b0
+    coarse = np.pad(ch.coarse[b0[0]:b1[0], b0[1]:b1[1], b0[2]:b1[2]], ((0, 1),) * 3, mode="edge")
+    B = BLOCK
+    vol = np.empty(tuple((nb + 1) * B), np.float32)
+    mask = np.zeros(vol.shape, bool)
+    v6 = vol.reshape(nb[0] + 1, B, nb[1] + 1, B, nb[2] + 1, B)
+    m6 = mask.reshape(v6.shape)
+    v6[...] = coarse[:, None, :, None, :, None]
+    a = (ch.active - b0).T
+    for d in np.ndindex(2, 2, 2):  # block interiors, then far faces, edges and corner
+        src = ch.fine[(slice(None), *[B if x else slice(0, B) for x in d])]
+        dst = (a[0] + d[0], 0 if d[0] else slice(None), a[1] + d[1], 0 if d[1] else slice(None),
+               a[2] + d[2], 0 if d[2] else slice(None))
+        v6[dst] = src
+        m6[dst] = True
+    n = nb * B + 1
+    return (np.ascontiguousarray(vol[:n[0], :n[1], :n[2]]), np.ascontiguousarray(mask[:n[0], :n[1], :n[2]]),
+            b0 * B)
 
 
-def edge_keys(v: np.ndarray, offset: np.ndarray, samples: np.ndarray) -> np.ndarray:
-    """int64 key of the lattice edge holding each vertex (local coords ``v`` + ``offset``)."""
+def edge_keys(v: np.ndarray, offset: np.ndarray, samples: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """int64 key of the lattice edge holding each vertex (local coords ``v`` + ``offset``), and
+    whether that edge lies in a chunk's boundary plane (only those can be found twice)."""
     frac = np.abs(v - np.round(v))
     axis = np.argmax(frac, axis=1)
     base = np.round(v).astype(np.int64)
     rows = np.arange(len(v))
     base[rows, axis] = np.floor(v[rows, axis]).astype(np.int64)
     g = base + offset
-    return ((axis * samples[0] + g[:, 0]) * samples[1] + g[:, 1]) * samples[2] + g[:, 2]
+    seam = ((g % (CHUNK * BLOCK)) == 0) & (np.arange(3)[None, :] != axis[:, None])
+    return ((axis * samples[0] + g[:, 0]) * samples[1] + g[:, 1]) * samples[2] + g[:, 2], seam.any(axis=1)
 
 
 def separate(vol: np.ndarray, step: float) -> None:
@@ -57,7 +65,7 @@ def march(chunks, lat: Lattice) -> tuple[np.ndarray, np.ndarray, np.ndarray]:  #
     from .deps import require
     marching_cubes = require("skimage.measure").marching_cubes
     samples = np.asarray(lat.cells, np.int64) + 1
-    verts, faces, keys = [], [], []
+    verts, faces, keys, seams = [], [], [], []
     n = 0
     for ch in chunks:
         vol, mask, off = dense(ch)
@@ -68,7 +76,9 @@ def march(chunks, lat: Lattice) -> tuple[np.ndarray, np.ndarray, np.ndarray]:  #
         if len(f) == 0:
             continue
         gofs = np.asarray(ch.origin, np.int64) * BLOCK + off
-        keys.append(edge_keys(v.astype(np.float64), gofs, samples))
+        k, seam = edge_keys(v.astype(np.float64), gofs, samples)
+        keys.append(k)
+        seams.append(seam)
         verts.append(lat.start + (v.astype(np.float64) + gofs) * lat.step)
         faces.append(f.astype(np.int64) + n)
         n += len(v)
@@ -78,11 +88,7 @@ def march(chunks, lat: Lattice) -> tuple[np.ndarray, np.ndarray, np.ndarray]:  #
     V = np.concatenate(verts)
     F = np.concatenate(faces)
     # only vertices on edges in a chunk's boundary plane can appear twice: weld those
-    side = CHUNK * BLOCK
-    g = np.stack([k // (samples[1] * samples[2]) % samples[0], k // samples[2] % samples[1], k % samples[2]], 1)
-    axis = k // (samples[0] * samples[1] * samples[2])
-    on_plane = ((g % side) == 0) & (np.arange(3)[None, :] != axis[:, None])
-    seam = np.nonzero(on_plane.any(1))[0]
+    seam = np.nonzero(np.concatenate(seams))[0]
     uk, first, inv = np.unique(k[seam], return_index=True, return_inverse=True)
     target = np.arange(len(k))
     target[seam] = seam[first][inv]

@@ -9,12 +9,13 @@ def clean(verts: np.ndarray, faces: np.ndarray, normals: np.ndarray) -> tuple[np
     f = np.asarray(faces, np.int64).reshape(-1, 3)
     f = f[(f[:, 0] != f[:, 1]) & (f[:, 1] != f[:, 2]) & (f[:, 0] != f[:, 2])]
     if len(f):
-        s = np.sort(f, axis=1)
+        a, b, c = f[:, 0], f[:, 1], f[:, 2]
+        lo, hi = np.minimum(a, np.minimum(b, c)), np.maximum(a, np.maximum(b, c))
         n = max(len(verts), 1)
         if n < 2 ** 21:  # one int64 key per face
-            _, first = np.unique((s[:, 0] * n + s[:, 1]) * n + s[:, 2], return_index=True)
+            _, first = np.unique((lo * n + (a + b + c - lo - hi)) * n + hi, return_index=True)
         else:
-            _, first = np.unique(s, axis=0, return_index=True)
+            _, first = np.unique(np.sort(f, axis=1), axis=0, return_index=True)
         if len(first) < len(f):
             f = f[np.sort(first)]
     used = np.zeros(len(verts), bool)
