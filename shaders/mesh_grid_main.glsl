@@ -1,10 +1,11 @@
-// Field samples on a list of lattice blocks in one draw. Block b has its first sample at
-// texel b of uBlocks (xyz, shader coordinates); it holds uBlock^3 samples uStep apart. The
-// framebuffer is read as one flat array: index = ((b * uBlock + i) * uBlock + j) * uBlock + k
-// for the sample at offset (i, j, k) * uStep.
+// Field samples on a list of lattice blocks in one draw. Block b starts at integer lattice
+// coordinates texel b of uBlocks; sample (i, j, k) of it is at uStart + (corner + (i, j, k)) * uStep,
+// so a sample shared by two blocks is computed from the same numbers, to the same float.
+// The framebuffer is read as one flat array: index = ((b * uBlock + i) * uBlock + j) * uBlock + k.
 uniform sampler2D uBlocks;
 uniform int uBlocksWidth;  // texels per row of uBlocks
 uniform int uWidth;        // framebuffer width
+uniform vec3 uStart;       // lattice origin (shader coordinates)
 uniform float uStep;
 uniform int uBlock;        // samples per block side
 layout(location = 0) out float outValue;
@@ -15,6 +16,6 @@ void main() {
     int b = idx / per;
     int r = idx - b * per;
     ivec3 ijk = ivec3(r / (uBlock * uBlock), (r / uBlock) % uBlock, r % uBlock);
-    vec3 o = texelFetch(uBlocks, ivec2(b % uBlocksWidth, b / uBlocksWidth), 0).xyz;
-    outValue = clippedMap(o + vec3(ijk) * uStep);
+    vec3 corner = texelFetch(uBlocks, ivec2(b % uBlocksWidth, b / uBlocksWidth), 0).xyz;
+    outValue = clippedMap(uStart + (corner + vec3(ijk)) * uStep);
 }

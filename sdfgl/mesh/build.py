@@ -43,7 +43,7 @@ def mesh(scene: Node, step: float | None = None, resolution: int | None = None, 
     parts = chunks(field, lat, scene.lipschitz, Progress(sys.stderr if show else None))
     if mode == "mc":
         from .extract_mc import march
-        verts, faces, _ = march(parts, lat)
+        verts, faces = march(parts, lat)
     else:
         from .extract_dc import dual_contour
         verts, faces = dual_contour(parts, lat, field)

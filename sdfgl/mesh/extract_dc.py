@@ -14,7 +14,7 @@ from __future__ import annotations
 import numpy as np
 
 from .cells import COMPONENT, edge_index
-from .extract_mc import separate
+from .crossings import crossings
 from .lattice import BLOCK, Lattice
 from .sample import GPUField
 
@@ -22,44 +22,6 @@ SVD_CUT = 0.1  # singular values below this share of the largest are dropped
 # how far (cells) a vertex may leave its cell: a corner that pokes into a cell without crossing
 # any of its edges is found from the cells beside it
 REACH = 1.0
-
-
-def crossings(chunks, lat: Lattice):  # noqa: ANN001, ANN201
-    """All crossing edges, each once: (lower sample (E, 3) int64, axis (E,), t in (0, 1),
-    lower end inside (E,) bool), and the cells they touch: (sorted keys, case (0..255))."""
-    lows, axes, ts, ins, ckeys, cases = [], [], [], [], [], []
-    nc = np.asarray(lat.cells, np.int64)
-    for ch in chunks:
-        f = ch.fine.copy()
-        separate(f, lat.step)
-        base = (np.asarray(ch.origin, np.int64) + ch.active) * BLOCK  # (K, 3) lower sample of each block
-        inside = f < 0
-        case = np.zeros((len(f), BLOCK, BLOCK, BLOCK), np.int32)
-        for c in range(8):
-            x, y, z = c & 1, c >> 1 & 1, c >> 2 & 1
-            case |= inside[:, x:x + BLOCK, y:y + BLOCK, z:z + BLOCK].astype(np.int32) << c
-        kb, i, j, k = np.nonzero((case != 0) & (case != 255))
-        g = base[kb] + np.stack([i, j, k], 1)
-        ckeys.append((g[:, 0] * nc[1] + g[:, 1]) * nc[2] + g[:, 2])
-        cases.append(case[kb, i, j, k])
-        for a in range(3):
-            lo = f[:, :BLOCK, :BLOCK, :BLOCK]
-            hi = np.roll(f, -1, axis=1 + a)[:, :BLOCK, :BLOCK, :BLOCK]
-            m = (lo < 0) != (hi < 0)
-            if not m.any():
-                continue
-            kb, i, j, k = np.nonzero(m)
-            v0, v1 = lo[m].astype(np.float64), hi[m].astype(np.float64)
-            lows.append(base[kb] + np.stack([i, j, k], 1))
-            axes.append(np.full(len(kb), a, np.int8))
-            ts.append(v0 / (v0 - v1))
-            ins.append(v0 < 0)
-    if not lows:
-        return None
-    ck, cs = np.concatenate(ckeys), np.concatenate(cases)
-    order = np.argsort(ck)
-    return (np.concatenate(lows), np.concatenate(axes), np.concatenate(ts), np.concatenate(ins),
-            ck[order], cs[order])
 
 
 def refine(field: GPUField, lat: Lattice, low: np.ndarray, axis: np.ndarray, t: np.ndarray,
@@ -109,7 +71,7 @@ def dual_contour(chunks, lat: Lattice, field: GPUField) -> tuple[np.ndarray, np.
     found = crossings(chunks, lat)
     if found is None:
         return np.zeros((0, 3)), np.zeros((0, 3), np.int64)
-    low, axis, t, inside, cell_keys, cell_cases = found
+    low, axis, t, inside, cell_keys, cell_cases, _ = found
     h = lat.step
     t, grad = refine(field, lat, low, axis, t)
     n = grad / np.maximum(np.linalg.norm(grad, axis=1, keepdims=True), 1e-30)

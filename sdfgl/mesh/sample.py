@@ -69,16 +69,19 @@ class GPUField:
             if tex is not None:
                 tex.release()
 
-    def blocks(self, corners: np.ndarray, size: int, step: float) -> np.ndarray:
-        """Field at ``size``^3 lattice points ``step`` apart from each (M, 3) world corner:
-        float32 (M, size, size, size), indexed [block, x, y, z]."""
-        corners = np.asarray(corners, np.float64).reshape(-1, 3)
+    def blocks(self, start: np.ndarray, corners: np.ndarray, size: int, step: float) -> np.ndarray:
+        """Field at ``size``^3 lattice points ``start + (corner + (i, j, k)) * step`` for each
+        (M, 3) integer corner: float32 (M, size, size, size), indexed [block, i, j, k]."""
+        corners = np.asarray(corners, np.int64).reshape(-1, 3)
+        if corners.size and corners.max() + size >= 1 << 24:
+            raise ValueError("lattice coordinates beyond float32's exact integers")
         per = size ** 3
         out = np.empty((len(corners), size, size, size), np.float32)
         batch = max(1, MAX_TEXELS // per)
         prog = self._program("mesh_grid")
         prog["uBlock"].value = size
         prog["uStep"].value = float(step)
+        prog["uStart"].value = tuple(float(x) for x in np.asarray(start, np.float64) - self.origin)
         prog["uBlocks"].value = 0
         for s in range(0, len(corners), batch):
             part = corners[s:s + batch]
@@ -88,7 +91,7 @@ class GPUField:
             bw = min(len(part), 4096)
             prog["uBlocksWidth"].value = bw
             prog["uWidth"].value = w
-            vals = self._draw(prog, w, h, 1, part - self.origin, bw)
+            vals = self._draw(prog, w, h, 1, part.astype(np.float32), bw)
             out[s:s + len(part)] = vals[:n, 0].reshape(len(part), size, size, size)
         self.samples += len(corners) * per
         return out

@@ -47,8 +47,7 @@ def chunks(field: GPUField, lat: Lattice, lipschitz: float,
     r = skip_radius(lipschitz, h)
     coarse = None
     if math.isfinite(r):
-        corners = lat.start + (np.asarray(origins, float) * BLOCK + BLOCK / 2) * h
-        coarse = field.blocks(corners, CHUNK, BLOCK * h)
+        coarse = field.blocks(lat.start + BLOCK * h / 2, np.asarray(origins), CHUNK, BLOCK * h)
     for n, org in enumerate(origins):
         o = np.asarray(org)
         size = np.minimum(CHUNK, nb - o)
@@ -64,8 +63,7 @@ def chunks(field: GPUField, lat: Lattice, lipschitz: float,
             progress(n + 1, len(origins))
         if len(act) == 0:
             continue
-        corners = lat.start + ((o + act) * BLOCK) * h
-        fine = field.blocks(corners, BLOCK + 1, h)
+        fine = field.blocks(lat.start, (o + act) * BLOCK, BLOCK + 1, h)
         yield Chunk(tuple(int(x) for x in o), c, act, fine)  # type: ignore[arg-type]
 
 
