@@ -30,9 +30,11 @@ from sdf import sphere, box, cylinder, X, Y, Z
 f = sphere(1) & box(1.5)
 c = cylinder(0.5)
 f -= c.orient(X) | c.orient(Y) | c.orient(Z)
-t = time.perf_counter()
+t, c = time.perf_counter(), time.process_time()
 pts = np.asarray(f.generate(samples=SAMPLES, verbose=False))
-print(time.perf_counter() - t)
+el, cpu = time.perf_counter() - t, time.process_time() - c
+np.save(OUT, pts)
+print(el, cpu)
 """
 
 DISTFORGE = """
@@ -43,11 +45,11 @@ f = df.sphere(1) & df.box(1.5)
 c = df.cylinder(0.5, 4)
 f = f - (c.orient(df.X) | c | c.orient(df.Z))
 mesh.generate(f, samples=1 << 12, verbose=False)  # warm-up: shader compile
-t = time.perf_counter()
+t, c = time.perf_counter(), time.process_time()
 v, faces = mesh.generate(f, samples=SAMPLES, verbose=False)
-el = time.perf_counter() - t
+el, cpu = time.perf_counter() - t, time.process_time() - c
 np.save(OUT, np.asarray(v, dtype=np.float64)[np.asarray(faces).ravel()])
-print(el)
+print(el, cpu)
 """
 
 
@@ -58,21 +60,20 @@ def csg() -> Node:
     return (sphere(1) & box(1.5)) - (c.orient((1, 0, 0)) | c | c.orient((0, 0, 1)))
 
 
-def _peer(code: str, samples: int, env: dict | None = None) -> tuple[float, np.ndarray] | str:
-    """Run a peer's script; (seconds, triangle corners (3M, 3)) or why it could not run."""
+def _peer(code: str, samples: int, env: dict | None = None) -> tuple[tuple[float, float], np.ndarray] | str:
+    """Run a peer's script; ((wall s, CPU s of all its threads), triangle corners (3M, 3)) or
+    why it could not run."""
     import tempfile
     with tempfile.TemporaryDirectory() as d:
         out = Path(d) / "pts.npy"
         script = code.replace("SAMPLES", str(samples)).replace("OUT", repr(str(out)))
-        if "np.save" not in script:
-            script = script.replace("print(time.perf_counter() - t)",
-                                    f"np.save({str(out)!r}, pts)\nprint(time.perf_counter() - t)")
         r = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=600,
                            env={**os.environ, **(env or {})})
         if r.returncode != 0:
             last = (r.stderr.strip().splitlines() or ["(no message)"])[-1]
             return f"failed: {last[:160]}"
-        return float(r.stdout.strip().splitlines()[-1]), np.load(out)
+        wall, cpu = (float(x) for x in r.stdout.strip().splitlines()[-1].split())
+        return (wall, cpu), np.load(out)
 
 
 def _available(module: str) -> bool:
@@ -114,30 +115,25 @@ def run_mesh(samples: int = 2 ** 22, rounds: int = 3, big: int | None = 1024,
     from .build import mesh
     say = progress or (lambda s: None)
     scene = csg()
-    tools: dict[str, Callable[[], float | str]] = {}
+    tools: dict[str, Callable[[], tuple[float, float] | str]] = {}
     corners: dict[str, np.ndarray] = {}
-    times: dict[str, list[float]] = {}
+    times: dict[str, list[tuple[float, float]]] = {}
     notes: list[str] = []
 
-    def ours() -> float:
-        t = time.perf_counter()
-        m = mesh(scene, samples=samples, progress=False)
-        el = time.perf_counter() - t
-        corners["sdfgl"] = m.vertices[m.faces].reshape(-1, 3)
-        return el
-
-    def ours_sharp() -> float:
-        t = time.perf_counter()
-        m = mesh(scene, samples=samples, mode="sharp", progress=False)
-        el = time.perf_counter() - t
-        corners["sdfgl sharp"] = m.vertices[m.faces].reshape(-1, 3)
-        return el
+    def timed(name: str, mode: str) -> Callable[[], tuple[float, float]]:
+        def run() -> tuple[float, float]:
+            t, c = time.perf_counter(), time.process_time()
+            m = mesh(scene, samples=samples, mode=mode, progress=False)
+            el = (time.perf_counter() - t, time.process_time() - c)
+            corners[name] = m.vertices[m.faces].reshape(-1, 3)
+            return el
+        return run
     mesh(scene, samples=1 << 12, progress=False)  # compile the programs once
     mesh(scene, samples=1 << 12, mode="sharp", progress=False)
-    tools["sdfgl"] = ours
-    tools["sdfgl sharp"] = ours_sharp
+    tools["sdfgl"] = timed("sdfgl", "mc")
+    tools["sdfgl sharp"] = timed("sdfgl sharp", "sharp")
     if _available("sdf"):
-        def fog() -> float | str:
+        def fog() -> tuple[float, float] | str:
             r = _peer(FOGLEMAN, samples)
             if isinstance(r, str):
                 return r
@@ -152,7 +148,7 @@ def run_mesh(samples: int = 2 ** 22, rounds: int = 3, big: int | None = 1024,
         if not display:
             notes.append("DistForge skipped: it needs a display and Xvfb is not installed")
         else:
-            def dist() -> float | str:
+            def dist() -> tuple[float, float] | str:
                 r = _peer(DISTFORGE, samples, {"DISPLAY": display})
                 if isinstance(r, str):
                     return r
@@ -176,18 +172,23 @@ def run_mesh(samples: int = 2 ** 22, rounds: int = 3, big: int | None = 1024,
             xvfb.wait()
     rows = {}
     for name, ts in times.items():
-        rows[name] = {"median_s": statistics.median(ts), "times_s": ts, **_accuracy(scene, corners[name])}
-    base = rows.get("sdfgl", {}).get("median_s")
-    lines = ["| tool | median time (s) | sdfgl time / tool's | vertices | max abs f at vertices | p99 | max abs f (cells) |",
-             "| --- | ---: | ---: | ---: | ---: | ---: | ---: |"]
+        rows[name] = {"median_s": statistics.median(t[0] for t in ts), "median_cpu_s": statistics.median(t[1] for t in ts),
+                      "times_s": ts, **_accuracy(scene, corners[name])}
+    base = rows.get("sdfgl", {})
+    lines = ["| tool | median wall (s) | sdfgl / tool (wall) | median CPU (s) | sdfgl / tool (CPU) | vertices "
+             "| max abs f at vertices | p99 | max abs f (cells) |",
+             "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
     for name, r in rows.items():
-        ratio = f"{base / r['median_s']:.2f}" if base else "-"
-        lines.append(f"| {name} | {r['median_s']:.3f} | {ratio} | {r['vertices']} | {r['max_f']:.1e} | "
-                     f"{r['p99_f']:.1e} | {r['max_f'] / r['cell']:.3f} |")
+        ratio = f"{base['median_s'] / r['median_s']:.2f}" if base else "-"
+        cratio = f"{base['median_cpu_s'] / r['median_cpu_s']:.2f}" if base else "-"
+        lines.append(f"| {name} | {r['median_s']:.3f} | {ratio} | {r['median_cpu_s']:.3f} | {cratio} | {r['vertices']} | "
+                     f"{r['max_f']:.1e} | {r['p99_f']:.1e} | {r['max_f'] / r['cell']:.3f} |")
     data: dict = {"samples": samples, "rounds": rounds, "rows": rows, "notes": notes,
                   "load": os.getloadavg()}
     md = (f"fogleman/sdf's CSG example at {samples} samples ({rounds} interleaved rounds, medians; load "
-          f"average {data['load'][0]:.1f} on {os.cpu_count()} cores).\n\n" + "\n".join(lines))
+          f"average {data['load'][0]:.1f} on {os.cpu_count()} cores). CPU is the process's CPU time over "
+          f"all its threads (llvmpipe's and numpy's), a measure of work the load does not inflate.\n\n"
+          + "\n".join(lines))
     if big:
         say(f"mesh bench: {big}^3 effective")
         big_row = run_big(scene, big)

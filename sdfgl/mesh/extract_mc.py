@@ -14,6 +14,8 @@ from .cells import EDGE_AXIS, EDGE_OFFSET, TRIANGLES
 from .crossings import crossings
 from .lattice import Lattice
 
+BATCH = 1 << 18  # crossing cells per batch
+
 
 def march(chunks, lat: Lattice) -> tuple[np.ndarray, np.ndarray]:  # noqa: ANN001
     """(vertices (N, 3) world, triangles (M, 3) wound counter-clockwise seen from outside)."""
@@ -25,11 +27,14 @@ def march(chunks, lat: Lattice) -> tuple[np.ndarray, np.ndarray]:  # noqa: ANN00
     ekey = ((axis.astype(np.int64) * ns[0] + low[:, 0]) * ns[1] + low[:, 1]) * ns[2] + low[:, 2]
     order = np.argsort(ekey)
     ekey = ekey[order]
-    tri = TRIANGLES[cell_cases]                       # (C, T, 3) local edges
-    cell_idx, slot = np.nonzero(tri[:, :, 0] >= 0)
-    local = tri[cell_idx, slot].astype(np.int64)      # (M, 3)
-    g = cell_lo[cell_idx][:, None, :] + EDGE_OFFSET[local]          # (M, 3, 3) lower sample of each edge
-    key = ((EDGE_AXIS[local] * ns[0] + g[..., 0]) * ns[1] + g[..., 1]) * ns[2] + g[..., 2]
-    faces = order[np.searchsorted(ekey, key)]
+    faces = []
+    for s in range(0, len(cell_cases), BATCH):  # in batches: the (M, 3, 3) index arrays are large
+        tri = TRIANGLES[cell_cases[s:s + BATCH]]          # (C, T, 3) local edges
+        cell_idx, slot = np.nonzero(tri[:, :, 0] >= 0)
+        local = tri[cell_idx, slot].astype(np.int64)      # (M, 3)
+        g = cell_lo[s + cell_idx][:, None, :] + EDGE_OFFSET[local]  # (M, 3, 3) lower sample of each edge
+        key = ((EDGE_AXIS[local] * ns[0] + g[..., 0]) * ns[1] + g[..., 1]) * ns[2] + g[..., 2]
+        faces.append(order[np.searchsorted(ekey, key)])
+    faces = np.concatenate(faces)
     verts = lat.start + (low + np.eye(3)[axis] * t[:, None]) * lat.step
     return verts, faces
