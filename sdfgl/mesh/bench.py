@@ -1,5 +1,6 @@
 """Mesh export benchmark: sdfgl against fogleman/sdf (PyPI sdf-fork) and DistForge on the same
-scene at the same sample count (fogleman's CSG example, samples as fogleman counts them).
+scene at the same sample count in the same box (fogleman's CSG example; samples as fogleman
+counts them; the box is sdfgl's default, given to the peers as their bounds).
 
 Tools run interleaved round by round (the machine is shared: medians and ratios, not single
 times); accuracy is |f| of the float64 twin at each tool's vertices, in units and in its own
@@ -31,7 +32,7 @@ f = sphere(1) & box(1.5)
 c = cylinder(0.5)
 f -= c.orient(X) | c.orient(Y) | c.orient(Z)
 t, c = time.perf_counter(), time.process_time()
-pts = np.asarray(f.generate(samples=SAMPLES, verbose=False))
+pts = np.asarray(f.generate(samples=SAMPLES, bounds=BOUNDS, verbose=False))
 el, cpu = time.perf_counter() - t, time.process_time() - c
 np.save(OUT, pts)
 print(el, cpu)
@@ -44,9 +45,9 @@ from distforge.api.engine import mesh
 f = df.sphere(1) & df.box(1.5)
 c = df.cylinder(0.5, 4)  # DistForge's orient() aims a shape's longest side: rotate instead
 f = f - (c.rotate(df.Z, math.pi / 2) | c | c.rotate(df.X, math.pi / 2))
-mesh.generate(f, samples=1 << 12, verbose=False)  # warm-up: shader compile
+mesh.generate(f, bounds=BOUNDS, samples=1 << 12, verbose=False)  # warm-up: shader compile
 t, c = time.perf_counter(), time.process_time()
-v, faces = mesh.generate(f, samples=SAMPLES, verbose=False)
+v, faces = mesh.generate(f, bounds=BOUNDS, samples=SAMPLES, verbose=False)
 el, cpu = time.perf_counter() - t, time.process_time() - c
 np.save(OUT, np.asarray(v, dtype=np.float64)[np.asarray(faces).ravel()])
 print(el, cpu)
@@ -60,13 +61,14 @@ def csg() -> Node:
     return (sphere(1) & box(1.5)) - (c.orient((1, 0, 0)) | c | c.orient((0, 0, 1)))
 
 
-def _peer(code: str, samples: int, env: dict | None = None) -> tuple[tuple[float, float], np.ndarray] | str:
+def _peer(code: str, samples: int, bounds: tuple, env: dict | None = None) -> tuple[tuple[float, float], np.ndarray] | str:
     """Run a peer's script; ((wall s, CPU s of all its threads), triangle corners (3M, 3)) or
     why it could not run."""
     import tempfile
     with tempfile.TemporaryDirectory() as d:
         out = Path(d) / "pts.npy"
-        script = code.replace("SAMPLES", str(samples)).replace("OUT", repr(str(out)))
+        box = repr(tuple(tuple(float(x) for x in b) for b in bounds))
+        script = code.replace("SAMPLES", str(samples)).replace("OUT", repr(str(out))).replace("BOUNDS", box)
         r = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=600,
                            env={**os.environ, **(env or {})})
         if r.returncode != 0:
@@ -115,6 +117,8 @@ def run_mesh(samples: int = 2 ** 22, rounds: int = 3, big: int | None = 1024,
     from .build import mesh
     say = progress or (lambda s: None)
     scene = csg()
+    from .lattice import make_lattice
+    box = make_lattice(scene, samples=samples).box  # every tool samples this box
     tools: dict[str, Callable[[], tuple[float, float] | str]] = {}
     corners: dict[str, np.ndarray] = {}
     times: dict[str, list[tuple[float, float]]] = {}
@@ -134,7 +138,7 @@ def run_mesh(samples: int = 2 ** 22, rounds: int = 3, big: int | None = 1024,
     tools["sdfgl sharp"] = timed("sdfgl sharp", "sharp")
     if _available("sdf"):
         def fog() -> tuple[float, float] | str:
-            r = _peer(FOGLEMAN, samples)
+            r = _peer(FOGLEMAN, samples, box)
             if isinstance(r, str):
                 return r
             corners["fogleman/sdf"] = r[1]
@@ -149,7 +153,7 @@ def run_mesh(samples: int = 2 ** 22, rounds: int = 3, big: int | None = 1024,
             notes.append("DistForge skipped: it needs a display and Xvfb is not installed")
         else:
             def dist() -> tuple[float, float] | str:
-                r = _peer(DISTFORGE, samples, {"DISPLAY": display})
+                r = _peer(DISTFORGE, samples, box, {"DISPLAY": display})
                 if isinstance(r, str):
                     return r
                 corners["DistForge"] = r[1]
@@ -185,7 +189,8 @@ def run_mesh(samples: int = 2 ** 22, rounds: int = 3, big: int | None = 1024,
                      f"{r['max_f']:.1e} | {r['p99_f']:.1e} | {r['max_f'] / r['cell']:.3f} |")
     data: dict = {"samples": samples, "rounds": rounds, "rows": rows, "notes": notes,
                   "load": os.getloadavg()}
-    md = (f"fogleman/sdf's CSG example at {samples} samples ({rounds} interleaved rounds, medians; load "
+    md = (f"fogleman/sdf's CSG example at {samples} samples in the box {np.round(box[0], 4).tolist()} .. "
+          f"{np.round(box[1], 4).tolist()} ({rounds} interleaved rounds, medians; load "
           f"average {data['load'][0]:.1f} on {os.cpu_count()} cores). CPU is the process's CPU time over "
           f"all its threads (llvmpipe's and numpy's), a measure of work the load does not inflate.\n\n"
           + "\n".join(lines))
