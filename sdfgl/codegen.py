@@ -276,9 +276,6 @@ def ref_step(settings: Settings, scale: float) -> float:
     return settings.ref_step if settings.ref_step is not None else scale / 512.0
 
 
-# targets of the mesh exporter (sdfgl.mesh): same map(), other main()s
-MESH_TARGETS = ("mesh_grid", "mesh_gradient", "mesh_color")
-
 BOUNDS_PAD = 1e-3  # the ray clip box grows by this share of the scene size
 
 
@@ -376,8 +373,9 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
 
     ``origin`` (float64) is the world point that the shader's coordinates are relative
     to; ``target`` is ``"render"`` (the image), ``"evaluate"`` (map() at given points) or
-    one of :data:`MESH_TARGETS` (the mesh exporter's samplers: a lattice of blocks, value and
-    gradient at points, colour at points).
+    one of the mesh exporter's samplers (sdfgl.mesh: same map(), other main()s):
+    ``"mesh_grid"`` (a lattice of blocks), ``"mesh_gradient"`` (value and gradient at points),
+    ``"mesh_color"`` (colour at points).
     """
     if not isinstance(scene, Node):
         raise ParameterError(f"scene must be an sdfgl node, got {type(scene).__name__} {scene!r}")

@@ -27,13 +27,14 @@ def march(chunks, lat: Lattice) -> tuple[np.ndarray, np.ndarray]:  # noqa: ANN00
     ekey = ((axis.astype(np.int64) * ns[0] + low[:, 0]) * ns[1] + low[:, 1]) * ns[2] + low[:, 2]
     order = np.argsort(ekey)
     ekey = ekey[order]
+    # an edge's key is linear in its lower sample: the cell's key plus a per-edge offset
+    base = (cell_lo[:, 0] * ns[1] + cell_lo[:, 1]) * ns[2] + cell_lo[:, 2]
+    offset = EDGE_AXIS * int(np.prod(ns)) + (EDGE_OFFSET[:, 0] * ns[1] + EDGE_OFFSET[:, 1]) * ns[2] + EDGE_OFFSET[:, 2]
     faces = []
-    for s in range(0, len(cell_cases), BATCH):  # in batches: the (M, 3, 3) index arrays are large
+    for s in range(0, len(cell_cases), BATCH):  # in batches: bounded temporaries
         tri = TRIANGLES[cell_cases[s:s + BATCH]]          # (C, T, 3) local edges
         cell_idx, slot = np.nonzero(tri[:, :, 0] >= 0)
-        local = tri[cell_idx, slot].astype(np.int64)      # (M, 3)
-        g = cell_lo[s + cell_idx][:, None, :] + EDGE_OFFSET[local]  # (M, 3, 3) lower sample of each edge
-        key = ((EDGE_AXIS[local] * ns[0] + g[..., 0]) * ns[1] + g[..., 1]) * ns[2] + g[..., 2]
+        key = base[s + cell_idx][:, None] + offset[tri[cell_idx, slot]]
         faces.append(order[np.searchsorted(ekey, key)])
     faces = np.concatenate(faces)
     verts = lat.start + (low + np.eye(3)[axis] * t[:, None]) * lat.step

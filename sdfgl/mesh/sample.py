@@ -1,6 +1,6 @@
 """The scene's generated map() on the GPU, as the mesh exporter needs it.
 
-Three draws, all from the same codegen as render() (targets in codegen.MESH_TARGETS):
+Three draws, all from the same codegen as render() (targets mesh_grid, mesh_gradient, mesh_color):
 lattice blocks of field values, value + gradient at points, colour at points. The field is
 map() cut by the sampling box (shaders/mesh_clip.glsl), so solids that leave the box close.
 """
