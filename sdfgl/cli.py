@@ -1,4 +1,4 @@
-"""Command line: ``sdfgl render | shader | view | html | bench | animate | batch``."""
+"""Command line: ``sdfgl render | shader | view | html | mesh | bench | animate | batch``."""
 from __future__ import annotations
 
 import argparse
@@ -182,6 +182,8 @@ def build_parser() -> argparse.ArgumentParser:
     from .animate.cli_batch import add_parser as add_batch
     add_animate(sub)
     add_batch(sub)
+    from .mesh.cli import add_parser as add_mesh_parser
+    add_mesh_parser(sub)
     return parser
 
 

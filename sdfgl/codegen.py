@@ -441,7 +441,10 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     """Build the fragment shader for ``scene``.
 
     ``origin`` (float64) is the world point that the shader's coordinates are relative
-    to; ``target`` is ``"render"`` (the image) or ``"evaluate"`` (map() at given points);
+    to; ``target`` is ``"render"`` (the image), ``"evaluate"`` (map() at given points) or
+    one of the mesh exporter's samplers (sdfgl.mesh: same map(), other main()s):
+    ``"mesh_grid"`` (a lattice of blocks), ``"mesh_gradient"`` (value and gradient at points),
+    ``"mesh_color"`` (colour at points);
     ``dialect`` is ``"desktop"`` (GLSL 3.30) or ``"webgl2"`` (GLSL ES 3.00): the same
     code under another header (see :mod:`sdfgl.gl.dialect`); ``projection`` is the
     camera's ("perspective" or "orthographic": it shapes the rays).
@@ -464,7 +467,7 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     helpers: dict = {}
     dist, dist_result = _emit_map(scene, "dist", org, params, shared, grids, settings.grid, helpers)
     color, color_result = (_emit_map(scene, "color", org, params, shared, grids, settings.grid, helpers)
-                           if target == "render" else (None, ""))
+                           if target in ("render", "mesh_color") else (None, ""))
     detail, detail_result = (_emit_map(scene, "dist", org, params, shared, grids, settings.grid, helpers, True)
                              if target == "render" and scene.has_detail else (None, ""))
     channels = material_channels(scene) if target == "render" else []
@@ -499,12 +502,19 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     if target == "evaluate":
         b.add_file("evaluate_main")
         return b.build(params, live, data)
+    if target in ("mesh_grid", "mesh_gradient"):
+        b.add_file("mesh_clip")
+        b.add_file(f"{target}_main")
+        return b.build(params, live, data)
     assert color is not None
     _helpers(b, color, done)
     _function(b, "vec3 mapColor(vec3 p)", color, color_result, "{}.rgb")
     for ch, (em, result) in passes.items():
         _helpers(b, em, done)
         _function(b, f"vec3 map{ch.capitalize()}(vec3 p)", em, result, "{}.rgb")
+    if target == "mesh_color":
+        b.add_file("mesh_color_main")
+        return b.build(params, live, data)
     if detail is not None:
         _helpers(b, detail, done)
         _function(b, "float mapDetail(vec3 p)", detail, detail_result, "{}")
