@@ -11,6 +11,7 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..params import Live, Param
+from .record import Recorded
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..codegen import Emitter
@@ -30,8 +31,11 @@ def as_points(points: object) -> np.ndarray:
     return p
 
 
-class Node:
-    """Base class of every scene-graph node. Nodes are immutable after construction."""
+class Node(Recorded, register=False):
+    """Base class of every scene-graph node. Nodes are immutable after construction.
+
+    A subclass that sets ``kind`` is registered under it (see :mod:`sdfgl.nodes.record`):
+    pickle and scene documents rebuild it from its constructor's arguments."""
 
     kind: ClassVar[str] = "node"
 

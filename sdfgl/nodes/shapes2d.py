@@ -8,12 +8,13 @@ import numpy as np
 from ..errors import ParameterError
 from . import validate as v
 from .base import EXACT, Node
+from .record import Recorded
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..codegen import Emitter
 
 
-class Shape2D:
+class Shape2D(Recorded, register=False):
     """A 2D signed distance: GLSL over a vec2, numpy over (..., 2), and its bounds."""
 
     kind = "shape2d"
