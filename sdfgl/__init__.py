@@ -8,7 +8,8 @@ import numpy as _np
 
 from .camera import Camera, OrbitCamera
 from .codegen import compile
-from .errors import ContextError, ParameterError, SceneFileError, SdfglError, ShaderCompileError
+from .errors import (ContextError, ParameterError, SceneDocumentError, SceneFileError, SdfglError,
+                     ShaderCompileError)
 from .evaluate import evaluate
 from .nodes import (BOUND, EXACT, IMPLICIT, Node, bend, box, box_frame, capsule, circle, displace, elongate, extrude,
                     displace_expr, implicit, noise, parametric,
@@ -17,6 +18,7 @@ from .nodes import (BOUND, EXACT, IMPLICIT, Node, bend, box, box_frame, capsule,
                     union)
 from .params import Param, param
 from .render import RenderResult, Renderer, render
+from .scene_io import from_dict, load_scene, save_scene
 
 
 def show(scene: Node, camera: Camera | None = None, size: tuple[int, int] = (960, 540), **settings: object) -> None:
@@ -38,5 +40,5 @@ __all__ = [
     "circle", "rectangle", "polygon", "extrude", "revolve", "mirror", "symmetric", "repeat_polar", "elongate",
     "rounded", "shell", "sierpinski", "tree", "displace", "noise", "implicit", "parametric", "displace_expr", "intersection", "difference", "X", "Y", "Z",
     "EXACT", "BOUND", "IMPLICIT", "SdfglError", "ParameterError", "ShaderCompileError", "ContextError",
-    "SceneFileError",
+    "SceneFileError", "SceneDocumentError", "save_scene", "load_scene", "from_dict",
 ]

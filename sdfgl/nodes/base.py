@@ -85,6 +85,11 @@ class Node(Recorded, register=False):
             return self.label()
         return f"{self.label()}[{', '.join(repr(c) for c in self.children)}]"
 
+    def to_dict(self) -> dict:
+        """This scene as a JSON-ready document (docs/scene-format.md); ``sg.from_dict`` reads it back."""
+        from ..scene_io import to_dict
+        return to_dict(self)
+
     # -- the five things every node provides ----------------------------------------------
     def emit(self, em: "Emitter", p: str) -> str:
         """Append GLSL for this node's field at point variable ``p``; return the result variable.

@@ -80,15 +80,17 @@ def _rebuild(cls: type, args: tuple, kwargs: dict) -> Any:
 
 def _reduce_param(p: Any) -> tuple:
     # a Param's checks are closures of the nodes that use it: the nodes add them again
-    # when pickle rebuilds them, so only value, name and range travel
-    return (_rebuild_param, (p.value, p.name, getattr(p, "range", None)))
+    # when pickle rebuilds them, so only value, name and range travel (an unnamed
+    # parameter is named by its label, so the generated source stays the same)
+    return (_rebuild_param, (p.value, p.name or p.label, getattr(p, "range", None)))
 
 
 def _rebuild_param(value: Any, name: str | None, rng: Any) -> Any:
     from ..params import Param
     p = Param(value, name)
     if rng is not None:
-        p.range = rng  # type: ignore[attr-defined]
+        from ..scene_io.decode import set_range
+        set_range(p, rng[0], rng[1], f"param {name}")
     return p
 
 
