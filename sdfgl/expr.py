@@ -191,6 +191,12 @@ def _postorder(tree: Tree) -> Iterable[Tree]:
         stack.extend((k, False) for k in reversed(kids))
 
 
+def _check_calls(tree: Tree, what: str, text: str) -> None:
+    for node in _postorder(tree):
+        if node[0] == "call" and node[1] not in FUNCTIONS:
+            raise _fail(what, text, f"unknown function {node[1]!r}; allowed: {', '.join(sorted(FUNCTIONS))}")
+
+
 def _fold(tree: Tree, leaf: Callable[[Tree], Any], combine: Callable[[Tree, list], Any]) -> Any:
     values: dict[int, Any] = {}
     for node in _postorder(tree):
@@ -206,6 +212,7 @@ def parse_sympy(text: str, variables: Mapping[str, Any], what: str = "expression
     """``text`` as a sympy expression over ``variables`` (name -> sympy Symbol)."""
     import sympy as sp
     tree = parse_tree(text, what)
+    _check_calls(tree, what, text)
 
     def leaf(node: Tree) -> Any:
         if node[0] == "num":
@@ -263,6 +270,7 @@ def parse_live(text: str, params: Mapping[str, Any], what: str = "expression") -
     values (``sdfgl.sin`` etc.)."""
     import sdfgl
     tree = parse_tree(text, what)
+    _check_calls(tree, what, text)
 
     def leaf(node: Tree) -> Any:
         if node[0] == "num":
