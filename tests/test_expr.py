@@ -33,10 +33,24 @@ HOSTILE = [
 ]
 
 
+def refused_within(seconds, call, pattern):
+    """Assert ``call`` raises ParameterError matching ``pattern``; the fastest of three tries
+    must be under ``seconds`` (the issue's bound; the minimum keeps a loaded machine's
+    scheduling noise out). Returns the message."""
+    best, msg = float("inf"), ""
+    for _ in range(3):
+        t0 = time.perf_counter()
+        with pytest.raises(sg.ParameterError, match=pattern) as info:
+            call()
+        best, msg = min(best, time.perf_counter() - t0), str(info.value)
+    assert best < seconds, f"refused after {best:.3f} s"
+    return msg
+
+
 @pytest.fixture(scope="module", autouse=True)
 def _sympy_loaded():
     # time the refusals, not sympy's one-time import and set-up
-    sg.displace_expr(sg.sphere(1), "0.01*sin(x)*(x + y + 1)**2")
+    sg.displace_expr(sg.sphere(1), "0.01*sin(x)*(x + y + 1)**2", lipschitz=1)
     sg.parametric("s", "t", "s*t")
     yield
 
@@ -50,11 +64,8 @@ def test_hostile_expressions_are_refused_fast_with_a_message(api, name, text, pa
     call = {"implicit": lambda: sg.implicit(text),
             "displace_expr": lambda: sg.displace_expr(sg.sphere(1), text),
             "parametric": lambda: sg.parametric(text, "t", "s")}[api]
-    t0 = time.perf_counter()
-    with pytest.raises(sg.ParameterError, match=pattern) as info:
-        call()
-    assert time.perf_counter() - t0 < 0.1
-    assert api.split("_")[0] in str(info.value)
+    msg = refused_within(0.1, call, pattern)
+    assert api.split("_")[0] in msg
     assert not MARK.exists()
 
 
@@ -67,17 +78,12 @@ def test_live_expressions_share_the_parser():
     for bad, pattern in [("r.value", "attribute"), ("__import__('os')", "unexpected character"),
                          ("q + 1", "unknown parameter 'q'"), ("r**100", "small whole powers"),
                          ("r / 0", "division by zero"), ("exp(r)", "not available for live parameters")]:
-        t0 = time.perf_counter()
-        with pytest.raises(sg.ParameterError, match=pattern):
-            expr.parse_live(bad, {"r": r})
-        assert time.perf_counter() - t0 < 0.1
+        refused_within(0.1, lambda: expr.parse_live(bad, {"r": r}), pattern)
 
 
 def test_expansion_work_is_bounded_before_sympy_starts():
-    t0 = time.perf_counter()
-    with pytest.raises(sg.ParameterError, match=r"about 1.15e\+04 terms \(limit 2000\)"):
-        sg.displace_expr(sg.sphere(1), "0.001*(x + y + z + 1)**40")
-    assert time.perf_counter() - t0 < 0.1
+    refused_within(0.1, lambda: sg.displace_expr(sg.sphere(1), "0.001*(x + y + z + 1)**40"),
+                   r"about 1.15e\+04 terms \(limit 2000\)")
     # a 40th power that needs no expansion is fine as an implicit surface (written as pow())
     node = sg.implicit("(x**2 + y**2 + z**2)**20 - 1", bounds=((-2, -2, -2), (2, 2, 2)))
     assert "pow(" in sg.compile(node, method="newton", ao=False)
