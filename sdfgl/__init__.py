@@ -10,15 +10,35 @@ from .camera import Camera, OrbitCamera
 from .codegen import compile
 from .errors import (ContextError, ParameterError, SceneDocumentError, SceneFileError, SdfglError,
                      ShaderCompileError)
-from .evaluate import evaluate
 from .nodes import (BOUND, EXACT, IMPLICIT, Node, bend, box, box_frame, capsule, circle, displace, elongate, extrude,
                     displace_expr, implicit, noise, parametric,
                     mirror, polygon, rectangle, repeat_polar, revolve, rounded, shell, sierpinski, symmetric, tree, cone, cylinder, difference, ellipsoid,
                     hex_prism, intersection, octahedron, plane, product, repeat, rounded_box, sphere, torus, twist,
                     union)
 from .params import Param, param
-from .render import RenderResult, Renderer, render
-from .scene_io import from_dict, load_scene, save_scene
+from .version import __version__
+
+# Imported on first use, so that `import sdfgl` stays fast (moderngl and the GL set-up,
+# scene documents): name -> module. A heavy new public name adds one line here.
+_LAZY = {
+    "render": "render", "Renderer": "render", "RenderResult": "render",
+    "evaluate": "evaluate",
+    "save_scene": "scene_io", "load_scene": "scene_io", "from_dict": "scene_io",
+}
+
+
+def __getattr__(name: str) -> object:
+    module = _LAZY.get(name)
+    if module is None:
+        raise AttributeError(f"module 'sdfgl' has no attribute {name!r}")
+    import importlib
+    value = getattr(importlib.import_module(f".{module}", __name__), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_LAZY))
 
 
 def show(scene: Node, camera: Camera | None = None, size: tuple[int, int] = (960, 540), **settings: object) -> None:
@@ -30,8 +50,6 @@ def show(scene: Node, camera: Camera | None = None, size: tuple[int, int] = (960
 X = _np.array([1.0, 0.0, 0.0])
 Y = _np.array([0.0, 1.0, 0.0])
 Z = _np.array([0.0, 0.0, 1.0])
-
-__version__ = "0.1.0"
 
 __all__ = [
     "Camera", "OrbitCamera", "compile", "render", "show", "param", "Param", "Renderer", "RenderResult", "Node",

@@ -9,11 +9,10 @@ from typing import Sequence
 
 import moderngl
 import numpy as np
-from PIL import Image
 
 from .camera import Camera, OrbitCamera
 from .codegen import BOUNDS_PAD, GLSL_FAR, ShaderSource, generate, scene_frame
-from .errors import ParameterError, SdfglError
+from .errors import ParameterError
 from .gl.context import headless_context
 from .gl.programs import ProgramCache
 from .gl.targets import Targets
@@ -51,14 +50,11 @@ class RenderResult:
     camera: Camera | None = None
     timings: dict[str, float] = field(default_factory=dict)
 
-    def save(self, path: str | Path) -> Path:
-        """Write the colour image as PNG (or any format Pillow knows from the suffix)."""
-        p = Path(path)
-        try:
-            Image.fromarray(self.color).save(p)
-        except (OSError, ValueError, KeyError) as exc:
-            raise SdfglError(f"cannot write image file '{p}': {exc}") from exc
-        return p
+    def save(self, path: str | Path, **options: object) -> Path:
+        """Write the colour image as PNG (or any format Pillow knows from the suffix);
+        ``options`` go to Pillow (PNG defaults to the fast ``compress_level=1``)."""
+        from .outputs import write_image
+        return write_image(self.color, path, **options)
 
 
 def _set_uniform(prog: moderngl.Program, name: str, value: object) -> None:

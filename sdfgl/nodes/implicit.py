@@ -8,7 +8,6 @@ estimate with the gradient derived symbolically. It is no guaranteed bound (exac
 from __future__ import annotations
 
 import functools
-import multiprocessing as mp
 import time
 import zlib
 from typing import TYPE_CHECKING, Any, Sequence
@@ -202,6 +201,7 @@ def implicitize(x: Any, y: Any, z: Any, timeout: float = 20.0) -> tuple[Any, flo
     for part in parts:
         ex.check_expansion(part, "parametric")
     gens = [sp.expand(g) for g in parts]
+    import multiprocessing as mp
     ctx = mp.get_context("fork")
     out = ctx.Queue()
     proc = ctx.Process(target=_groebner_worker, args=(gens, (u, s, t, X, Y, Z), out), daemon=True)
