@@ -15,14 +15,15 @@ from .nodes import (BOUND, EXACT, IMPLICIT, Node, bend, box, box_frame, capsule,
                     mirror, polygon, rectangle, repeat_polar, revolve, rounded, shell, sierpinski, symmetric, tree, cone, cylinder, difference, ellipsoid,
                     hex_prism, intersection, octahedron, plane, product, repeat, rounded_box, sphere, torus, twist,
                     union)
+from .evaluate import evaluate
 from .params import Param, param
+from .render import RenderResult, Renderer, render
 from .version import __version__
 
-# Imported on first use, so that `import sdfgl` stays fast (moderngl and the GL set-up,
-# scene documents): name -> module. A heavy new public name adds one line here.
+# Imported on first use, so that `import sdfgl` stays fast: name -> module. A heavy new
+# public name adds one line here (a name must differ from its module's, or importing the
+# module would replace it).
 _LAZY = {
-    "render": "render", "Renderer": "render", "RenderResult": "render",
-    "evaluate": "evaluate",
     "save_scene": "scene_io", "load_scene": "scene_io", "from_dict": "scene_io",
 }
 

@@ -31,7 +31,7 @@ import math
 import re
 from typing import Any, Callable, Iterable, Mapping
 
-from .errors import ParameterError
+from .errors import ParameterError, SdfglError
 
 MAX_LENGTH = 2000     # characters in one expression
 MAX_DEPTH = 40        # nesting of parentheses, unary signs, powers and calls
@@ -53,6 +53,15 @@ _TOKEN = re.compile(r"\s*(?:(?P<num>(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)|(?P<na
                     r"|(?P<op>\*\*|[-+*/^(),]))")
 
 Tree = tuple  # ("num", text) | ("name", text) | ("call", name, [args]) | (op, a[, b])
+
+
+def sympy_module(what: str = "expression") -> Any:
+    """sympy, or a clear error saying which extra installs it (it is imported only here)."""
+    try:
+        import sympy
+    except ImportError:
+        raise SdfglError(f"{what} needs sympy: pip install 'sdfgl[implicit]'") from None
+    return sympy
 
 
 def _fail(what: str, text: str, msg: str) -> ParameterError:
@@ -210,7 +219,7 @@ def _fold(tree: Tree, leaf: Callable[[Tree], Any], combine: Callable[[Tree, list
 
 def parse_sympy(text: str, variables: Mapping[str, Any], what: str = "expression") -> Any:
     """``text`` as a sympy expression over ``variables`` (name -> sympy Symbol)."""
-    import sympy as sp
+    sp = sympy_module(what)
     tree = parse_tree(text, what)
     _check_calls(tree, what, text)
 

@@ -25,7 +25,10 @@ INF = float("inf")
 
 def as_points(points: object) -> np.ndarray:
     """Return points as a float64 array of shape (..., 3)."""
-    p = np.asarray(points, dtype=np.float64)
+    try:
+        p = np.asarray(points, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise ParameterError(f"points must be numbers of shape (..., 3), got {type(points).__name__}") from None
     if p.ndim == 0 or p.shape[-1] != 3:
         raise ParameterError(f"points must have shape (..., 3), got {p.shape}")
     return p
@@ -270,6 +273,13 @@ class Node(Recorded, register=False):
 
 class Unary(Node):
     """A node with one child whose exactness and Lipschitz factor it keeps unless it says otherwise."""
+
+    def __new__(cls, child: object = None, *args: object, **kwargs: object) -> "Unary":
+        # subclasses read the child (bounds, exactness) before Node.__init__ checks it
+        if not isinstance(child, Node):
+            raise ParameterError(f"{cls.kind}: the operand must be an sdfgl node, got {type(child).__name__} "
+                                 f"{child!r}"[:200])
+        return super().__new__(cls, child, *args, **kwargs)
 
     def __init__(self, child: Node, **params: object) -> None:
         super().__init__((child,), **params)

@@ -19,6 +19,9 @@ if TYPE_CHECKING:  # pragma: no cover
 WALL_GAP = 0.1
 
 
+MAX_COUNT = 1_000_000  # copies per side and axis: the count is a GLSL int constant
+
+
 class Repeat(Unary):
     """Copies of the child every ``period[i]`` along each axis with a non-zero period.
 
@@ -43,8 +46,9 @@ class Repeat(Unary):
             n = np.full(3, -1)
         else:
             cnt = v.vector(self.kind, "count", count)
-            if np.any(cnt < 0) or np.any(cnt != np.round(cnt)):
-                raise ParameterError(f"{self.kind}: 'count' must be whole numbers >= 0, got {tuple(cnt)}")
+            if np.any(cnt < 0) or np.any(cnt != np.round(cnt)) or np.any(cnt > MAX_COUNT):
+                raise ParameterError(f"{self.kind}: 'count' must be whole numbers in 0..{MAX_COUNT}, "
+                                     f"got {tuple(cnt.tolist())}")
             n = cnt.astype(int)
         lo, hi = child.bounds
         axes = np.nonzero(s > 0)[0]

@@ -27,8 +27,7 @@ MAX_TERMS = 400  # an implicit equation bigger than this is refused as too large
 @functools.lru_cache(maxsize=None)
 def _xyz() -> tuple[Any, Any, Any]:
     """The real symbols x, y, z (sympy is imported only when an expression node is built)."""
-    import sympy as sp
-    return sp.symbols("x y z", real=True)
+    return ex.sympy_module("implicit surfaces").symbols("x y z", real=True)
 
 
 @functools.lru_cache(maxsize=None)
@@ -74,8 +73,8 @@ def _stable_name(prefix: str, key: tuple) -> str:
 
 
 def _parse(expr: Any, what: str = "implicit") -> Any:
-    import sympy as sp
     X, Y, Z = _xyz()
+    import sympy as sp
     names = {"x": X, "y": Y, "z": Z}
     if isinstance(expr, str):
         e = ex.parse_sympy(expr, names, what)
@@ -96,8 +95,8 @@ class Implicit(Node):
     kind = "implicit"
 
     def __init__(self, expr: Any, bounds: tuple[Sequence[float], Sequence[float]] | None = None) -> None:
-        import sympy as sp
         X, Y, Z = _xyz()
+        import sympy as sp
         f = _parse(expr)
         grad = [sp.diff(f, s) for s in (X, Y, Z)]
         if all(g == 0 for g in grad):
@@ -171,8 +170,8 @@ def implicitize(x: Any, y: Any, z: Any, timeout: float = 20.0) -> tuple[Any, flo
     denominator) with a lex Groebner basis. Returns (F, seconds). Raises ParameterError
     if it does not finish within ``timeout`` seconds, finds no surface equation, or the
     equation has more than MAX_TERMS terms."""
-    import sympy as sp
     X, Y, Z = _xyz()
+    import sympy as sp
     s, t, u = sp.symbols("s t u")
     if isinstance(timeout, bool) or not isinstance(timeout, (int, float)) or not 0 < timeout <= 3600:
         raise ParameterError(f"parametric: 'timeout' must be a number of seconds in (0, 3600], got {timeout!r}")
@@ -249,10 +248,12 @@ class DisplaceExpr(Node):
     kind = "displace_expr"
 
     def __init__(self, child: Node, expr: Any, lipschitz: float | None = None) -> None:
+        if not isinstance(child, Node):
+            raise ParameterError(f"{self.kind}: the operand must be an sdfgl node, got {type(child).__name__}")
         if child.exactness == IMPLICIT:
             raise ParameterError(f"{self.kind}: the child {child.label()} is implicit (no distance bound)")
-        import sympy as sp
         X, Y, Z = _xyz()
+        import sympy as sp
         if isinstance(expr, bool):
             raise ParameterError(f"{self.kind}: expected an expression string, got {expr!r}")
         g = _parse(expr, self.kind) if not isinstance(expr, (int, float)) else sp.Float(expr)

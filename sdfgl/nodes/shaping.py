@@ -74,7 +74,7 @@ class Mirror(Unary):
 def symmetric(node: Node, axes: str = "x") -> Node:
     """Mirror ``node`` across the planes x = 0, y = 0 and/or z = 0 named in ``axes``
     (e.g. "xz"): the part on the positive side, repeated to every octant named."""
-    if not axes or any(a not in "xyz" for a in axes):
+    if not isinstance(axes, str) or not axes or any(a not in "xyz" for a in axes):
         raise ParameterError(f"symmetric: 'axes' must be letters from 'xyz', got {axes!r}")
     for a in dict.fromkeys(axes):
         node = Mirror(node, np.eye(3)["xyz".index(a)])
