@@ -43,7 +43,20 @@ def __dir__() -> list[str]:
 
 
 def show(scene: Node, camera: Camera | None = None, size: tuple[int, int] = (960, 540), **settings: object) -> None:
-    """Open an interactive window on ``scene`` (needs a display); returns when it is closed."""
+    """Open an interactive window on ``scene``; returns when it is closed.
+
+    Args:
+        scene: the scene node.
+        camera: the starting camera (default: one framing the scene).
+        size: window size (width, height) in pixels.
+        settings: render settings, as for :func:`render`.
+
+    Needs a display (glfw). Mouse: orbit, pan, zoom; keys toggle AA, shadows, AO, method,
+    ground and debug views (``sdfgl view --help`` lists them).
+
+    Example:
+        >>> sg.show(sg.sphere(1) | sg.box(1.5))  # doctest: +SKIP
+    """
     from .viewer import show as _show
     _show(scene, camera, size, **settings)
 

@@ -17,7 +17,22 @@ UP = np.array([0.0, 1.0, 0.0])
 
 
 class Camera:
-    """Pinhole camera at ``eye`` looking at ``target``."""
+    """Pinhole camera at ``eye`` looking at ``target`` (Y up, angles in degrees).
+
+    Args:
+        eye: the eye position (x, y, z).
+        target: the point looked at; must differ from ``eye``.
+        up: approximate up direction (not zero).
+        fov: vertical field of view in degrees, in [1e-4, 179].
+
+    ``rays(w, h)`` gives the float64 rays the shader traces (pixel centres, row 0 on top).
+
+    Example:
+        >>> cam = sg.Camera.look_at((0, 0, 5), (0, 0, 0), fov=40)
+        >>> o, d = cam.rays(4, 3)
+        >>> d.shape
+        (3, 4, 3)
+    """
 
     def __init__(self, eye: Sequence[float], target: Sequence[float] = (0.0, 0.0, 0.0),
                  up: Sequence[float] = (0.0, 1.0, 0.0), fov: float = 45.0) -> None:
@@ -77,7 +92,20 @@ class Camera:
 
 
 class OrbitCamera(Camera):
-    """Camera orbiting ``target`` at ``distance``; ``yaw`` turns about Y, ``pitch`` lifts the eye."""
+    """Camera orbiting ``target`` at ``distance`` (the viewer drives it).
+
+    Args:
+        target: the point looked at and orbited.
+        distance: eye-to-target distance, > 0.
+        yaw: turn about the Y axis, degrees (0 looks along -Z from +Z).
+        pitch: lift of the eye above the target's horizontal plane, degrees in [-89.9, 89.9].
+        fov: vertical field of view, degrees.
+
+    Example:
+        >>> cam = sg.OrbitCamera(target=(0, 1, 0), distance=5, yaw=0, pitch=0)
+        >>> [round(float(x), 6) for x in cam.eye]
+        [0.0, 1.0, 5.0]
+    """
 
     def __init__(self, target: Sequence[float] = (0.0, 0.0, 0.0), distance: float = 5.0,
                  yaw: float = 30.0, pitch: float = 20.0, fov: float = 45.0) -> None:

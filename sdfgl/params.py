@@ -92,7 +92,18 @@ class Live:
 
 
 class Param(Live):
-    """A scalar or 3-vector that is a shader uniform; set ``.value`` between renders."""
+    """A scalar or 3-vector that is a shader uniform; set ``.value`` between renders.
+
+    Made by :func:`sdfgl.param`. Arithmetic with numbers and other parameters (+, -, *, /,
+    unary -) gives live expressions that stay uniforms in the GLSL.
+
+    Example:
+        >>> p = sg.param((0.0, 1.0, 0.0), name="offset")
+        >>> s = sg.sphere(0.5).translate(p)
+        >>> p.value = (0.0, 2.0, 0.0)
+        >>> float(s.distance((0, 2, 0)))
+        -0.5
+    """
 
     def __init__(self, value: Any, name: str | None = None) -> None:
         super().__init__("param")
@@ -159,5 +170,19 @@ class Param(Live):
 
 
 def param(value: Any, name: str | None = None) -> Param:
-    """A live value (number or 3-vector) that a render reads as a uniform: changing it needs no recompile."""
+    """A live value that a render reads as a uniform: changing it needs no recompile.
+
+    Args:
+        value: a finite number or 3 finite numbers (a position, size or colour).
+        name: a label for messages, shader comments and scene documents.
+
+    Every node that uses it checks each new value, naming itself.
+
+    Example:
+        >>> r = sg.param(1.0, name="r")
+        >>> s = sg.sphere(r)
+        >>> r.value = 2.0
+        >>> float(s.distance((3, 0, 0)))
+        1.0
+    """
     return Param(value, name)

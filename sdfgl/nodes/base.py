@@ -37,8 +37,19 @@ def as_points(points: object) -> np.ndarray:
 class Node(Recorded, register=False):
     """Base class of every scene-graph node. Nodes are immutable after construction.
 
+    Operators and methods build new nodes (fogleman/sdf style): ``a | b``, ``a & b``,
+    ``a - b``, ``.translate``, ``.rotate``, ``.scale``, ``.color`` and the rest. Every node
+    has ``distance(points)`` (the float64 twin of the generated GLSL), ``exactness``,
+    ``lipschitz`` and ``bounds``.
+
     A subclass that sets ``kind`` is registered under it (see :mod:`sdfgl.nodes.record`):
-    pickle and scene documents rebuild it from its constructor's arguments."""
+    pickle and scene documents rebuild it from its constructor's arguments.
+
+    Example:
+        >>> s = (sg.sphere(1) & sg.box(1.5)).translate((0, 1, 0)).color(0.9, 0.3, 0.2)
+        >>> s.exactness, float(s.distance((0, 3, 0)))
+        ('bound', 1.25)
+    """
 
     kind: ClassVar[str] = "node"
 
@@ -182,17 +193,20 @@ class Node(Recorded, register=False):
         from .booleans import difference
         return difference(self, other)
 
-    def union(self, *others: "Node", k: float = 0.0) -> "Node":
+    def union(self, *others: "Node", k: float = 0.0, blend: str = "quadratic") -> "Node":
+        """``self | others`` with blend radius ``k`` and ``blend`` style, as :func:`sdfgl.union`."""
         from .booleans import union
-        return union(self, *others, k=k)
+        return union(self, *others, k=k, blend=blend)
 
-    def intersection(self, *others: "Node", k: float = 0.0) -> "Node":
+    def intersection(self, *others: "Node", k: float = 0.0, blend: str = "quadratic") -> "Node":
+        """``self & others`` with blend radius ``k`` and ``blend`` style, as :func:`sdfgl.intersection`."""
         from .booleans import intersection
-        return intersection(self, *others, k=k)
+        return intersection(self, *others, k=k, blend=blend)
 
-    def difference(self, *others: "Node", k: float = 0.0) -> "Node":
+    def difference(self, *others: "Node", k: float = 0.0, blend: str = "quadratic") -> "Node":
+        """``self - others`` with blend radius ``k`` and ``blend`` style, as :func:`sdfgl.difference`."""
         from .booleans import difference
-        return difference(self, *others, k=k)
+        return difference(self, *others, k=k, blend=blend)
 
     def translate(self, offset: Sequence[float]) -> "Node":
         from .transforms import Translate

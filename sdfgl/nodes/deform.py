@@ -125,10 +125,33 @@ class Bend(_Warp):
 
 
 def twist(node: Node, rate: float) -> Twist:
-    """Twist ``node`` about the Y axis by ``rate`` degrees per unit of height."""
+    """Twist ``node`` about the Y axis.
+
+    Args:
+        node: the node to twist.
+        rate: degrees of turn per unit of height (a baked constant).
+
+    A bound: the Lipschitz factor grows with rate and the node's radius; only this subtree's
+    steps are shortened.
+
+    Example:
+        >>> sg.twist(sg.box((0.6, 2, 0.4)), 90).exactness
+        'bound'
+    """
     return Twist(node, rate)
 
 
 def bend(node: Node, rate: float) -> Bend:
-    """Bend ``node`` in the XY plane by ``rate`` degrees per unit along X."""
+    """Bend ``node`` in the XY plane.
+
+    Args:
+        node: the node to bend.
+        rate: degrees of bend per unit along X (a baked constant).
+
+    A bound (Lipschitz factor > 1, this subtree only).
+
+    Example:
+        >>> sg.bend(sg.box((2, 0.3, 0.4)), 40).exactness
+        'bound'
+    """
     return Bend(node, rate)

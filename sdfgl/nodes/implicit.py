@@ -136,8 +136,22 @@ class Implicit(Node):
 
 
 def implicit(expr: Any, bounds: tuple[Sequence[float], Sequence[float]] | None = None) -> Implicit:
-    """The surface ``expr`` = 0 in x, y, z (a string or sympy expression); ``bounds`` (lo, hi)
-    clips the rays to a box. Render with method="newton" or "forward_newton"."""
+    """The surface ``expr`` = 0 in x, y, z (solid where ``expr`` < 0), rendered as f / |grad f|.
+
+    Args:
+        expr: a string in the safe expression grammar (:mod:`sdfgl.expr`: numbers, x, y, z,
+            pi, E, + - * / ** ^ and sin cos tan asin acos atan sinh cosh tanh exp log sqrt abs)
+            or a sympy expression over those. Nothing in it is run as code.
+        bounds: (lo, hi) corners of a box that clips the rays (strongly advised), or None.
+
+    Implicit: no distance guarantee; render with ``method="newton"`` or ``"forward_newton"``
+    (and ``ao=False``). Needs the ``implicit`` extra (sympy).
+
+    Example:
+        >>> s = sg.implicit("x**2 + y**2 + z**2 - 1", bounds=((-1, -1, -1), (1, 1, 1)))
+        >>> float(s.distance((2, 0, 0)))
+        0.75
+    """
     return Implicit(expr, bounds)
 
 
@@ -229,8 +243,22 @@ def implicitize(x: Any, y: Any, z: Any, timeout: float = 20.0) -> tuple[Any, flo
 
 def parametric(x: Any, y: Any, z: Any, bounds: tuple[Sequence[float], Sequence[float]] | None = None,
                timeout: float = 20.0) -> Implicit:
-    """The rational parametric surface (x(s, t), y(s, t), z(s, t)), implicitized and rendered
-    as an implicit surface. ``node.implicitization_s`` keeps the time it took."""
+    """The rational parametric surface (x(s, t), y(s, t), z(s, t)), implicitized with a Groebner
+    basis (in a subprocess, so a basis that blows up ends with an error after ``timeout``).
+
+    Args:
+        x: x as a rational function of s and t (a string in the safe grammar, a number or a sympy expression).
+        y: likewise.
+        z: likewise.
+        bounds: (lo, hi) box that clips the rays, or None.
+        timeout: seconds the implicitization may take, in (0, 3600].
+
+    Implicit (see :func:`implicit`). ``node.implicitization_s`` keeps the time it took.
+
+    Example:
+        >>> sg.parametric("s", "t", "s**2 + t**2").label()
+        'implicit(x**2 + y**2 - z)'
+    """
     eq, seconds = implicitize(x, y, z, timeout)
     node = Implicit(eq, bounds)
     node.implicitization_s = seconds  # type: ignore[attr-defined]
@@ -333,5 +361,19 @@ def _gradient_bound(grad: list) -> float | None:
 
 
 def displace_expr(node: Node, expr: Any, lipschitz: float | None = None) -> DisplaceExpr:
-    """Displace ``node`` by the function ``expr`` of x, y, z (e.g. "0.05*sin(8*x)*sin(8*y)")."""
+    """Displace ``node`` by a function g(x, y, z) given as an expression: the field f + g.
+
+    Args:
+        node: a node with a distance bound (not implicit).
+        expr: g as a string in the safe grammar (see :func:`implicit`) or a sympy expression.
+        lipschitz: a bound of |grad g| you vouch for; None derives one in closed form for
+            sums and products of sin, cos and numbers (else it is refused).
+
+    A bound: the field is divided by 1 + lipschitz, in this subtree only.
+
+    Example:
+        >>> s = sg.displace_expr(sg.sphere(1), "0.05*sin(8*x)")
+        >>> s.exactness
+        'bound'
+    """
     return DisplaceExpr(node, expr, lipschitz)

@@ -210,25 +210,80 @@ class Revolve(Node):
 
 
 def circle(radius: float = 0.5, center: Sequence[float] = (0.0, 0.0)) -> Circle:
-    """A 2D circle."""
+    """A 2D circle in the XY plane, made solid by :func:`extrude` or :func:`revolve`.
+
+    Args:
+        radius: radius, > 0.
+        center: centre (x, y).
+
+    Exact (in 2D).
+
+    Example:
+        >>> sg.extrude(sg.circle(0.5), 0.2).exactness
+        'exact'
+    """
     return Circle(radius, center)
 
 
 def rectangle(size: float | Sequence[float] = 1.0, radius: float = 0.0) -> Rectangle:
-    """A 2D rectangle of full ``size``, corners rounded by ``radius``."""
+    """A 2D rectangle centred at the origin of the XY plane.
+
+    Args:
+        size: full side lengths (a number or (sx, sy)), > 0.
+        radius: corner rounding radius, 0 .. half the smaller side.
+
+    Exact (in 2D).
+
+    Example:
+        >>> float(sg.extrude(sg.rectangle((2, 1)), 1.0).distance((2, 0, 0)))
+        1.0
+    """
     return Rectangle(size, radius)
 
 
 def polygon(points: Sequence[Sequence[float]]) -> Polygon:
-    """A 2D simple polygon."""
+    """A 2D simple polygon (no self-intersections) in the XY plane.
+
+    Args:
+        points: 3 or more (x, y) vertices in order (either winding).
+
+    Exact (in 2D).
+
+    Example:
+        >>> tri = sg.polygon([(0, 0), (1, 0), (0, 1)])
+        >>> sg.extrude(tri, 0.2).exactness
+        'exact'
+    """
     return Polygon(points)
 
 
 def extrude(shape: Shape2D, height: float) -> Extrude:
-    """Extrude a 2D shape along Z to full ``height``. Exact."""
+    """Extrude a 2D shape along Z.
+
+    Args:
+        shape: a 2D shape (:func:`circle`, :func:`rectangle`, :func:`polygon`).
+        height: full height along Z (from -height/2 to height/2), > 0.
+
+    Exact.
+
+    Example:
+        >>> float(sg.extrude(sg.circle(0.5), 1.0).distance((0, 0, 1.5)))
+        1.0
+    """
     return Extrude(shape, height)
 
 
 def revolve(shape: Shape2D, offset: float = 0.0) -> Revolve:
-    """Revolve a 2D shape about the Y axis, its x measured from ``offset``. Exact."""
+    """Revolve a 2D shape about the Y axis: its x is the distance from the axis minus ``offset``.
+
+    Args:
+        shape: a 2D shape in the XY plane.
+        offset: distance of the shape's origin from the Y axis (>= 0 or negative).
+
+    Exact.
+
+    Example:
+        >>> float(sg.revolve(sg.circle(0.25), 1.0).distance((0, 0, 1)))
+        -0.25
+    """
     return Revolve(shape, offset)
