@@ -215,3 +215,9 @@ def test_cli_renders_and_prints_a_json_scene(tmp_path):
     assert r.returncode == 2
     assert "bad.json': scene: sphere: parameter 'radius' must be a number" in r.stderr
     assert "Traceback" not in r.stderr
+
+
+def test_format_document_lists_every_node_kind_as_built():
+    from sdfgl.scene_io.schema import kinds_table
+    text = (ROOT / "docs" / "scene-format.md").read_text()
+    assert kinds_table() in text, "run: python -m sdfgl.scene_io.schema docs/scene-format.md"
