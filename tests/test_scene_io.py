@@ -2,6 +2,7 @@
 import copy
 import json
 import pickle
+import re
 import subprocess
 import sys
 import time
@@ -125,7 +126,7 @@ MALFORMED = [
      r"^scene: translate: parameter 'offset' must be 3 numbers"),
     ("NaN", '{"format": "sdfgl-scene", "version": 1, "scene": {"kind": "sphere", "radius": NaN}}', r"NaN is not"),
     ("number as child", _doc({"kind": "translate", "child": 5, "offset": [0, 0, 0]}),
-     r"^scene: translate: operand 0 must be an sdfgl node"),
+     r"^scene: translate: the operand must be an sdfgl node, got int 5"),
     ("odd object", _doc({"kind": "sphere", "radius": {"foo": 1}}), r"^scene\.radius: expected a node"),
     ("bad ref", _doc({"ref": "n9"}), r"^scene\.ref: no node named 'n9'"),
     ("ref cycle", json.dumps({"format": "sdfgl-scene", "version": 1,
@@ -163,7 +164,7 @@ def test_malformed_document_gives_one_clear_error_quickly(name, text, pattern):
         loads(text)
     assert time.perf_counter() - t0 < 2.0  # generous: a loaded machine; the point is "no hang"
     msg = str(info.value)
-    assert pytest.importorskip("re").search(pattern, msg), msg
+    assert re.search(pattern, msg), msg
     assert "\n" not in msg and "Traceback" not in msg
     assert not Path("/tmp/sdfgl_pwned").exists()
 
