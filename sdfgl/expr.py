@@ -122,19 +122,17 @@ class _Parser:
             raise _fail(self.what, self.text, f"unexpected {tok[1]!r} at position {tok[2]}")
         return tree
 
-    def expr(self) -> Tree:
-        node = self.term()
-        while self.peek() in ("+", "-"):
-            op = self.take()[1]
-            node = ("add" if op == "+" else "sub", node, self.term())
+    def _left_assoc(self, ops: dict[str, str], operand: Callable[[], Tree]) -> Tree:
+        node = operand()
+        while self.peek() in ops:
+            node = (ops[self.take()[1]], node, operand())
         return node
 
+    def expr(self) -> Tree:
+        return self._left_assoc({"+": "add", "-": "sub"}, self.term)
+
     def term(self) -> Tree:
-        node = self.unary()
-        while self.peek() in ("*", "/"):
-            op = self.take()[1]
-            node = ("mul" if op == "*" else "div", node, self.unary())
-        return node
+        return self._left_assoc({"*": "mul", "/": "div"}, self.unary)
 
     def unary(self) -> Tree:
         if self.peek() in ("+", "-"):

@@ -110,3 +110,13 @@ def test_valid_expressions_parse_like_python_precedence():
     assert expr.parse_sympy("sqrt(abs(x)) / (1 + pi)", vars_) == sp.sqrt(sp.Abs(x)) / (1 + sp.pi)
     assert expr.parse_sympy("x - y - z", vars_) == x - y - z
     assert expr.parse_sympy("x / y / z", vars_) == x / y / z
+
+
+def test_glsl_printing_failures_name_the_function():
+    import sympy as sp
+    from sdfgl.nodes.implicit import glsl
+    x = sp.Symbol("x", real=True)
+    with pytest.raises(sg.ParameterError, match=r"implicit: cannot write the derivative of floor\(x\) in GLSL"):
+        glsl(sp.Derivative(sp.floor(x), x), "implicit")
+    with pytest.raises(sg.ParameterError, match=r"cannot write Integral in GLSL"):
+        glsl(sp.Integral(sp.exp(x ** 2), x), "implicit")

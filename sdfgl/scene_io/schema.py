@@ -26,10 +26,12 @@ def _param(p: inspect.Parameter) -> str:
 
 
 def kinds_table() -> str:
-    """A markdown table: kind, parameters (defaults), what it is."""
+    """A markdown table of sdfgl's own kinds: kind, parameters (defaults), what it is."""
     import sdfgl
     rows = ["| kind | parameters (default) | what |", "|---|---|---|"]
     for kind, cls in sorted(registry().items()):
+        if not cls.__module__.startswith("sdfgl."):  # kinds a user (or a test) defined
+            continue
         factory = getattr(sdfgl, kind, None)
         own = factory.__doc__ if inspect.isfunction(factory) else cls.__dict__.get("__doc__")
         doc = " ".join(inspect.cleandoc(own or "").split("\n\n")[0].split()).replace("|", "\\|")
