@@ -94,6 +94,9 @@ class Encoder:
     def _encode_node(self, node: Recorded, shared: bool) -> None:
         if not node.serializable:
             raise ParameterError(f"{node.kind}: this node kind cannot be saved in a scene document")
+        if "_ctor" not in node.__dict__:
+            raise ParameterError(f"{node.kind}: this node was not made by calling its class, so its arguments are "
+                                 f"unknown and it cannot be saved")
         out: dict[str, Any] = {"kind": node.kind}
         height = [0]
         for name, value in bound_arguments(node).items():
