@@ -79,7 +79,7 @@ def _parse(expr: Any, what: str = "implicit") -> Any:
     if isinstance(expr, str):
         e = ex.parse_sympy(expr, names, what)
     elif isinstance(expr, sp.Expr):
-        ex.check_sympy(expr, names.values(), what)
+        ex.check_sympy(expr, what)
         e = expr.subs({s: names[s.name] for s in expr.free_symbols if s.name in names})
     else:
         raise ParameterError(f"{what}: expected a string or a sympy expression, got {type(expr).__name__}")
@@ -197,7 +197,7 @@ def implicitize(x: Any, y: Any, z: Any, timeout: float = 20.0) -> tuple[Any, flo
         elif isinstance(e, (int, float)) and not isinstance(e, bool):
             c = sp.Float(e) if isinstance(e, float) else sp.Integer(e)
         elif isinstance(e, sp.Expr):
-            ex.check_sympy(e, (), what)
+            ex.check_sympy(e, what)
             c = e
         else:
             raise ParameterError(f"{what}: expected a string, number or sympy expression, got {type(e).__name__}")
