@@ -10,11 +10,14 @@ from .camera import Camera, OrbitCamera
 from .codegen import compile
 from .errors import (ContextError, ParameterError, SceneDocumentError, SceneFileError, SdfglError,
                      ShaderCompileError)
+from .look import directional_light, point_light
 from .nodes import (BOUND, EXACT, IMPLICIT, Node, bend, box, box_frame, capsule, circle, displace, elongate, extrude,
                     displace_expr, implicit, noise, parametric,
                     mirror, polygon, rectangle, repeat_polar, revolve, rounded, shell, sierpinski, symmetric, tree, cone, cylinder, difference, ellipsoid,
                     hex_prism, intersection, octahedron, plane, product, repeat, rounded_box, sphere, torus, twist,
-                    union)
+                    union, Shape2D, arc, capsule2, ellipse, regular_polygon, star, triangle, slice,
+                    bezier_tube, capped_torus, dodecahedron, gyroid, icosahedron, pyramid, slab, tetrahedron, tube,
+                    morph, taper, glsl)
 from .evaluate import evaluate
 from .params import Param, param
 from .render import RenderResult, Renderer, render
@@ -42,23 +45,105 @@ def __dir__() -> list[str]:
     return sorted(set(globals()) | set(_LAZY))
 
 
-def show(scene: Node, camera: Camera | None = None, size: tuple[int, int] = (960, 540), **settings: object) -> None:
+def show(scene: Node, camera: Camera | None = None, size: tuple[int, int] = (960, 540), *,
+         window: bool | None = None, **settings: object) -> object:
     """Open an interactive window on ``scene``; returns when it is closed.
+
+    In a Jupyter kernel a window would block the kernel, so ``show`` returns the notebook
+    widget instead (:func:`widget`; it displays as the cell's result).
 
     Args:
         scene: the scene node.
         camera: the starting camera (default: one framing the scene).
         size: window size (width, height) in pixels.
+        window: True opens the window even in a kernel; False returns the widget; None
+            (default) picks by where the code runs.
         settings: render settings, as for :func:`render`.
 
-    Needs a display (glfw). Mouse: orbit, pan, zoom; keys toggle AA, shadows, AO, method,
-    ground and debug views (``sdfgl view --help`` lists them).
+    The window needs a display (glfw). Mouse: orbit, pan, zoom; keys toggle AA, shadows,
+    AO, method, ground and debug views (``sdfgl view --help`` lists them).
 
     Example:
         >>> sg.show(sg.sphere(1) | sg.box(1.5))  # doctest: +SKIP
     """
+    from .web.notebook import in_kernel
+    if window is None:
+        window = not in_kernel()
+    if not window:
+        return widget(scene, camera, size, **settings)
     from .viewer import show as _show
     _show(scene, camera, size, **settings)
+    return None
+
+
+def widget(scene: Node, camera: Camera | None = None, size: tuple[int, int] = (640, 400), **settings: object):
+    """An interactive Jupyter view of ``scene``, synced with Python (see :func:`sdfgl.web.widget.widget`).
+
+    Orbit, pan and zoom with the mouse, toggle AA, shadows, AO and debug views with keys,
+    and move a slider per ``sg.param`` (spanning its ``range``). ``w.camera`` is the current
+    view; setting it, or a parameter's ``.value``, updates the view. Needs the ``web``
+    extra (anywidget).
+
+    Args:
+        scene: the scene node.
+        camera: the starting camera (default: one framing the scene).
+        size: view size (width, height) in pixels.
+        settings: render settings, as for :func:`render` (``aa``, ``shadows``, ``ao`` and
+            ``debug`` are the toggles' starting states).
+
+    Example:
+        >>> r = sg.param(1.0, "r", range=(0.5, 1.5))
+        >>> w = sg.widget(sg.sphere(r), size=(320, 200))  # doctest: +SKIP
+        >>> w  # doctest: +SKIP
+    """
+    from .web.widget import widget as _widget
+    return _widget(scene, camera, size, **settings)
+
+
+def save_html(scene: Node, path: str, camera: Camera | None = None, size: tuple[int, int] = (800, 500),
+              **settings: object):
+    """Write a one-file interactive WebGL2 view of ``scene`` (see :func:`sdfgl.web.html.save_html`).
+
+    The page needs no network and no Python: it draws the same generated shader in GLSL
+    ES 3.00, with the mouse, keys and sliders of :func:`widget`.
+
+    Args:
+        scene: the scene node.
+        path: the HTML file to write.
+        camera: the starting camera (default: one framing the scene).
+        size: view size (width, height) in pixels.
+        settings: render settings, as for :func:`render`; ``title=`` sets the page title.
+
+    Returns the path written.
+
+    Example:
+        >>> import pathlib, tempfile
+        >>> out = pathlib.Path(tempfile.mkdtemp()) / "ball.html"
+        >>> sg.save_html(sg.sphere(1), out, size=(200, 120)).stat().st_size > 10_000
+        True
+    """
+    from .web.html import save_html as _save_html
+    return _save_html(scene, path, camera, size, **settings)
+
+
+def set_preview(enabled: bool = True, size: tuple[int, int] | None = None) -> None:
+    """Turn the inline notebook preview of nodes on or off (see :func:`sdfgl.web.notebook.set_preview`).
+
+    A node shown as a notebook cell's result is a small render (``_repr_png_``);
+    ``SDFGL_PREVIEW=0`` in the environment starts with it off.
+
+    Args:
+        enabled: True shows nodes as images, False as text.
+        size: the preview's (width, height) in pixels, 16..2048 (None keeps it).
+
+    Example:
+        >>> sg.set_preview(False)
+        >>> sg.sphere(1)._repr_png_() is None
+        True
+        >>> sg.set_preview(True, size=(256, 160))
+    """
+    from .web.notebook import set_preview as _set_preview
+    _set_preview(enabled, size)
 
 
 X = _np.array([1.0, 0.0, 0.0])
@@ -66,11 +151,15 @@ Y = _np.array([0.0, 1.0, 0.0])
 Z = _np.array([0.0, 0.0, 1.0])
 
 __all__ = [
-    "Camera", "OrbitCamera", "compile", "render", "show", "param", "Param", "Renderer", "RenderResult", "Node",
+    "Camera", "OrbitCamera", "compile", "directional_light", "point_light", "render", "show", "widget", "save_html",
+    "set_preview", "param", "Param", "Renderer", "RenderResult", "Node",
     "sphere", "box", "rounded_box", "plane", "torus", "capsule", "cylinder", "cone", "ellipsoid",
     "octahedron", "hex_prism", "box_frame", "product", "twist", "bend", "repeat", "evaluate", "union",
     "circle", "rectangle", "polygon", "extrude", "revolve", "mirror", "symmetric", "repeat_polar", "elongate",
     "rounded", "shell", "sierpinski", "tree", "displace", "noise", "implicit", "parametric", "displace_expr", "intersection", "difference", "X", "Y", "Z",
     "EXACT", "BOUND", "IMPLICIT", "SdfglError", "ParameterError", "ShaderCompileError", "ContextError",
     "SceneFileError", "SceneDocumentError", "save_scene", "load_scene", "from_dict",
+    "Shape2D", "arc", "capsule2", "ellipse", "regular_polygon", "star", "triangle", "slice",
+    "bezier_tube", "capped_torus", "dodecahedron", "gyroid", "icosahedron", "pyramid", "slab", "tetrahedron", "tube",
+    "morph", "taper", "glsl",
 ]

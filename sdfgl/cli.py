@@ -1,4 +1,4 @@
-"""Command line: ``sdfgl render | shader | view | bench`` (also ``python -m sdfgl``)."""
+"""Command line: ``sdfgl render | shader | view | html | bench`` (also ``python -m sdfgl``)."""
 from __future__ import annotations
 
 import argparse
@@ -6,7 +6,7 @@ import sys
 from typing import Sequence
 
 from .version import __version__
-from .cli_common import add_camera_arguments, camera_from_args, require_scene
+from .cli_common import finite_number, add_camera_arguments, camera_from_args, require_scene
 from .errors import SdfglError
 from .settings import METHODS, OUTPUTS
 
@@ -76,12 +76,31 @@ def cmd_render(a: argparse.Namespace) -> int:
     outputs = tuple(dict.fromkeys(("color",) + (a.outputs or ())))
     if a.output.lower().endswith(".npz") and a.outputs is None:
         outputs = OUTPUTS
-    res = render(scene, camera_from_args(a, scene, camera), a.size, outputs=outputs, **settings)
+    settings.update(_look(a))
+    cam = camera_from_args(a, scene, camera)
+    if a.ortho:
+        from .camera import OrbitCamera
+        yaw, pitch = (cam.yaw, cam.pitch) if isinstance(cam, OrbitCamera) else (30.0, 20.0)
+        cam = OrbitCamera.framing(*scene.bounds, yaw, pitch, aspect=a.size[0] / a.size[1], projection="orthographic")
+    res = render(scene, cam, a.size, outputs=outputs, **settings)
     paths = save_outputs(res, a.output, outputs)
     t = res.timings
     print(f"wrote {', '.join(str(p) for p in paths)} ({a.size[0]}x{a.size[1]}, aa {a.aa}): "
           f"compile {t['compile_s'] * 1000:.0f} ms, draw {t['draw_s'] * 1000:.0f} ms")
     return 0
+
+
+def _look(a: argparse.Namespace) -> dict[str, object]:
+    """The look options of `sdfgl render`: --background, --alpha, --fog."""
+    out: dict[str, object] = {}
+    if a.background:
+        parts = a.background.split(",")
+        out["background"] = parts[0] if len(parts) == 1 else tuple(parts)
+    if a.alpha:
+        out["alpha"] = True
+    if a.fog is not None:
+        out["fog"] = a.fog
+    return out
 
 
 def cmd_shader(a: argparse.Namespace) -> int:
@@ -92,7 +111,8 @@ def cmd_shader(a: argparse.Namespace) -> int:
     require_scene(a, "shader")
     scene, camera, _ = _load(a)
     cam = camera_from_args(a, scene, camera) or OrbitCamera.framing(*scene.bounds)
-    sys.stdout.write(generate(scene, Settings.build(**_settings(a)), shader_origin(scene, cam.eye)).text)
+    sys.stdout.write(generate(scene, Settings.build(**_settings(a)), shader_origin(scene, cam.eye),
+                              projection=cam.projection).text)
     return 0
 
 
@@ -125,7 +145,7 @@ def build_parser(argv: Sequence[str] | None = None) -> argparse.ArgumentParser:
     modules are imported (None builds everything)."""
     parser = argparse.ArgumentParser(prog="sdfgl", description="Render signed-distance-function scenes with GLSL.")
     parser.add_argument("--version", action="version", version=f"sdfgl {__version__}")
-    sub = parser.add_subparsers(dest="command", required=True, metavar="{render,shader,view,bench}")
+    sub = parser.add_subparsers(dest="command", required=True, metavar="{render,shader,view,html,bench}")
     scene_help = "scene file: Python defining 'scene' (and optionally 'camera', 'settings'), or a .json document"
 
     r = sub.add_parser("render", help="render a scene file (or the demo) headless to an image")
@@ -138,6 +158,10 @@ def build_parser(argv: Sequence[str] | None = None) -> argparse.ArgumentParser:
                         f"(e.g. depth,normal -> out.depth.png, out.normal.png)")
     r.add_argument("--size", type=_size, default=(800, 600), help="WIDTHxHEIGHT (default 800x600)")
     r.add_argument("--no-ground", action="store_true", help="with --demo: leave the ground plane out")
+    r.add_argument("--background", help="a colour ('#ffffff', 'white') or TOP,BOTTOM for a gradient")
+    r.add_argument("--alpha", action="store_true", help="transparent background: RGBA PNG, alpha = coverage")
+    r.add_argument("--fog", type=finite_number, help="fade surfaces into the background over this distance")
+    r.add_argument("--ortho", action="store_true", help="orthographic camera framing the scene")
     add_camera_arguments(r)
     _add_settings(r)
     r.set_defaults(func=cmd_render)
@@ -169,6 +193,9 @@ def build_parser(argv: Sequence[str] | None = None) -> argparse.ArgumentParser:
     add_camera_arguments(v)
     _add_settings(v)
     v.set_defaults(func=cmd_view)
+
+    from .web.cli import add_parser as add_html
+    add_html(sub)
 
     b = sub.add_parser("bench", help="benchmark marching methods: frame time beside error")
     if command in (None, "bench"):

@@ -13,7 +13,8 @@ from typing import Any
 from .errors import SdfglError
 
 
-def _finite(text: str) -> float:
+def finite_number(text: str) -> float:
+    """argparse type: a finite float (NaN and inf are refused at parse time)."""
     try:
         x = float(text)
     except ValueError:
@@ -27,7 +28,7 @@ def _vec3(text: str) -> tuple[float, float, float]:
     parts = [p for p in text.replace(",", " ").split() if p]
     if len(parts) != 3:
         raise argparse.ArgumentTypeError(f"expected three numbers like 0,1,0, got {text!r}")
-    x, y, z = (_finite(p) for p in parts)
+    x, y, z = (finite_number(p) for p in parts)
     return x, y, z
 
 
@@ -35,10 +36,10 @@ def add_camera_arguments(p: argparse.ArgumentParser) -> None:
     """``--yaw --pitch --distance --fov --target``: an orbit camera about the scene file's
     camera (or one framing the scene), changed only in what is given."""
     g = p.add_argument_group("camera (an orbit camera; unset values come from the scene file or framing)")
-    g.add_argument("--yaw", type=_finite, metavar="DEG", help="turn about the vertical axis, degrees")
-    g.add_argument("--pitch", type=_finite, metavar="DEG", help="lift the eye, degrees in [-89.9, 89.9]")
-    g.add_argument("--distance", type=_finite, metavar="D", help="eye-to-target distance (> 0)")
-    g.add_argument("--fov", type=_finite, metavar="DEG", help="vertical field of view, degrees")
+    g.add_argument("--yaw", type=finite_number, metavar="DEG", help="turn about the vertical axis, degrees")
+    g.add_argument("--pitch", type=finite_number, metavar="DEG", help="lift the eye, degrees in [-89.9, 89.9]")
+    g.add_argument("--distance", type=finite_number, metavar="D", help="eye-to-target distance (> 0)")
+    g.add_argument("--fov", type=finite_number, metavar="DEG", help="vertical field of view, degrees")
     g.add_argument("--target", type=_vec3, metavar="X,Y,Z", help="the point looked at")
 
 
@@ -48,17 +49,11 @@ def camera_from_args(a: argparse.Namespace, scene: Any, camera: Any) -> Any:
     given = {k: getattr(a, k, None) for k in ("yaw", "pitch", "distance", "fov", "target")}
     if all(v is None for v in given.values()):
         return camera
-    if isinstance(camera, OrbitCamera):
-        base = camera
-    elif camera is not None:  # a look-at camera: the orbit through its eye about its target
-        off = camera.eye - camera.target
-        dist = float((off @ off) ** 0.5)
-        base = OrbitCamera(camera.target, dist, math.degrees(math.atan2(off[0], off[2])),
-                           math.degrees(math.asin(max(-1.0, min(1.0, off[1] / dist)))), camera.fov)
-    else:
-        base = OrbitCamera.framing(*scene.bounds)
+    # a look-at camera becomes the orbit through its eye about its target; the projection is kept
+    base = OrbitCamera.of(camera, *scene.bounds) if camera is not None else OrbitCamera.framing(*scene.bounds)
     pick = {k: (v if v is not None else getattr(base, k)) for k, v in given.items()}
-    return OrbitCamera(pick["target"], pick["distance"], pick["yaw"], pick["pitch"], pick["fov"])
+    return OrbitCamera(pick["target"], pick["distance"], pick["yaw"], pick["pitch"], pick["fov"], base.projection,
+                       base._ortho_height)
 
 
 def require_scene(a: argparse.Namespace, command: str) -> None:

@@ -15,6 +15,8 @@ def test_wheel_contains_all_shaders(tmp_path):
     names = set(zipfile.ZipFile(wheel).namelist())
     shipped = {f"sdfgl/shaders/{p.relative_to(ROOT / 'shaders').as_posix()}" for p in (ROOT / "shaders").rglob("*.glsl")}
     assert shipped and shipped <= names, sorted(shipped - names)
+    web = {f"sdfgl/web/{p.name}" for p in (ROOT / "sdfgl" / "web").iterdir() if p.suffix in (".js", ".css", ".html")}
+    assert {"sdfgl/web/viewer.js", "sdfgl/web/page.html"} <= web and web <= names, sorted(web - names)
 
 
 def test_wheel_metadata_license_types_and_one_version(tmp_path):
@@ -27,7 +29,9 @@ def test_wheel_metadata_license_types_and_one_version(tmp_path):
     wheel = zipfile.ZipFile(next(tmp_path.glob("sdfgl-*.whl")))
     names = set(wheel.namelist())
     assert "sdfgl/py.typed" in names
-    assert {"sdfgl/scene_io/__init__.py", "sdfgl/expr.py", "sdfgl/__main__.py"} <= names
+    modules = {p.relative_to(ROOT).as_posix() for p in (ROOT / "sdfgl").rglob("*.py")}
+    assert {"sdfgl/scene_io/__init__.py", "sdfgl/expr.py", "sdfgl/__main__.py"} <= modules
+    assert modules <= names, sorted(modules - names)  # every subpackage is listed in pyproject
     assert any(n.endswith("LICENSE") for n in names)
     meta = email.message_from_bytes(wheel.read(next(n for n in names if n.endswith(".dist-info/METADATA"))))
     assert meta["Version"] == sdfgl.__version__  # one source: sdfgl/version.py

@@ -129,8 +129,7 @@ class Union(_Boolean):
         if grid is None:
             return super()._emit(em, p)
         pt = em.point(p)
-        acc = em.assign("vec4", f"{em.grid_name(grid)}Union({pt})")
-        acc = acc if em.mode == "color" else em.assign("float", f"{acc}.w")
+        acc = em.grid_union(grid, pt)
         for c in self.children:
             if not any(c is g for g in grid.children):
                 acc = self._combine(em, acc, c.emit(em, pt))
@@ -281,7 +280,7 @@ def product(a: Node, b: Node) -> Node:
 
 
 def union(*nodes: Node, k: float = 0.0, blend: str = "quadratic") -> Node:
-    """Union of two or more nodes (``a | b``), optionally blended.
+    """Union of two or more nodes (``a | b``), optionally blended; 2D shapes give a 2D union.
 
     Args:
         nodes: two or more nodes; colours are kept per part (and mixed across a blend).
@@ -295,11 +294,14 @@ def union(*nodes: Node, k: float = 0.0, blend: str = "quadratic") -> Node:
         >>> float(sg.union(sg.sphere(1), sg.sphere(1, (3, 0, 0))).distance((1.5, 0, 0)))
         0.5
     """
+    if _all_2d(nodes):
+        from .shapes2d_ops import union as union2
+        return union2(*nodes, k=k, blend=blend)  # type: ignore[return-value]
     return Union(*nodes, k=k, blend=blend)
 
 
 def intersection(*nodes: Node, k: float = 0.0, blend: str = "quadratic") -> Node:
-    """Intersection of two or more nodes (``a & b``), optionally blended.
+    """Intersection of two or more nodes (``a & b``) or 2D shapes, optionally blended.
 
     Args:
         nodes: two or more nodes.
@@ -312,11 +314,14 @@ def intersection(*nodes: Node, k: float = 0.0, blend: str = "quadratic") -> Node
         >>> float((sg.sphere(1) & sg.box(1)).distance((2, 0, 0)))
         1.5
     """
+    if _all_2d(nodes):
+        from .shapes2d_ops import intersection as intersection2
+        return intersection2(*nodes, k=k, blend=blend)  # type: ignore[return-value]
     return Intersection(*nodes, k=k, blend=blend)
 
 
 def difference(*nodes: Node, k: float = 0.0, blend: str = "quadratic") -> Node:
-    """The first node minus all the others (``a - b``), optionally blended.
+    """The first node (or 2D shape) minus all the others (``a - b``), optionally blended.
 
     Args:
         nodes: the node to cut, then the nodes cut away.
@@ -329,4 +334,12 @@ def difference(*nodes: Node, k: float = 0.0, blend: str = "quadratic") -> Node:
         >>> float((sg.box(2) - sg.sphere(0.5)).distance((0, 0, 0)))
         0.5
     """
+    if _all_2d(nodes):
+        from .shapes2d_ops import difference as difference2
+        return difference2(*nodes, k=k, blend=blend)  # type: ignore[return-value]
     return Difference(*nodes, k=k, blend=blend)
+
+
+def _all_2d(nodes: tuple) -> bool:
+    from .shapes2d import Shape2D
+    return bool(nodes) and all(isinstance(n, Shape2D) for n in nodes)

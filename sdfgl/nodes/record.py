@@ -15,7 +15,8 @@ Registering a new node kind takes nothing beyond what a node has anyway::
 Its constructor's arguments must be values a document can hold: numbers, strings, bools,
 None, sequences of those, numpy arrays, live parameters, sympy expressions (kept as
 text) and other nodes. A constructor that takes anything else (a callable, a file)
-declares ``serializable = False``; saving such a node then names it.
+declares ``serializable = False`` (and may say why in ``unsaved_reason``); saving such a
+node then names it.
 A helper base class that should not be registered passes ``register=False``::
 
     class _Warp(Unary, register=False): ...   # (only needed when it sets a kind)
@@ -33,6 +34,7 @@ class Recorded:
 
     kind: ClassVar[str] = "recorded"
     serializable: ClassVar[bool] = True
+    unsaved_reason: ClassVar[str] = ""  # why a class with serializable = False cannot be saved
     _ctor: tuple[tuple, dict]
 
     def __new__(cls, *args: Any, **kwargs: Any) -> "Recorded":
@@ -82,16 +84,12 @@ def _reduce_param(p: Any) -> tuple:
     # a Param's checks are closures of the nodes that use it: the nodes add them again
     # when pickle rebuilds them, so only value, name and range travel (an unnamed
     # parameter is named by its label, so the generated source stays the same)
-    return (_rebuild_param, (p.value, p.name or p.label, getattr(p, "range", None)))
+    return (_rebuild_param, (p.value, p.name or p.label, p.range))
 
 
 def _rebuild_param(value: Any, name: str | None, rng: Any) -> Any:
     from ..params import Param
-    p = Param(value, name)
-    if rng is not None:
-        from ..scene_io.decode import set_range
-        set_range(p, rng[0], rng[1], f"param {name}")
-    return p
+    return Param(value, name, rng)
 
 
 def _install_param_pickling() -> None:

@@ -20,11 +20,11 @@ from typing import Any
 import numpy as np
 
 from ..errors import SceneDocumentError, SdfglError
-from .decode import Document, from_document, set_range
+from .decode import Document, from_document
 from .encode import to_document
 from .limits import FORMAT, MAX_ARRAY, MAX_BYTES, MAX_NESTING, MAX_NODES, MAX_PARAMS, VERSION
 
-__all__ = ["save_scene", "load_scene", "to_dict", "from_dict", "dumps", "loads", "Document", "set_range",
+__all__ = ["save_scene", "load_scene", "to_dict", "from_dict", "dumps", "loads", "Document",
            "FORMAT", "VERSION", "MAX_BYTES", "MAX_NESTING", "MAX_NODES", "MAX_ARRAY", "MAX_PARAMS"]
 
 _STRING = re.compile(rb'"(?:[^"\\]|\\.)*"', re.S)

@@ -92,16 +92,14 @@ class Decoder:
             if "value" not in entry:
                 raise fail(f"{path}.value", "missing")
             value = self._number_or_vector(entry["value"], f"{path}.value")
-            try:
-                p = Param(value, name)
-            except SdfglError as exc:
-                raise fail(f"{path}.value", str(exc)) from None
+            rng = None
             if "min" in entry or "max" in entry:
-                lo = self._number(entry.get("min", -math.inf), f"{path}.min")
-                hi = self._number(entry.get("max", math.inf), f"{path}.max")
-                if not lo <= hi:
-                    raise fail(path, f"min ({lo:g}) is above max ({hi:g})")
-                set_range(p, lo, hi, path)
+                rng = (self._number(entry["min"], f"{path}.min") if "min" in entry else -math.inf,
+                       self._number(entry["max"], f"{path}.max") if "max" in entry else math.inf)
+            try:
+                p = Param(value, name, rng)
+            except SdfglError as exc:
+                raise fail(path, str(exc)) from None
             self.params[name] = p
 
     def _table(self, table: Any) -> None:
@@ -271,8 +269,8 @@ class Decoder:
         from ..camera import Camera, OrbitCamera
         if not isinstance(c, dict):
             raise fail("camera", f"expected an object, got {_what(c)}")
-        kinds = {"orbit": (OrbitCamera, ("target", "distance", "yaw", "pitch", "fov")),
-                 "look_at": (Camera, ("eye", "target", "up", "fov"))}
+        kinds = {"orbit": (OrbitCamera, ("target", "distance", "yaw", "pitch", "fov", "projection", "ortho_height")),
+                 "look_at": (Camera, ("eye", "target", "up", "fov", "projection", "ortho_height"))}
         t = c.get("type")
         if t not in kinds:
             raise fail("camera.type", f"expected \"orbit\" or \"look_at\", got {_what(t)}")
@@ -284,8 +282,13 @@ class Decoder:
         for k in keys:
             if k in c:
                 val = c[k]
-                kw[k] = self._vector(val, f"camera.{k}") if k in ("eye", "target", "up") else \
-                    self._number(val, f"camera.{k}")
+                if k == "projection":
+                    if val not in ("perspective", "orthographic"):
+                        raise fail("camera.projection", f"expected \"perspective\" or \"orthographic\", got {_what(val)}")
+                    kw[k] = val
+                else:
+                    kw[k] = self._vector(val, f"camera.{k}") if k in ("eye", "target", "up") else \
+                        self._number(val, f"camera.{k}")
         if t == "look_at" and "eye" not in kw:
             raise fail("camera.eye", "missing")
         try:
@@ -299,6 +302,8 @@ class Decoder:
         if not isinstance(s, dict):
             raise fail("settings", f"expected an object, got {_what(s)}")
         out = {k: (tuple(v) if isinstance(v, list) else v) for k, v in s.items()}
+        if isinstance(out.get("lights"), tuple):
+            out["lights"] = tuple(_light(x, f"settings.lights[{i}]") for i, x in enumerate(out["lights"]))
         try:
             Settings.build(**out)
         except SdfglError as exc:
@@ -338,15 +343,36 @@ def _refs(value: Any) -> list[str]:
     return out
 
 
-def set_range(p: Param, lo: float, hi: float, where: str = "param") -> None:
-    """Give ``p`` a range (kept in documents, e.g. for sliders) that every value must lie in."""
-    def check(value: Any) -> None:
-        import numpy as np
-        arr = np.atleast_1d(np.asarray(value, dtype=float))
-        if np.any(arr < lo) or np.any(arr > hi):
-            raise ParameterError(f"{where}: value {value!r} is outside its range [{lo:g}, {hi:g}]")
-    p.range = (lo, hi)  # type: ignore[attr-defined]
-    p.add_check(check)
+LIGHT_KEYS = {"directional": ("direction", "color", "intensity", "shadow", "fill"),
+              "point": ("position", "color", "intensity", "shadow", "range", "fill")}
+
+
+def _light(d: Any, path: str) -> Any:
+    """A light from its document object, validated by its factory (a saved unit direction is kept
+    as written, so the generated GLSL is the same)."""
+    import dataclasses
+
+    from ..look.lights import directional_light, point_light
+    if not isinstance(d, dict):
+        raise fail(path, f"expected a light object, got {_what(d)}")
+    t = d.get("type")
+    if t not in LIGHT_KEYS:
+        raise fail(f"{path}.type", f"expected \"directional\" or \"point\", got {_what(t)}")
+    keys = LIGHT_KEYS[t]
+    extra = sorted(set(d) - set(keys) - {"type"})
+    if extra:
+        raise fail(f"{path}.{extra[0]}", f"unknown key for a {t} light; known: {', '.join(keys)}")
+    if keys[0] not in d:
+        raise fail(f"{path}.{keys[0]}", "missing")
+    kw = {k: (tuple(d[k]) if isinstance(d[k], list) else d[k]) for k in keys if k in d}
+    try:
+        light = (directional_light if t == "directional" else point_light)(**kw)
+    except (SdfglError, TypeError, ValueError) as exc:
+        raise fail(path, str(exc)) from None
+    saved = tuple(float(x) for x in kw[keys[0]])
+    if t == "directional" and abs(math.hypot(*saved) - 1.0) < 1e-12:
+        light = dataclasses.replace(light, vector=saved)  # a saved unit vector, kept to the bit
+    return light
 
 
 def from_document(doc: Any) -> Document:

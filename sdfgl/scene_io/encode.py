@@ -9,6 +9,7 @@ scene is. No recursion over the scene graph.
 from __future__ import annotations
 
 import inspect
+import json
 import math
 from functools import lru_cache
 from typing import Any
@@ -93,7 +94,8 @@ class Encoder:
 
     def _encode_node(self, node: Recorded, shared: bool) -> None:
         if not node.serializable:
-            raise ParameterError(f"{node.kind}: this node kind cannot be saved in a scene document")
+            why = f": {node.unsaved_reason}" if node.unsaved_reason else ""
+            raise ParameterError(f"{node.label()}: a {node.kind!r} node cannot be saved in a scene document{why}")
         if "_ctor" not in node.__dict__:
             raise ParameterError(f"{node.kind}: this node was not made by calling its class, so its arguments are "
                                  f"unknown and it cannot be saved")
@@ -150,9 +152,9 @@ class Encoder:
             raise ParameterError(f"two different live parameters are both named {key!r}; give them distinct names "
                                  f"to save the scene")
         entry: dict[str, Any] = {"value": self._value(p.value, f"param {key}", [0], 0)}
-        rng = getattr(p, "range", None)
-        if rng is not None:
-            entry["min"], entry["max"] = _float(float(rng[0]), key), _float(float(rng[1]), key)
+        if p.range is not None:  # an open (infinite) end is left out
+            lo, hi = p.range
+            entry.update({k: x for k, x in (("min", lo), ("max", hi)) if math.isfinite(x)})
         self.params[key] = entry
         self._param_keys[id(p)] = key
         return key
@@ -170,13 +172,32 @@ def camera_to_dict(camera: Any) -> dict[str, Any]:
     """An OrbitCamera or a look-at Camera as a document's ``camera`` object."""
     from ..camera import Camera, OrbitCamera
     if type(camera) is OrbitCamera:
-        return {"type": "orbit", "target": [float(x) for x in camera.target], "distance": float(camera.distance),
-                "yaw": float(camera.yaw), "pitch": float(camera.pitch), "fov": float(camera.fov)}
-    if type(camera) is Camera:
-        return {"type": "look_at", "eye": [float(x) for x in camera.eye], "target": [float(x) for x in camera.target],
-                "up": [float(x) for x in camera.up_hint], "fov": float(camera.fov)}
-    raise ParameterError(f"save_scene: a camera of type {type(camera).__name__} cannot be saved "
+        out = {"type": "orbit", "target": [float(x) for x in camera.target], "distance": float(camera.distance),
+               "yaw": float(camera.yaw), "pitch": float(camera.pitch), "fov": float(camera.fov)}
+    elif type(camera) is Camera:
+        out = {"type": "look_at", "eye": [float(x) for x in camera.eye], "target": [float(x) for x in camera.target],
+               "up": [float(x) for x in camera.up_hint], "fov": float(camera.fov)}
+    else:
+        raise ParameterError(f"save_scene: a camera of type {type(camera).__name__} cannot be saved "
                          f"(OrbitCamera and Camera can)")
+    if camera.orthographic:  # perspective is the default and is left out
+        out["projection"] = "orthographic"
+        if camera._ortho_height is not None:
+            out["ortho_height"] = float(camera._ortho_height)
+    return out
+
+
+def light_to_dict(light: Any) -> dict[str, Any]:
+    """A light (``sg.directional_light`` / ``sg.point_light``) as a document's object."""
+    out: dict[str, Any] = {"type": light.kind, "direction" if light.kind == "directional" else "position":
+                           list(light.vector), "color": list(light.color), "intensity": light.intensity}
+    if light.shadow is not None:
+        out["shadow"] = light.shadow
+    if light.fill:
+        out["fill"] = True
+    if light.range is not None:
+        out["range"] = light.range
+    return out
 
 
 def settings_to_dict(settings: dict[str, Any]) -> dict[str, Any]:
@@ -185,7 +206,17 @@ def settings_to_dict(settings: dict[str, Any]) -> dict[str, Any]:
     if not isinstance(settings, dict):
         raise ParameterError(f"save_scene: 'settings' must be a dict, got {type(settings).__name__}")
     Settings.build(**settings)
-    return {k: (list(v) if isinstance(v, tuple) else v) for k, v in settings.items()}
+    out = {k: (list(v) if isinstance(v, tuple) else v) for k, v in settings.items()}
+    if out.get("lights") is not None:
+        from ..look.lights import check_lights
+        out["lights"] = [light_to_dict(lt) for lt in check_lights(out["lights"])]
+    for k, v in out.items():
+        try:
+            json.dumps(v, allow_nan=False)
+        except (TypeError, ValueError):
+            raise ParameterError(f"save_scene: setting {k!r} ({type(v).__name__}) cannot be saved in a scene document; "
+                                 f"pass it to render() instead") from None
+    return out
 
 
 def to_document(scene: Recorded, camera: Any = None, settings: dict[str, Any] | None = None) -> dict[str, Any]:
