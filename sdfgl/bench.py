@@ -21,6 +21,7 @@ from typing import Callable, Sequence
 import moderngl
 import numpy as np
 
+from .errors import SdfglError
 from . import hardcases
 from .camera import Camera
 from .codegen import ShaderSource, generate, max_steps_of, scene_frame
@@ -301,7 +302,10 @@ def feature_table(variants: Sequence[Variant]) -> str:
 
 def pareto_plot(variants: Sequence[Variant], path: Path) -> None:
     """Frame time against depth error, one panel per scene; the Pareto front is joined."""
-    import matplotlib
+    try:
+        import matplotlib
+    except ImportError:
+        raise SdfglError("the benchmark's plot needs matplotlib: pip install 'sdfgl[plots]'") from None
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     scenes = list(dict.fromkeys(v.scene for v in variants))

@@ -31,12 +31,28 @@ def _projection(name: str, projection: str, ortho_height: float | None) -> float
 
 
 class Camera:
-    """Camera at ``eye`` looking at ``target``.
+    """Camera at ``eye`` looking at ``target`` (Y up, angles in degrees).
 
-    ``projection="perspective"`` (a pinhole with vertical field of view ``fov``) or
-    ``"orthographic"``: parallel rays along the view direction from the image plane
-    through ``eye``, the view ``ortho_height`` world units tall (default: the height the
-    perspective view has at the target, 2 |target - eye| tan(fov / 2)).
+    Args:
+        eye: the eye position (x, y, z).
+        target: the point looked at; must differ from ``eye``.
+        up: approximate up direction (not zero).
+        fov: vertical field of view in degrees, in [1e-4, 179].
+        projection: ``"perspective"`` (a pinhole with vertical field of view ``fov``) or
+            ``"orthographic"``: parallel rays along the view direction from the image
+            plane through ``eye``.
+        ortho_height: world height of an orthographic view (default: the height the
+            perspective view has at the target, 2 |target - eye| tan(fov / 2)).
+
+    ``rays(w, h)`` gives the float64 rays the shader traces (pixel centres, row 0 on top).
+
+    Example:
+        >>> cam = sg.Camera.look_at((0, 0, 5), (0, 0, 0), fov=40)
+        >>> o, d = cam.rays(4, 3)
+        >>> d.shape
+        (3, 4, 3)
+        >>> sg.Camera((0, 0, 5), projection="orthographic", ortho_height=2).ortho_height
+        2.0
     """
 
     def __init__(self, eye: Sequence[float], target: Sequence[float] = (0.0, 0.0, 0.0),
@@ -137,7 +153,22 @@ class Camera:
 
 
 class OrbitCamera(Camera):
-    """Camera orbiting ``target`` at ``distance``; ``yaw`` turns about Y, ``pitch`` lifts the eye."""
+    """Camera orbiting ``target`` at ``distance`` (the viewer drives it).
+
+    Args:
+        target: the point looked at and orbited.
+        distance: eye-to-target distance, > 0.
+        yaw: turn about the Y axis, degrees (0 looks along -Z from +Z).
+        pitch: lift of the eye above the target's horizontal plane, degrees in [-89.9, 89.9].
+        fov: vertical field of view, degrees.
+        projection: ``"perspective"`` or ``"orthographic"``, as for :class:`Camera`.
+        ortho_height: world height of an orthographic view, as for :class:`Camera`.
+
+    Example:
+        >>> cam = sg.OrbitCamera(target=(0, 1, 0), distance=5, yaw=0, pitch=0)
+        >>> [round(float(x), 6) for x in cam.eye]
+        [0.0, 1.0, 5.0]
+    """
 
     def __init__(self, target: Sequence[float] = (0.0, 0.0, 0.0), distance: float = 5.0,
                  yaw: float = 30.0, pitch: float = 20.0, fov: float = 45.0, projection: str = "perspective",

@@ -96,7 +96,18 @@ class Live:
 
 
 class Param(Live):
-    """A scalar or 3-vector that is a shader uniform; set ``.value`` between renders."""
+    """A scalar or 3-vector that is a shader uniform; set ``.value`` between renders.
+
+    Made by :func:`sdfgl.param`. Arithmetic with numbers and other parameters (+, -, *, /,
+    unary -) gives live expressions that stay uniforms in the GLSL.
+
+    Example:
+        >>> p = sg.param((0.0, 1.0, 0.0), name="offset")
+        >>> s = sg.sphere(0.5).translate(p)
+        >>> p.value = (0.0, 2.0, 0.0)
+        >>> float(s.distance((0, 2, 0)))
+        -0.5
+    """
 
     def __init__(self, value: Any, name: str | None = None, range: tuple[float, float] | None = None) -> None:
         super().__init__("param")
@@ -104,16 +115,26 @@ class Param(Live):
         self._checks: list[Callable[[Any], None]] = []
         self._value = self._coerce(value)
         self.range = None if range is None else self._check_range(range)
+        self._in_range(self._value)
 
     def _check_range(self, rng: Any) -> tuple[float, float]:
-        """A slider range (lo, hi) with lo < hi (for a 3-vector, of each component)."""
+        """The allowed (lo, hi) with lo < hi (for a 3-vector, of each component); an
+        infinite end leaves that side open."""
         try:
             lo, hi = (float(x) for x in rng)
         except (TypeError, ValueError):
             raise ParameterError(f"param {self.label}: range must be (low, high), got {rng!r}") from None
-        if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
-            raise ParameterError(f"param {self.label}: range must be two finite numbers low < high, got {rng!r}")
+        if math.isnan(lo) or math.isnan(hi) or not lo < hi:
+            raise ParameterError(f"param {self.label}: range must be two numbers low < high (an infinite end leaves "
+                                 f"that side open), got {rng!r}")
         return lo, hi
+
+    def _in_range(self, value: Any) -> None:
+        if self.range is not None:
+            lo, hi = self.range
+            if np.any(np.asarray(value) < lo) or np.any(np.asarray(value) > hi):
+                shown = value if np.ndim(value) == 0 else tuple(float(x) for x in value)
+                raise ParameterError(f"param {self.label}: value {shown!r} is outside its range [{lo:g}, {hi:g}]")
 
     @staticmethod
     def _coerce(value: Any) -> Any:
@@ -142,6 +163,7 @@ class Param(Live):
         if np.ndim(v) != np.ndim(self._value):
             raise ParameterError(f"param {self.label}: a {'vector' if np.ndim(self._value) else 'scalar'} "
                                  f"parameter cannot take {new!r}")
+        self._in_range(v)
         old, self._value = self._value, v
         try:
             for check in self._checks:
@@ -174,10 +196,27 @@ class Param(Live):
 
 
 def param(value: Any, name: str | None = None, range: tuple[float, float] | None = None) -> Param:
-    """A live value (number or 3-vector) that a render reads as a uniform: changing it needs no recompile.
+    """A live value that a render reads as a uniform: changing it needs no recompile.
 
-    ``name`` labels it (in shaders, sliders and errors); ``range`` is the (low, high) of its
-    slider in the browser views (default: around the value, within what its nodes accept).
+    Args:
+        value: a finite number or 3 finite numbers (a position, size or colour).
+        name: a label for messages, shader comments, sliders and scene documents.
+        range: the (low, high) the value must stay in (each component of a 3-vector);
+            an infinite end leaves that side open. Sliders in the browser views span it
+            (default: around the value, within what its nodes accept); scene documents
+            keep it as ``min``/``max``.
+
+    Every node that uses it checks each new value, naming itself.
+
+    Example:
+        >>> r = sg.param(1.0, name="r", range=(0.5, 2.0))
+        >>> s = sg.sphere(r)
+        >>> r.value = 2.0
+        >>> float(s.distance((3, 0, 0)))
+        1.0
+        >>> r.value = 3.0
+        Traceback (most recent call last):
+        sdfgl.errors.ParameterError: param r: value 3.0 is outside its range [0.5, 2]
     """
     return Param(value, name, range)
 

@@ -10,11 +10,10 @@ from typing import Sequence
 
 import moderngl
 import numpy as np
-from PIL import Image
 
 from .camera import Camera, OrbitCamera
 from .codegen import BOUNDS_PAD, GLSL_FAR, ShaderSource, generate, scene_frame
-from .errors import ParameterError, SdfglError
+from .errors import ParameterError
 from .gl.context import headless_context
 from .gl.programs import ProgramCache
 from .gl.targets import Targets
@@ -41,7 +40,18 @@ def shader_origin(scene: Node, eye: np.ndarray) -> np.ndarray:
 
 @dataclass
 class RenderResult:
-    """Images of one draw. Row 0 is the top row of the image."""
+    """Images of one draw. Row 0 is the top row of the image.
+
+    ``color`` is uint8 (H, W, 3), gamma-corrected; ``depth`` float32 (H, W), the ray
+    parameter t of the pixel centre (inf on a miss); ``normal`` float32 (H, W, 3) unit
+    normals (0 on a miss); ``steps`` int32 map() calls. ``save(path)`` writes the colour
+    image; :func:`sdfgl.outputs.save_outputs` writes the others or an .npz.
+
+    Example:
+        >>> res = sg.render(sg.box(1), size=(16, 12))
+        >>> res.color.dtype.name, res.depth is None
+        ('uint8', True)
+    """
 
     color: np.ndarray                      # uint8 (H, W, 3), gamma-corrected; (H, W, 4) with alpha=True
     depth: np.ndarray | None = None        # float32 (H, W): ray t of the pixel centre, inf on a miss
@@ -61,18 +71,16 @@ class RenderResult:
 
     def _repr_png_(self) -> bytes:
         """The colour image as PNG: Jupyter shows a result inline."""
+        from PIL import Image
         buf = io.BytesIO()
         Image.fromarray(self.color).save(buf, format="PNG")
         return buf.getvalue()
 
-    def save(self, path: str | Path) -> Path:
-        """Write the colour image as PNG (or any format Pillow knows from the suffix)."""
-        p = Path(path)
-        try:
-            Image.fromarray(self.color).save(p)
-        except (OSError, ValueError, KeyError) as exc:
-            raise SdfglError(f"cannot write image file '{p}': {exc}") from exc
-        return p
+    def save(self, path: str | Path, **options: object) -> Path:
+        """Write the colour image as PNG (or any format Pillow knows from the suffix);
+        ``options`` go to Pillow (PNG defaults to the fast ``compress_level=1``)."""
+        from .outputs import write_image
+        return write_image(self.color, path, **options)
 
 
 def _set_uniform(prog: moderngl.Program, name: str, value: object) -> None:
@@ -155,7 +163,16 @@ def bind_data(prog: moderngl.Program, source: ShaderSource) -> None:
 
 
 class Renderer:
-    """Draws scenes on one GL context, caching programs by source and targets by size."""
+    """Draws scenes on one GL context, caching programs by source and targets by size.
+
+    Use one to render many frames (or on a context you made); :func:`render` uses a
+    process-wide one.
+
+    Example:
+        >>> r = sg.Renderer()
+        >>> r.render(sg.sphere(1), size=(8, 8)).color.shape
+        (8, 8, 3)
+    """
 
     def __init__(self, ctx: moderngl.Context | None = None) -> None:
         self.ctx = ctx or headless_context()
@@ -240,11 +257,25 @@ def default_renderer() -> Renderer:
 
 def render(scene: Node, camera: Camera | None = None, size: Sequence[int] = (640, 480),
            **settings: object) -> RenderResult:
-    """Render ``scene`` headless and return its images.
+    """Render ``scene`` headless (EGL) and return its images.
 
-    ``camera`` defaults to an orbit camera framing the scene bounds. Settings (see
-    :class:`sdfgl.settings.Settings`): ``aa`` 1..4, ``shadows`` False/"hard"/"soft",
-    ``ao``, ``ground``, ``method``, ``max_steps``, ``hit``, ``hit_scale``, ``max_dist`` and
-    ``outputs`` (any of "color", "depth", "normal", "steps").
+    Args:
+        scene: the scene node.
+        camera: a :class:`Camera` or :class:`OrbitCamera`; default: an orbit camera
+            framing the scene's bounds.
+        size: (width, height) in pixels, each 1..16384.
+        settings: see :class:`sdfgl.settings.Settings`: ``aa`` 1..4 (n x n samples per
+            pixel), ``shadows`` False/"hard"/"soft", ``ao``, ``ground``, ``method``,
+            ``max_steps``, ``hit``, ``hit_scale``, ``max_dist``, ``debug`` and ``outputs``
+            (any of "color", "depth", "normal", "steps").
+
+    Returns a :class:`RenderResult`: ``color`` uint8 (H, W, 3), and as asked ``depth``
+    (float32 ray parameter t along the unit direction, inf on a miss), ``normal`` and
+    ``steps``. Row 0 is the top row. No output ever holds NaN.
+
+    Example:
+        >>> res = sg.render(sg.sphere(1), sg.OrbitCamera(distance=4), (32, 24), outputs=("color", "depth"))
+        >>> res.color.shape, bool(res.depth.min() < 4)
+        ((24, 32, 3), True)
     """
     return default_renderer().render(scene, camera, size, **settings)

@@ -20,10 +20,16 @@ class SceneFile:
 
 
 def load_scene_file(path: str | Path) -> SceneFile:
-    """Run ``path`` and return its ``scene``, ``camera`` and ``settings``; errors name the file and line."""
+    """Run ``path`` and return its ``scene``, ``camera`` and ``settings``; errors name the file and line.
+
+    A ``.json`` file is read as a scene document instead (no code runs; see sdfgl.scene_io)."""
     p = Path(path)
     if not p.is_file():
         raise SceneFileError(f"scene file '{p}' does not exist")
+    if p.suffix.lower() == ".json":
+        from .scene_io import load_scene
+        doc = load_scene(p)
+        return SceneFile(p, doc.scene, doc.camera, dict(doc.settings))
     try:
         ns = runpy.run_path(str(p), run_name="__sdfgl_scene__")
     except SyntaxError as exc:

@@ -121,6 +121,9 @@ class Settings:
             object.__setattr__(self, name, float(val))
         if self.debug not in DEBUG_VIEWS:
             raise ParameterError(f"setting 'debug' must be None, 'steps', 'normal' or 'depth', got {self.debug!r}")
+        if not isinstance(self.outputs, (str, list, tuple)):
+            raise ParameterError(f"setting 'outputs' must be a name or a sequence of names from {', '.join(OUTPUTS)}, "
+                                 f"got {self.outputs!r}")
         outs = (self.outputs,) if isinstance(self.outputs, str) else tuple(self.outputs)
         bad = [o for o in outs if o not in OUTPUTS]
         if bad:

@@ -63,7 +63,23 @@ def _common(name: str, color: Any, intensity: Any, shadow: Any, fill: Any) -> tu
 
 def directional_light(direction: Sequence[float] = (0.5, 0.7, 0.4), color: Any = "white", intensity: float = 1.0,
                       shadow: Any = None, fill: bool = False) -> Light:
-    """A light infinitely far away in ``direction`` (pointing from the scene toward the light)."""
+    """A light infinitely far away in ``direction`` (pointing from the scene toward the light).
+
+    Args:
+        direction: toward the light (normalised; not zero).
+        color: a colour: "#rrggbb", a CSS name, 0..255 integers or 0..1 floats (linear).
+        intensity: a factor on the colour, >= 0.
+        shadow: None (follow the ``shadows`` setting), False, "hard" or "soft".
+        fill: a fill light: no highlight, darkened by ambient occlusion, no shadow.
+
+    Lights are compiled into the shader (changing one recompiles); pass up to 8 as
+    ``render(..., lights=[...])``.
+
+    Example:
+        >>> key = sg.directional_light((0, 1, 0), "white", 0.8, shadow="soft")
+        >>> key.vector, key.intensity
+        ((0.0, 1.0, 0.0), 0.8)
+    """
     d = v.vector("directional_light", "direction", direction, nonzero=True)
     v.fixed("directional_light", "lights are compiled into the shader", direction=d)
     rgb, inten, sh = _common("directional_light", color, intensity, shadow, fill)
@@ -73,7 +89,22 @@ def directional_light(direction: Sequence[float] = (0.5, 0.7, 0.4), color: Any =
 
 def point_light(position: Sequence[float], color: Any = "white", intensity: float = 1.0, shadow: Any = None,
                 range: float | None = None, fill: bool = False) -> Light:  # noqa: A002 - the usual word
-    """A light at ``position``; with ``range``, its intensity falls as 1 / (1 + (d / range)^2)."""
+    """A light at ``position``.
+
+    Args:
+        position: the light's position (x, y, z).
+        color: a colour, as for :func:`directional_light`.
+        intensity: a factor on the colour, >= 0.
+        shadow: None (follow the ``shadows`` setting), False, "hard" or "soft".
+        range: None (no falloff), or the distance d at which the intensity halves: it falls
+            as 1 / (1 + (d / range)^2).
+        fill: a fill light: no highlight, darkened by ambient occlusion, no shadow.
+
+    Example:
+        >>> lamp = sg.point_light((0, 2, 0), "orange", 1.5, range=3)
+        >>> lamp.kind, lamp.range
+        ('point', 3.0)
+    """
     pos = v.vector("point_light", "position", position)
     v.fixed("point_light", "lights are compiled into the shader", position=pos)
     rgb, inten, sh = _common("point_light", color, intensity, shadow, fill)

@@ -11,6 +11,7 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..params import Live, Param
+from .record import Recorded
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..codegen import Emitter
@@ -24,14 +25,31 @@ INF = float("inf")
 
 def as_points(points: object) -> np.ndarray:
     """Return points as a float64 array of shape (..., 3)."""
-    p = np.asarray(points, dtype=np.float64)
+    try:
+        p = np.asarray(points, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise ParameterError(f"points must be numbers of shape (..., 3), got {type(points).__name__}") from None
     if p.ndim == 0 or p.shape[-1] != 3:
         raise ParameterError(f"points must have shape (..., 3), got {p.shape}")
     return p
 
 
-class Node:
-    """Base class of every scene-graph node. Nodes are immutable after construction."""
+class Node(Recorded, register=False):
+    """Base class of every scene-graph node. Nodes are immutable after construction.
+
+    Operators and methods build new nodes (fogleman/sdf style): ``a | b``, ``a & b``,
+    ``a - b``, ``.translate``, ``.rotate``, ``.scale``, ``.color`` and the rest. Every node
+    has ``distance(points)`` (the float64 twin of the generated GLSL), ``exactness``,
+    ``lipschitz`` and ``bounds``.
+
+    A subclass that sets ``kind`` is registered under it (see :mod:`sdfgl.nodes.record`):
+    pickle and scene documents rebuild it from its constructor's arguments.
+
+    Example:
+        >>> s = (sg.sphere(1) & sg.box(1.5)).translate((0, 1, 0)).color(0.9, 0.3, 0.2)
+        >>> s.exactness, float(s.distance((0, 3, 0)))
+        ('bound', 1.25)
+    """
 
     kind: ClassVar[str] = "node"
 
@@ -80,6 +98,11 @@ class Node:
         if not self.children:
             return self.label()
         return f"{self.label()}[{', '.join(repr(c) for c in self.children)}]"
+
+    def to_dict(self) -> dict:
+        """This scene as a JSON-ready document (docs/scene-format.md); ``sg.from_dict`` reads it back."""
+        from ..scene_io import to_dict
+        return to_dict(self)
 
     def _repr_png_(self) -> bytes | None:
         """A small render, shown inline by Jupyter (``sg.set_preview(False)`` turns it off)."""
@@ -184,17 +207,20 @@ class Node:
         from .booleans import difference
         return difference(self, other)
 
-    def union(self, *others: "Node", k: float = 0.0) -> "Node":
+    def union(self, *others: "Node", k: float = 0.0, blend: str = "quadratic") -> "Node":
+        """``self | others`` with blend radius ``k`` and ``blend`` style, as :func:`sdfgl.union`."""
         from .booleans import union
-        return union(self, *others, k=k)
+        return union(self, *others, k=k, blend=blend)
 
-    def intersection(self, *others: "Node", k: float = 0.0) -> "Node":
+    def intersection(self, *others: "Node", k: float = 0.0, blend: str = "quadratic") -> "Node":
+        """``self & others`` with blend radius ``k`` and ``blend`` style, as :func:`sdfgl.intersection`."""
         from .booleans import intersection
-        return intersection(self, *others, k=k)
+        return intersection(self, *others, k=k, blend=blend)
 
-    def difference(self, *others: "Node", k: float = 0.0) -> "Node":
+    def difference(self, *others: "Node", k: float = 0.0, blend: str = "quadratic") -> "Node":
+        """``self - others`` with blend radius ``k`` and ``blend`` style, as :func:`sdfgl.difference`."""
         from .booleans import difference
-        return difference(self, *others, k=k)
+        return difference(self, *others, k=k, blend=blend)
 
     def translate(self, offset: Sequence[float]) -> "Node":
         from .transforms import Translate
@@ -312,6 +338,13 @@ class Node:
 
 class Unary(Node):
     """A node with one child whose exactness and Lipschitz factor it keeps unless it says otherwise."""
+
+    def __new__(cls, child: object = None, *args: object, **kwargs: object) -> "Unary":
+        # subclasses read the child (bounds, exactness) before Node.__init__ checks it
+        if not isinstance(child, Node):
+            raise ParameterError(f"{cls.kind}: the operand must be an sdfgl node, got {type(child).__name__} "
+                                 f"{child!r}"[:200])
+        return super().__new__(cls, child, *args, **kwargs)
 
     def __init__(self, child: Node, **params: object) -> None:
         super().__init__((child,), **params)

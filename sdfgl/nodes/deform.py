@@ -38,7 +38,7 @@ class _Warp(Unary):
         r = v.scalar(self.kind, "rate", rate)
         v.fixed(self.kind, "the step safety factor is compiled from it", rate=r)
         axis = axis or self.default_axis
-        if axis not in self.planes:
+        if not isinstance(axis, str) or axis not in self.planes:
             raise ParameterError(f"{self.kind}: parameter 'axis' must be 'x', 'y' or 'z', got {axis!r}")
         lo, hi = child.bounds
         if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi))):
@@ -218,15 +218,54 @@ def _coordinate_axis(node: str, axis: str | Sequence[float]) -> int:
 
 
 def taper(node: Node, rate: float, axis: str | Sequence[float] = "y", origin: float = 0.0) -> Taper:
-    """Scale ``node``'s cross-section across ``axis`` by 1 + rate (u - origin) along it (a bound)."""
+    """Scale ``node``'s cross-section across ``axis`` by 1 + rate (u - origin) along it.
+
+    Args:
+        node: the node to taper; it must be bounded.
+        rate: change of the scale per unit along the axis (a baked constant); the scale
+            must stay > 0 over the node.
+        axis: "x", "y", "z" or a positive coordinate axis such as (0, 1, 0).
+        origin: the coordinate u along the axis where the scale is 1.
+
+    A bound (Lipschitz factor > 1, this subtree only).
+
+    Example:
+        >>> sg.taper(sg.box(1), 0.3).exactness
+        'bound'
+    """
     return Taper(node, rate, axis, origin)
 
 
 def twist(node: Node, rate: float, axis: str = "y") -> Twist:
-    """Twist ``node`` about ``axis`` ("x", "y" or "z") by ``rate`` degrees per unit along it."""
+    """Twist ``node`` about a coordinate axis.
+
+    Args:
+        node: the node to twist.
+        rate: degrees of turn per unit along the axis (a baked constant).
+        axis: "x", "y" or "z".
+
+    A bound: the Lipschitz factor grows with rate and the node's radius; only this subtree's
+    steps are shortened.
+
+    Example:
+        >>> sg.twist(sg.box((0.6, 2, 0.4)), 90).exactness
+        'bound'
+    """
     return Twist(node, rate, axis)
 
 
 def bend(node: Node, rate: float, axis: str = "z") -> Bend:
-    """Bend ``node`` about ``axis`` ("x", "y" or "z") by ``rate`` degrees per unit (see Bend)."""
+    """Bend ``node`` about a coordinate axis (the default "z" bends in the XY plane).
+
+    Args:
+        node: the node to bend.
+        rate: degrees of bend per unit along the bent direction (a baked constant; see Bend).
+        axis: "x", "y" or "z".
+
+    A bound (Lipschitz factor > 1, this subtree only).
+
+    Example:
+        >>> sg.bend(sg.box((2, 0.3, 0.4)), 40).exactness
+        'bound'
+    """
     return Bend(node, rate, axis)

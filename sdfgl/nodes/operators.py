@@ -137,5 +137,15 @@ class Shear(Unary):
 
 
 def morph(a: Node, b: Node, t: float | Live = 0.5) -> Morph:
-    """Blend the fields of ``a`` and ``b``: ``t`` = 0 is a, 1 is b (t may be live)."""
+    """Blend the fields of ``a`` and ``b``: (1 - t) a + t b.
+
+    Args:
+        a: the field at t = 0.
+        b: the field at t = 1.
+        t: the blend, in [0, 1] (may be a live ``sg.param``).
+
+    Example:
+        >>> float(sg.morph(sg.sphere(1), sg.box(2), 0.5).distance((2, 0, 0)))
+        1.0
+    """
     return Morph(a, b, t)

@@ -340,46 +340,132 @@ class Gyroid(Primitive):
 
 
 def tetrahedron(radius: float = 1.0) -> Tetrahedron:
-    """Regular tetrahedron, faces ``radius`` from the centre (a bound outside)."""
+    """Regular tetrahedron, faces ``radius`` from the centre (a bound outside).
+
+    Args:
+        radius: distance from the centre to each face, > 0.
+
+    Example:
+        >>> float(sg.tetrahedron(1).distance((0, 0, 0)))
+        -1.0
+    """
     return Tetrahedron(radius)
 
 
 def dodecahedron(radius: float = 1.0) -> Dodecahedron:
-    """Regular dodecahedron, faces ``radius`` from the centre (a bound outside)."""
+    """Regular dodecahedron, faces ``radius`` from the centre (a bound outside).
+
+    Args:
+        radius: distance from the centre to each face, > 0.
+
+    Example:
+        >>> float(sg.dodecahedron(1).distance((0, 0, 0)))
+        -1.0
+    """
     return Dodecahedron(radius)
 
 
 def icosahedron(radius: float = 1.0) -> Icosahedron:
-    """Regular icosahedron, faces ``radius`` from the centre (a bound outside)."""
+    """Regular icosahedron, faces ``radius`` from the centre (a bound outside).
+
+    Args:
+        radius: distance from the centre to each face, > 0.
+
+    Example:
+        >>> float(sg.icosahedron(1).distance((0, 0, 0)))
+        -1.0
+    """
     return Icosahedron(radius)
 
 
 def pyramid(height: float = 1.0, base: float = 1.0) -> Pyramid:
-    """Square pyramid on the XZ plane, apex at y = ``height``. Exact."""
+    """Square pyramid on the XZ plane, apex at y = ``height``. Exact.
+
+    Args:
+        height: the apex's height above the base, > 0.
+        base: the side of the square base, centred on the origin, > 0.
+
+    Example:
+        >>> float(sg.pyramid(1, 1).distance((0, 2, 0)))
+        1.0
+    """
     return Pyramid(height, base)
 
 
 def slab(x0: float | None = None, x1: float | None = None, y0: float | None = None, y1: float | None = None,
          z0: float | None = None, z1: float | None = None) -> Slab:
-    """The region between the given axis-aligned planes (a bound near edges)."""
+    """The region between the given axis-aligned planes (a bound near edges).
+
+    Args:
+        x0: the lower x limit (None: unlimited).
+        x1: the upper x limit (None: unlimited).
+        y0: the lower y limit.
+        y1: the upper y limit.
+        z0: the lower z limit.
+        z1: the upper z limit.
+
+    Example:
+        >>> float(sg.slab(y0=0, y1=1).distance((5, 3, 0)))
+        2.0
+    """
     return Slab(x0, x1, y0, y1, z0, z1)
 
 
 def tube(points: Sequence[Sequence[float]], radius: float = 0.1) -> Tube:
-    """A tube along a polyline. Exact."""
+    """A tube along a polyline. Exact.
+
+    Args:
+        points: two or more points (x, y, z) the tube's centre line passes through.
+        radius: the tube's radius, > 0.
+
+    Example:
+        >>> float(sg.tube([(0, 0, 0), (1, 0, 0), (1, 1, 0)], 0.1).distance((0.5, 0.5, 0)))
+        0.4
+    """
     return Tube(points, radius)
 
 
 def bezier_tube(a: Sequence[float], b: Sequence[float], c: Sequence[float], radius: float = 0.1) -> BezierTube:
-    """A tube along the quadratic Bezier curve a -> c with control point b. Exact."""
+    """A tube along the quadratic Bezier curve a -> c with control point b. Exact.
+
+    Args:
+        a: the start point (x, y, z).
+        b: the control point.
+        c: the end point.
+        radius: the tube's radius, > 0.
+
+    Example:
+        >>> float(sg.bezier_tube((0, 0, 0), (1, 1, 0), (2, 0, 0), 0.1).distance((0, -1, 0)))
+        0.9
+    """
     return BezierTube(a, b, c, radius)
 
 
 def capped_torus(r1: float = 1.0, r2: float = 0.25, aperture: float = 270.0) -> CappedTorus:
-    """A torus in the XY plane cut to ``aperture`` degrees about +Y. Exact."""
+    """A torus in the XY plane cut to ``aperture`` degrees about +Y. Exact.
+
+    Args:
+        r1: radius of the ring's centre line, > 0.
+        r2: radius of the tube, > 0.
+        aperture: the angle the ring spans, degrees, in (0, 360].
+
+    Example:
+        >>> float(sg.capped_torus(1, 0.25, 270).distance((0, 0, 0)))
+        0.75
+    """
     return CappedTorus(r1, r2, aperture)
 
 
 def gyroid(frequency: float = 2 * math.pi, thickness: float = 0.1) -> Gyroid:
-    """An infinite gyroid sheet (a bound); intersect it with a solid."""
+    """An infinite gyroid sheet (a bound); intersect it with a solid.
+
+    Args:
+        frequency: radians per unit length (2 pi: one period per unit), > 0.
+        thickness: the sheet's thickness, > 0.
+
+    Example:
+        >>> part = sg.gyroid(6.283, 0.1) & sg.sphere(1)
+        >>> part.exactness, float(part.distance((3, 0, 0)))
+        ('bound', 2.0)
+    """
     return Gyroid(frequency, thickness)

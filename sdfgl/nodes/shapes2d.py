@@ -8,17 +8,24 @@ import numpy as np
 from ..errors import ParameterError
 from . import validate as v
 from .base import EXACT, Node
+from .record import Recorded
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..codegen import Emitter
 
 
-class Shape2D:
+class Shape2D(Recorded, register=False):
     """A 2D signed distance: GLSL over a vec2, numpy over (..., 2), and its bounds.
 
     Shapes combine like 3D nodes (``a | b``, ``a & b``, ``a - b``, ``sg.union(..., k=)``),
     move (``translate``, ``rotate``, ``scale``), round and onion, and become solids by
-    ``extrude`` or ``revolve``. Each keeps its exactness and Lipschitz factor."""
+    ``extrude`` or ``revolve``. Each keeps its exactness and Lipschitz factor.
+
+    Example:
+        >>> ring = sg.circle(1) - sg.rectangle(1)
+        >>> isinstance(ring, sg.Shape2D), float(sg.extrude(ring, 0.2).distance((0, 0, 0)))
+        (True, 0.5)
+    """
 
     kind = "shape2d"
     exactness = EXACT
@@ -275,27 +282,72 @@ class Revolve(Node):
 
 
 def circle(radius: float = 0.5, center: Sequence[float] = (0.0, 0.0)) -> Circle:
-    """A 2D circle."""
+    """A 2D circle in the XY plane, made solid by :func:`extrude` or :func:`revolve`.
+
+    Args:
+        radius: radius, > 0.
+        center: centre (x, y).
+
+    Exact (in 2D).
+
+    Example:
+        >>> sg.extrude(sg.circle(0.5), 0.2).exactness
+        'exact'
+    """
     return Circle(radius, center)
 
 
 def rectangle(size: float | Sequence[float] = 1.0, radius: float = 0.0) -> Rectangle:
-    """A 2D rectangle of full ``size``, corners rounded by ``radius``."""
+    """A 2D rectangle centred at the origin of the XY plane.
+
+    Args:
+        size: full side lengths (a number or (sx, sy)), > 0.
+        radius: corner rounding radius, 0 .. half the smaller side.
+
+    Exact (in 2D).
+
+    Example:
+        >>> float(sg.extrude(sg.rectangle((2, 1)), 1.0).distance((2, 0, 0)))
+        1.0
+    """
     return Rectangle(size, radius)
 
 
 def polygon(points: Sequence[Sequence[float]]) -> Polygon:
-    """A 2D simple polygon."""
+    """A 2D simple polygon (no self-intersections) in the XY plane.
+
+    Args:
+        points: 3 or more (x, y) vertices in order (either winding).
+
+    Exact (in 2D).
+
+    Example:
+        >>> tri = sg.polygon([(0, 0), (1, 0), (0, 1)])
+        >>> sg.extrude(tri, 0.2).exactness
+        'exact'
+    """
     return Polygon(points)
 
 
 def extrude(shape: Shape2D, height: float, taper: float = 0.0, twist: float = 0.0) -> Node:
-    """Extrude a 2D shape along Z to full ``height``, centred on z = 0 (exact where the shape is).
+    """Extrude a 2D shape along Z, centred on z = 0.
 
-    ``taper``: the shape shrinks linearly from full size at the bottom (z = -height/2) to
-    (1 - taper) times it at the top (negative widens it); ``twist``: degrees the shape
-    turns (counter-clockwise seen from +Z) from bottom to top. Both are warps (sdfgl.nodes.deform) that divide only this
-    solid's field by their own stretch."""
+    Args:
+        shape: a 2D shape (:func:`circle`, :func:`rectangle`, :func:`polygon`, ...).
+        height: full height along Z (from -height/2 to height/2), > 0.
+        taper: the shape shrinks linearly from full size at the bottom (z = -height/2) to
+            (1 - taper) times it at the top (negative widens it); < 1.
+        twist: degrees the shape turns (counter-clockwise seen from +Z) from bottom to top.
+
+    Exact where the shape is, without taper and twist. Both are warps
+    (sdfgl.nodes.deform) that divide only this solid's field by their own stretch.
+
+    Example:
+        >>> float(sg.extrude(sg.circle(0.5), 1.0).distance((0, 0, 1.5)))
+        1.0
+        >>> sg.extrude(sg.rectangle(1), 2.0, twist=90).exactness
+        'bound'
+    """
     t = v.scalar("extrude", "taper", taper)
     w = v.scalar("extrude", "twist", twist)
     v.fixed("extrude", "taper and twist are compiled into the warp", taper=t, twist=w)
@@ -313,5 +365,16 @@ def extrude(shape: Shape2D, height: float, taper: float = 0.0, twist: float = 0.
 
 
 def revolve(shape: Shape2D, offset: float = 0.0) -> Revolve:
-    """Revolve a 2D shape about the Y axis, its x measured from ``offset``. Exact."""
+    """Revolve a 2D shape about the Y axis: its x is the distance from the axis minus ``offset``.
+
+    Args:
+        shape: a 2D shape in the XY plane.
+        offset: distance of the shape's origin from the Y axis (>= 0 or negative).
+
+    Exact.
+
+    Example:
+        >>> float(sg.revolve(sg.circle(0.25), 1.0).distance((0, 0, 1)))
+        -0.25
+    """
     return Revolve(shape, offset)

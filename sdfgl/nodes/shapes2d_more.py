@@ -169,28 +169,75 @@ class Capsule2D(Shape2D):
 
 
 def triangle(p0: Sequence[float], p1: Sequence[float], p2: Sequence[float]) -> Triangle:
-    """A 2D triangle through three points. Exact."""
+    """A 2D triangle through three points. Exact.
+
+    Args:
+        p0: the first corner (x, y).
+        p1: the second corner.
+        p2: the third corner (the three must not be collinear).
+
+    Example:
+        >>> float(sg.extrude(sg.triangle((0, 0), (1, 0), (0, 1)), 0.2).distance((0, -1, 0)))
+        1.0
+    """
     return Triangle(p0, p1, p2)
 
 
 def ellipse(radii: Sequence[float]) -> Ellipse:
-    """An axis-aligned 2D ellipse with semi-axes ``radii`` (a distance bound)."""
+    """An axis-aligned 2D ellipse with semi-axes ``radii`` (a distance bound).
+
+    Args:
+        radii: the semi-axes (rx, ry), > 0.
+
+    Example:
+        >>> sg.ellipse((2, 1)).exactness
+        'bound'
+    """
     return Ellipse(radii)
 
 
 def arc(radius: float, aperture: float, thickness: float) -> Arc:
-    """A 2D arc ``aperture`` degrees wide, symmetric about +Y. Exact."""
+    """A 2D arc ``aperture`` degrees wide, symmetric about +Y. Exact.
+
+    Args:
+        radius: radius of the arc's centre line, > 0.
+        aperture: the arc's angular width in degrees.
+        thickness: the arc's full thickness across the centre line, > 0.
+
+    Example:
+        >>> float(sg.extrude(sg.arc(1, 90, 0.1), 0.2).distance((0, 1, 0)))
+        -0.05
+    """
     return Arc(radius, aperture, thickness)
 
 
 def star(points: int = 5, radius: float = 1.0, inner: float = 3.0) -> Star:
-    """A 2D star; ``inner`` from 2 (blunt: a polygon) to ``points`` (sharp). Exact."""
+    """A 2D star with one tip at +Y. Exact.
+
+    Args:
+        points: the number of tips, >= 3.
+        radius: distance from the centre to each tip, > 0.
+        inner: sharpness, from 2 (blunt: a polygon) to ``points`` (sharp).
+
+    Example:
+        >>> float(sg.extrude(sg.star(5, 1, 3), 0.2).distance((0, 2, 0)))
+        1.0
+    """
     return Star(points, radius, inner)
 
 
 def regular_polygon(sides: int, radius: float = 1.0, rounding: float = 0.0) -> Shape2D:
-    """A regular polygon with corners ``radius`` from the centre (one at +Y), its corners
-    rounded by ``rounding`` with the same outer size. Exact."""
+    """A regular polygon with corners ``radius`` from the centre (one at +Y). Exact.
+
+    Args:
+        sides: the number of sides, >= 3.
+        radius: distance from the centre to each corner, > 0.
+        rounding: radius of the rounded corners (the outer size stays the same), >= 0.
+
+    Example:
+        >>> float(sg.extrude(sg.regular_polygon(6, 1), 0.2).distance((0, 2, 0)))
+        1.0
+    """
     r = v.scalar("regular_polygon", "radius", radius, positive=True)
     rr = v.scalar("regular_polygon", "rounding", rounding, nonnegative=True)
     if not isinstance(sides, (int, np.integer)) or isinstance(sides, bool) or sides < 3:
@@ -204,5 +251,15 @@ def regular_polygon(sides: int, radius: float = 1.0, rounding: float = 0.0) -> S
 
 
 def capsule2(a: Sequence[float], b: Sequence[float], radius: float) -> Capsule2D:
-    """A 2D capsule: the segment a b grown by ``radius``. Exact."""
+    """A 2D capsule: the segment a b grown by ``radius``. Exact.
+
+    Args:
+        a: one end of the segment (x, y).
+        b: the other end (x, y).
+        radius: the capsule's radius, > 0.
+
+    Example:
+        >>> float(sg.extrude(sg.capsule2((0, 0), (1, 0), 0.25), 0.2).distance((0.5, 1, 0)))
+        0.75
+    """
     return Capsule2D(a, b, radius)

@@ -16,6 +16,8 @@ if TYPE_CHECKING:  # pragma: no cover
 
 
 class Translate(Unary):
+    """The child moved by ``offset`` (x, y, z); keeps its exactness."""
+
     kind = "translate"
 
     def __init__(self, child: Node, offset: Sequence[float]) -> None:

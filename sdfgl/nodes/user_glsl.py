@@ -43,10 +43,17 @@ def _check_code(code: Any) -> str:
     return code
 
 
-class UserGLSL(Primitive):
-    """A field written in GLSL: ``float f(vec3 p) { <code> }``."""
+class UserGLSL(Primitive, register=False):
+    """A field written in GLSL: ``float f(vec3 p) { <code> }``.
+
+    Not registered as a document kind and not serializable: a scene document never
+    carries code, so a document naming ``glsl`` is refused on load and saving a scene
+    with this node names it. Pickle still works (it calls the class itself)."""
 
     kind = "glsl"
+    serializable = False
+    unsaved_reason = ("a scene document never carries code (user GLSL would run on load); pickle the scene or "
+                      "keep it in a Python scene file")
 
     def __init__(self, code: str, twin: Callable[[np.ndarray], Any] | None = None, lipschitz: float = 1.0,
                  bounds: Sequence[Sequence[float]] | None = None, exact: bool = False, implicit: bool = False) -> None:
@@ -127,9 +134,22 @@ def glsl(code: str, twin: Callable[[np.ndarray], Any] | None = None, lipschitz: 
          bounds: Sequence[Sequence[float]] | None = None, exact: bool = False, implicit: bool = False) -> UserGLSL:
     """A node written in GLSL: ``code`` is the body of ``float f(vec3 p)`` (or one expression).
 
-    ``twin``: a numpy function of (N, 3) float64 points giving the same field (without it
-    the accuracy tools cannot check the node); ``lipschitz``: the field's Lipschitz factor
-    (above 1, this node alone is divided by it); ``bounds``: (lo, hi) holding the solid
-    (default unbounded); ``exact``: the field is the Euclidean distance; ``implicit``: no
-    distance bound at all (render with a Newton method)."""
+    Args:
+        code: GLSL: the body of ``float f(vec3 p)`` with a ``return``, or one expression of ``p``.
+        twin: a numpy function of (N, 3) float64 points giving the same field (without it
+            the accuracy tools cannot check the node).
+        lipschitz: the field's Lipschitz factor, > 0 (above 1, this node alone is divided by it).
+        bounds: (lo, hi), two 3-vectors holding the solid (None: unbounded).
+        exact: True if the field is the Euclidean distance.
+        implicit: True if the field is no distance bound at all (render with a Newton method).
+
+    Such a node cannot be saved in a JSON scene document (a document never carries
+    code); pickle or a Python scene file keeps it.
+
+    Example:
+        >>> import numpy as np
+        >>> ball = sg.glsl("length(p) - 1.0", twin=lambda p: np.linalg.norm(p, axis=-1) - 1.0)
+        >>> float(ball.distance((2, 0, 0)))
+        1.0
+    """
     return UserGLSL(code, twin, lipschitz, bounds, exact, implicit)
