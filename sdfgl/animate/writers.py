@@ -14,12 +14,14 @@ from __future__ import annotations
 import os
 import re
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
-from PIL import GifImagePlugin, Image
 
 from ..errors import ParameterError, SdfglError
+
+if TYPE_CHECKING:  # pragma: no cover - Pillow is imported where frames are written
+    from PIL import Image
 
 VIDEO_SUFFIXES = {".mp4": "libx264", ".m4v": "libx264", ".mov": "libx264", ".webm": "libvpx-vp9"}
 FRAME_PATTERN = re.compile(r"%0?\d*d")
@@ -30,7 +32,7 @@ def temp_path(path: Path) -> Path:
     return path.with_name(f".{path.stem}.tmp-{os.getpid()}{path.suffix}")
 
 
-def save_image_atomic(image: Image.Image, path: Path, fmt: str = "PNG") -> None:
+def save_image_atomic(image: "Image.Image", path: Path, fmt: str = "PNG") -> None:
     """Write ``image`` to ``path`` through a temporary file and a rename."""
     tmp = temp_path(path)
     try:
@@ -99,6 +101,7 @@ class PngSequenceWriter(FrameWriter):
 
     def _write(self, frame: np.ndarray) -> None:
         p = self.frame_path(self.start + self.count)
+        from PIL import Image
         save_image_atomic(Image.fromarray(frame), p, "PNG")
         self.written.append(p)
 
@@ -114,6 +117,7 @@ class GifWriter(FrameWriter):
         self._duration = max(20, int(round(1000.0 / self.fps / 10.0)) * 10)  # GIF counts centiseconds
 
     def _write(self, frame: np.ndarray) -> None:
+        from PIL import GifImagePlugin, Image
         im = Image.fromarray(frame).quantize(256, method=Image.Quantize.FASTOCTREE, dither=Image.Dither.FLOYDSTEINBERG)
         if self.count == 0:
             header, _ = GifImagePlugin.getheader(im, info={"loop": self.loop})
