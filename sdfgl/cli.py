@@ -1,4 +1,4 @@
-"""Command line: ``sdfgl render | shader | view | bench``."""
+"""Command line: ``sdfgl render | shader | view | pbr | bench``."""
 from __future__ import annotations
 
 import argparse
@@ -146,6 +146,9 @@ def build_parser() -> argparse.ArgumentParser:
     v.add_argument("--state-file", help="keep a JSON file with the view's state up to date (for scripts)")
     _add_settings(v)
     v.set_defaults(func=cmd_view)
+
+    from .pbr.cli import add_parser as add_pbr
+    add_pbr(sub, _size)
 
     from .bench import add_arguments
     b = sub.add_parser("bench", help="benchmark marching methods: frame time beside error")

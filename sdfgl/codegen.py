@@ -372,7 +372,8 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     """Build the fragment shader for ``scene``.
 
     ``origin`` (float64) is the world point that the shader's coordinates are relative
-    to; ``target`` is ``"render"`` (the image) or ``"evaluate"`` (map() at given points).
+    to; ``target`` is ``"render"`` (the image), ``"evaluate"`` (map() at given points) or
+    ``"evaluate_color"`` (mapColor() and map() at given points).
     """
     if not isinstance(scene, Node):
         raise ParameterError(f"scene must be an sdfgl node, got {type(scene).__name__} {scene!r}")
@@ -391,7 +392,7 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     helpers: dict = {}
     dist, dist_result = _emit_map(scene, "dist", org, params, shared, grids, settings.grid, helpers)
     color, color_result = (_emit_map(scene, "color", org, params, shared, grids, settings.grid, helpers)
-                           if target == "render" else (None, ""))
+                           if target in ("render", "evaluate_color") else (None, ""))
     detail, detail_result = (_emit_map(scene, "dist", org, params, shared, grids, settings.grid, helpers, True)
                              if target == "render" and scene.has_detail else (None, ""))
     libs = list(dict.fromkeys(dist.libs + (color.libs if color else []) + (detail.libs if detail else [])))
@@ -421,6 +422,9 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     assert color is not None
     _helpers(b, color, done)
     _function(b, "vec3 mapColor(vec3 p)", color, color_result, "{}.rgb")
+    if target == "evaluate_color":
+        b.add_file("evaluate_color_main")
+        return b.build(params, live, data)
     if detail is not None:
         _helpers(b, detail, done)
         _function(b, "float mapDetail(vec3 p)", detail, detail_result, "{}")

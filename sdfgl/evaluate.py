@@ -20,19 +20,34 @@ def evaluate(scene: Node, points: object, origin: object = (0.0, 0.0, 0.0),
     render() does for far-away cameras), so points far from the world origin keep
     float32 precision relative to it.
     """
+    return _run(scene, points, origin, renderer, "evaluate", 1, "evaluate")
+
+
+def evaluate_color(scene: Node, points: object, origin: object = (0.0, 0.0, 0.0),
+                   renderer: Renderer | None = None) -> np.ndarray:
+    """Float32 (..., 4) array: the generated mapColor() (linear rgb) and map() at points.
+
+    The colour is the one the renderer shades a surface point with; away from the
+    surface it is the colour of the nearest part of the scene, as mapColor() picks it.
+    """
+    return _run(scene, points, origin, renderer, "evaluate_color", 4, "evaluate_color")
+
+
+def _run(scene: Node, points: object, origin: object, renderer: Renderer | None, target: str, comps: int,
+         caller: str) -> np.ndarray:
     if not isinstance(scene, Node):
-        raise ParameterError(f"evaluate: 'scene' must be an sdfgl node, got {type(scene).__name__}")
+        raise ParameterError(f"{caller}: 'scene' must be an sdfgl node, got {type(scene).__name__}")
     p = as_points(points)
-    shape = p.shape[:-1]
+    shape = p.shape[:-1] + ((comps,) if comps > 1 else ())
     flat = p.reshape(-1, 3)
     if flat.shape[0] == 0:
         return np.zeros(shape, dtype=np.float32)
     if not np.all(np.isfinite(flat)):
-        raise ParameterError("evaluate: points must be finite")
+        raise ParameterError(f"{caller}: points must be finite")
     org = np.asarray(origin, dtype=np.float64)
     r = renderer or default_renderer()
     ctx = r.ctx
-    source = generate(scene, Settings(shadows=False, ao=False), org, target="evaluate")
+    source = generate(scene, Settings(shadows=False, ao=False), org, target=target)
     prog = r.programs.get(source)
     scene_uniforms(prog, source, scene, org)
     n = flat.shape[0]
@@ -42,7 +57,7 @@ def evaluate(scene: Node, points: object, origin: object = (0.0, 0.0, 0.0),
     data[:n, :3] = flat - org
     tex = ctx.texture((w, h), 4, data.tobytes(), dtype="f4")
     tex.filter = (ctx.NEAREST, ctx.NEAREST)
-    out = ctx.texture((w, h), 1, dtype="f4")
+    out = ctx.texture((w, h), comps, dtype="f4")
     fbo = ctx.framebuffer(color_attachments=[out])
     try:
         tex.use(0)
@@ -51,7 +66,7 @@ def evaluate(scene: Node, points: object, origin: object = (0.0, 0.0, 0.0),
         fbo.use()
         ctx.viewport = (0, 0, w, h)
         r.vao(prog).render(vertices=3)
-        vals = np.frombuffer(out.read(), dtype=np.float32)[:n].copy()
+        vals = np.frombuffer(out.read(), dtype=np.float32)[:n * comps].copy()
     finally:
         fbo.release()
         out.release()

@@ -1,0 +1,150 @@
+"""The scene's field and colours sampled on grids by the GPU map() (sdfgl.evaluate).
+
+Mitsuba's ``sdfgrid`` shape intersects the trilinear interpolant of corner samples
+exactly (cell by cell, by the sign of the samples), so only the sign pattern near the
+surface decides where the surface is: implicit fields and warped fields (not distances)
+work as well as exact ones. Colours and material weights are sampled on coarser
+cell-centred grids for Mitsuba's ``gridvolume``.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+
+from ..errors import ParameterError
+from ..evaluate import evaluate, evaluate_color
+from ..nodes.base import Node
+
+CHUNK_POINTS = 1 << 22   # points per evaluate() call
+MIN_CELLS, MAX_CELLS = 16, 512
+# The trilinear interpolant rounds a sharp edge off by about a cell: at one cell per pixel
+# the CSG example's silhouette agreed with the float64 reference on 96 % of its edge
+# pixels (320x240, 64 spp), at two on 98.6 %.
+CELLS_PER_FOOTPRINT = 2
+PAD_CELLS = 2            # the sampled box extends this many cells beyond the scene bounds
+
+Progress = Callable[[str, float], None]
+
+
+@dataclass
+class FieldGrid:
+    """Corner samples of map() over the box [lo, hi]: ``values[k, j, i]`` at
+    ``lo + (i, j, k) * (hi - lo) / (shape - 1)`` (x fastest, as Mitsuba packs [Z, Y, X])."""
+
+    lo: np.ndarray
+    hi: np.ndarray
+    values: np.ndarray
+
+    @property
+    def cells(self) -> tuple[int, int, int]:
+        """Cells along x, y and z."""
+        nz, ny, nx = self.values.shape
+        return nx - 1, ny - 1, nz - 1
+
+    @property
+    def cell_size(self) -> float:
+        return float(np.max((self.hi - self.lo) / np.array(self.cells)))
+
+
+def scene_box(scene: Node, bounds: object = None) -> tuple[np.ndarray, np.ndarray]:
+    """The finite box to sample: ``bounds`` if given, else the scene's bounds."""
+    if bounds is not None:
+        try:
+            lo, hi = (np.asarray(b, dtype=np.float64).reshape(3) for b in bounds)  # type: ignore[union-attr]
+        except (TypeError, ValueError):
+            raise ParameterError(f"pbr: 'bounds' must be two points (lo, hi), got {bounds!r}") from None
+        if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi)) and np.all(hi > lo)):
+            raise ParameterError(f"pbr: 'bounds' must be finite with lo < hi on every axis, got {bounds!r}")
+        return lo, hi
+    lo, hi = scene.bounds
+    if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi))):
+        raise ParameterError(
+            f"pbr: {scene.label()} is unbounded (bounds {lo.tolist()} .. {hi.tolist()}); path tracing samples the "
+            f"field on a grid, so pass bounds=(lo, hi) for the part to render")
+    size = np.maximum(hi - lo, 1e-9 * max(1.0, float(np.max(np.abs(hi - lo)))))
+    return lo, lo + size
+
+
+def cell_size(lo: np.ndarray, hi: np.ndarray, resolution: int) -> float:
+    """The edge of a cell when the longest side of [lo, hi] has ``resolution`` cells."""
+    if not (isinstance(resolution, (int, np.integer)) and MIN_CELLS <= resolution <= MAX_CELLS):
+        raise ParameterError(f"pbr: 'resolution' must be an integer in {MIN_CELLS}..{MAX_CELLS}, got {resolution!r}")
+    return float((hi - lo).max()) / int(resolution)
+
+
+def auto_resolution(lo: np.ndarray, hi: np.ndarray, eye: np.ndarray, pixel_angle: float, quality: float) -> int:
+    """Cells along the longest side: CELLS_PER_FOOTPRINT * ``quality`` cells per pixel
+    footprint at the scene centre, within MIN_CELLS..MAX_CELLS."""
+    centre = (lo + hi) / 2
+    dist = max(float(np.linalg.norm(centre - eye)), 1e-9)
+    footprint = dist * pixel_angle
+    cells = float((hi - lo).max()) / footprint * quality * CELLS_PER_FOOTPRINT
+    return int(min(MAX_CELLS, max(MIN_CELLS, math.ceil(cells))))
+
+
+def _lattice(lo: np.ndarray, step: np.ndarray, counts: np.ndarray, offset: float) -> list[np.ndarray]:
+    return [lo[a] + (np.arange(counts[a]) + offset) * step[a] for a in range(3)]
+
+
+def _sample(fn: Callable[[np.ndarray], np.ndarray], axes: list[np.ndarray], comps: int,
+            progress: Progress | None, label: str) -> np.ndarray:
+    """fn at every lattice point, slab by slab along z; float32 (nz, ny, nx[, comps])."""
+    xs, ys, zs = axes
+    out = np.empty((len(zs), len(ys), len(xs)) + ((comps,) if comps > 1 else ()), dtype=np.float32)
+    per_slab = len(xs) * len(ys)
+    slabs = max(1, CHUNK_POINTS // per_slab)
+    yy, xx = np.meshgrid(ys, xs, indexing="ij")
+    plane = np.stack([xx.ravel(), yy.ravel()], axis=-1)
+    for k0 in range(0, len(zs), slabs):
+        kz = zs[k0:k0 + slabs]
+        pts = np.empty((len(kz), per_slab, 3))
+        pts[..., :2] = plane[None]
+        pts[..., 2] = kz[:, None]
+        vals = fn(pts.reshape(-1, 3))
+        out[k0:k0 + len(kz)] = vals.reshape(out[k0:k0 + len(kz)].shape)
+        if progress is not None:
+            progress(label, min(1.0, (k0 + len(kz)) / len(zs)))
+    return out
+
+
+def sample_field(scene: Node, lo: np.ndarray, hi: np.ndarray, resolution: int,
+                 progress: Progress | None = None) -> FieldGrid:
+    """map() at the corners of a cubic grid covering [lo, hi] padded by PAD_CELLS.
+
+    The grid is a cube (as many cells on every axis) because Mitsuba 3.9's ``sdfgrid``
+    misses every hit when its x or z sample count exceeds the y count (measured: a
+    sphere in a 25 x 25 x 29 grid renders empty).
+    """
+    h = cell_size(lo, hi, resolution)
+    n = np.full(3, int(resolution) + 2 * PAD_CELLS)
+    lo_p = (lo + hi) / 2 - n * h / 2
+    hi_p = lo_p + n * h
+    origin = (lo + hi) / 2
+    values = _sample(lambda p: evaluate(scene, p, origin=origin), _lattice(lo_p, np.full(3, h), n + 1, 0.0), 1,
+                     progress, "sampling the field")
+    values = np.nan_to_num(values, nan=np.float32(np.finfo(np.float32).max), posinf=np.finfo(np.float32).max,
+                           neginf=-np.finfo(np.float32).max)
+    if not ((values < 0).any() and (values > 0).any()):
+        raise ParameterError(f"pbr: {scene.label()} has no surface inside the sampled box "
+                             f"{lo_p.tolist()} .. {hi_p.tolist()}")
+    return FieldGrid(lo_p, hi_p, values)
+
+
+def sample_cells(fn: Callable[[np.ndarray], np.ndarray], lo: np.ndarray, hi: np.ndarray, resolution: int,
+                 comps: int, progress: Progress | None = None, label: str = "sampling") -> np.ndarray:
+    """fn at the cell centres of a grid with ``resolution`` cells along the longest side of
+    [lo, hi] (the layout of Mitsuba's ``gridvolume``: [Z, Y, X, C])."""
+    ext = hi - lo
+    counts = np.maximum(np.round(ext / ext.max() * resolution).astype(int), 2)
+    return _sample(fn, _lattice(lo, ext / counts, counts, 0.5), comps, progress, label)
+
+
+def sample_colors(scene: Node, grid: FieldGrid, resolution: int, progress: Progress | None = None) -> np.ndarray:
+    """Linear albedo (mapColor()) over the field grid's box, float32 [Z, Y, X, 3]."""
+    origin = (grid.lo + grid.hi) / 2
+    rgba = sample_cells(lambda p: evaluate_color(scene, p, origin=origin), grid.lo, grid.hi, resolution, 4,
+                        progress, "sampling colours")
+    return np.clip(np.nan_to_num(rgba[..., :3]), 0.0, 1.0)
