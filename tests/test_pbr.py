@@ -50,11 +50,12 @@ def test_colours_come_from_the_scene_and_materials_map_to_bsdfs():
     assert img.settings["material"] == "diffuse"
 
     def kind(m: Material) -> str:
-        return sg.to_mitsuba(sg.sphere(1), material=m, size=(8, 8), spp=1)["sdf"]["bsdf"]["type"]
+        return sg.to_mitsuba(sg.sphere(1), material=m, size=(8, 8), spp=1)["sdf_bsdf"]["type"]
     assert kind(Material(color=(0.9, 0.6, 0.2), metallic=1, roughness=0.3)) == "roughconductor"
     assert kind(Material(metallic=1, roughness=0)) == "conductor"
     assert kind(Material(transmission=1, roughness=0)) == "dielectric"
-    assert kind(Material(specular=0.5, roughness=0.2)) == "roughplastic"
+    assert kind(Material(specular=0.5, roughness=0.2, color=(1, 1, 1))) == "roughplastic"
+    assert kind(Material(specular=0.5, roughness=0.2)) == "principled"
     assert kind(Material()) == "diffuse"
     with pytest.raises(sg.ParameterError, match="roughness"):
         Material(roughness=2)
@@ -66,7 +67,7 @@ def test_blend_splits_two_materials_across_a_field():
     red, blue = Material(color=(0.9, 0.05, 0.05)), Material(color=(0.05, 0.05, 0.9))
     look = Blend(red, blue, boundary=sg.plane((0, 1, 0)), width=0.05)   # red below y = 0, blue above
     d = sg.to_mitsuba(sg.sphere(1), material=look, size=(8, 8), spp=1)
-    assert d["sdf"]["bsdf"]["type"] == "blendbsdf"
+    assert d["sdf_bsdf"]["type"] == "blendbsdf"
     img = sg.render_pbr(sg.sphere(1), sg.Camera.look_at((0, 0, 4), fov=40), (48, 48), spp=16, material=look)
     top, bottom = img.hdr[10:18, 20:28].mean((0, 1)), img.hdr[30:38, 20:28].mean((0, 1))
     assert top[2] > 2 * top[0] and bottom[0] > 2 * bottom[2]
@@ -137,3 +138,11 @@ def test_missing_mitsuba_gives_a_clear_message(tmp_path):
     assert "ERR" in r.stdout and "pip install 'sdfgl[pbr]'" in r.stdout, r.stdout + r.stderr
     assert not list(tmp_path.glob("**/*.json"))  # nothing cached without Mitsuba
     json.dumps(r.stdout)
+
+
+def test_far_away_scene_renders_like_one_at_the_origin():
+    near = sg.render_pbr(sg.sphere(1), sg.Camera.look_at((0, 0, 4), fov=40), (40, 40), spp=4)
+    c = np.array([1e5, -3e4, 0.0])
+    far = sg.render_pbr(sg.sphere(1).translate(c), sg.Camera.look_at(c + (0, 0, 4), c, fov=40), (40, 40), spp=4)
+    assert far.settings["offset"] == c.tolist() and near.settings["offset"] == [0.0, 0.0, 0.0]
+    assert ((near.alpha > 0.5) != (far.alpha > 0.5)).sum() <= 4

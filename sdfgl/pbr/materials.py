@@ -37,7 +37,8 @@ class Material:
     color: linear albedo (r, g, b) in [0, 1], or None for the scene's own colours.
     roughness: 0 (polished) .. 1 (matte); Mitsuba's microfacet alpha is roughness ** 2.
     specular: 0 for a purely diffuse surface; above 0 a dielectric coating
-        (``roughplastic``) whose strength follows ``ior``.
+        (``roughplastic`` whose strength follows ``ior``; ``principled`` with this
+        specular weight when the colour comes from the scene).
     metallic: 1 for metal (``roughconductor`` tinted by the colour); 0 otherwise.
     transmission: 1 for glass (``roughdielectric`` with ``ior``); 0 otherwise.
     ior: index of refraction of coatings and glass (1 .. 3).
@@ -131,6 +132,9 @@ def bsdf(look: Look, albedo: AlbedoTexture, weight: WeightTexture) -> dict[str, 
             out["alpha"] = alpha
         return out
     if kind == "plastic":
+        if look.color is None:  # Mitsuba's plastics need a texture's mean, which a volume texture lacks
+            return {"type": "principled", "base_color": color, "roughness": look.roughness,
+                    "specular": look.specular, "metallic": 0.0}
         return {"type": "roughplastic", "diffuse_reflectance": color, "alpha": max(alpha, 1e-4),
                 "int_ior": 1.0 + (look.ior - 1.0) * look.specular, "nonlinear": True}
     return {"type": "diffuse", "reflectance": color}

@@ -22,9 +22,9 @@ PASS_SPP = 16  # samples per pixel per pass: progress is reported between passes
 def to_mitsuba(scene: Node, camera: Camera | None = None, size: tuple[int, int] = (640, 480), spp: int = 64,
                **options: Any) -> dict[str, Any]:
     """The Mitsuba 3 scene dictionary that :func:`render_pbr` renders (for ``mi.load_dict``),
-    to extend by hand: keys ``integrator``, ``sensor``, ``sdf`` (the shape), ``sky``, ``sun``
-    and ``ground`` when asked for. Takes the same options as render_pbr. The scene is
-    placed so that the centre of its sampled box is at Mitsuba's origin.
+    to extend by hand: keys ``integrator``, ``sensor``, ``sdf_bsdf`` (the material),
+    ``sdf_0``, ``sdf_1``, ... (one ``sdfgrid`` per cubic tile the surface passes through),
+    ``sky``, ``sun`` and ``ground`` when asked for. Takes the same options as render_pbr.
     """
     variant = options.pop("variant", None)
     mi, _, _ = mitsuba(variant)
@@ -34,8 +34,8 @@ def to_mitsuba(scene: Node, camera: Camera | None = None, size: tuple[int, int] 
 def render_pbr(scene: Node, camera: Camera | None = None, size: tuple[int, int] = (640, 480), spp: int = 64, *,
                resolution: int | None = None, quality: float = 1.0, bounds: object = None,
                material: Look | None = None, sky: Sky | None = None, sun: Sun | None = None, ground: bool = False,
-               max_depth: int = 8, seed: int = 0, variant: str | None = None,
-               progress: Callable[[str, float], None] | None = None) -> PBRImage:
+               max_depth: int = 8, extra: dict[str, Any] | None = None, seed: int = 0,
+               variant: str | None = None, progress: Callable[[str, float], None] | None = None) -> PBRImage:
     """Path-trace ``scene`` with Mitsuba 3 (extra ``sdfgl[pbr]``); returns a :class:`PBRImage`.
 
     camera: an sdfgl camera (default: the same framing as ``render()``).
@@ -48,6 +48,10 @@ def render_pbr(scene: Node, camera: Camera | None = None, size: tuple[int, int] 
     sky, sun: the environment and the directional light (defaults match the real-time look).
     ground: the real-time renderer's checkered ground plane under the scene.
     max_depth: longest light path; seed: the sampler's seed.
+    extra: more Mitsuba objects by name, added to the scene dictionary (an area light,
+        another shape; in world coordinates minus ``settings["offset"]``, which is zero
+        unless the scene lies far from the origin); a name of the defaults ("sky", "sun",
+        "ground") replaces it, None removes it.
     variant: a Mitsuba variant; default: chosen automatically (an LLVM variant when it
         renders here, else ``scalar_rgb``), reported in ``settings["variant"]``.
     progress: called with (stage, fraction done) while sampling and rendering.
@@ -61,7 +65,7 @@ def render_pbr(scene: Node, camera: Camera | None = None, size: tuple[int, int] 
     mi, chosen, how = mitsuba(variant)
     t0 = time.perf_counter()
     built = build(mi, scene, camera, size, spp, resolution=resolution, quality=quality, bounds=bounds,
-                  material=material, sky=sky, sun=sun, ground=ground, max_depth=max_depth, progress=progress)
+                  material=material, sky=sky, sun=sun, ground=ground, max_depth=max_depth, extra=extra, progress=progress)
     t1 = time.perf_counter()
     try:
         loaded = mi.load_dict(built.scene)
@@ -83,7 +87,7 @@ def render_pbr(scene: Node, camera: Camera | None = None, size: tuple[int, int] 
     rgba[..., 3] = np.clip(rgba[..., 3], 0.0, 1.0)
     sky = sky if sky is not None else Sky()
     background = sky.radiance(built.camera.rays(w, h)[1]).astype(np.float32)
-    settings = {"variant": chosen, "variant_choice": how, **built.info}
+    settings = {"variant": chosen, "variant_choice": how, "offset": built.offset.tolist(), **built.info}
     timings = {"variant_s": t0 - tv, "sample_s": t1 - t0, "load_s": t2 - t1, "trace_s": t3 - t2, "total_s": time.perf_counter() - tv}
     return PBRImage(rgba, background, settings, timings)
 

@@ -3,9 +3,10 @@
 Geometry: the scene's field sampled by the GPU ``map()`` onto Mitsuba's ``sdfgrid``
 (the default: Mitsuba intersects the grid's trilinear interpolant exactly, cell by
 cell, so the surface is where the generated field changes sign, with no meshing step;
-colours come from the generated ``mapColor()`` on a coarser ``gridvolume``). The scene
-is moved so that its box centre sits at Mitsuba's origin (Mitsuba traces in float32),
-with the camera moved alike.
+colours come from the generated ``mapColor()`` on a coarser ``gridvolume``). A scene
+further than FAR_SHIFT of its sizes from the world origin is moved so that its box
+centre sits at Mitsuba's origin (Mitsuba traces in float32), with the camera moved alike;
+nearer scenes keep world coordinates, so objects added by hand need no shift.
 """
 from __future__ import annotations
 
@@ -18,12 +19,13 @@ from ..camera import Camera, OrbitCamera
 from ..errors import ParameterError
 from ..nodes.base import Node
 from ..evaluate import evaluate
-from .field_grid import (FieldGrid, Progress, auto_resolution, sample_cells, sample_colors, sample_field,
+from .field_grid import (Progress, SampledField, auto_resolution, sample_cells, sample_colors, sample_field,
                          scene_box)
 from .lighting import Sky, Sun
 from .materials import Blend, Look, Material, bsdf
 
 GROUND_COLORS = ((0.62, 0.61, 0.58), (0.72, 0.71, 0.68))  # the real-time ground's checker
+FAR_SHIFT = 100.0    # scenes further than this many sizes from the origin are moved to it
 COLOR_CELLS = 96     # cells along the longest side of the colour and blend-weight grids
 
 
@@ -34,13 +36,17 @@ class Built:
     scene: dict[str, Any]
     camera: Camera
     offset: np.ndarray            # world point placed at Mitsuba's origin
-    grid: FieldGrid
+    field: SampledField
     info: dict[str, Any] = field(default_factory=dict)
 
 
 def _transform(mi: Any, lo: np.ndarray, hi: np.ndarray) -> Any:
     """[0, 1]^3 -> the box [lo, hi]."""
     return mi.ScalarTransform4f().translate(lo.tolist()).scale((hi - lo).tolist())
+
+
+def _rgb(rgb: object) -> dict:
+    return {"type": "rgb", "value": [float(x) for x in rgb]}  # type: ignore[union-attr]
 
 
 def _check_camera(camera: object, scene: Node) -> Camera:
@@ -93,7 +99,7 @@ def ground_shape(mi: Any, y: float, centre: np.ndarray, offset: np.ndarray, scal
 def build(mi: Any, scene: Node, camera: Camera | None = None, size: object = (640, 480), spp: int = 64, *,
           resolution: int | None = None, quality: float = 1.0, bounds: object = None, material: Look | None = None,
           sky: Sky | None = None, sun: Sun | None = None, ground: bool = False, max_depth: int = 8,
-          progress: Progress | None = None) -> Built:
+          extra: dict[str, Any] | None = None, progress: Progress | None = None) -> Built:
     """Sample the scene and assemble the Mitsuba scene dictionary (see render_pbr for the terms)."""
     if not isinstance(scene, Node):
         raise ParameterError(f"pbr: 'scene' must be an sdfgl node, got {type(scene).__name__}")
@@ -115,38 +121,53 @@ def build(mi: Any, scene: Node, camera: Camera | None = None, size: object = (64
 
     lo, hi = scene_box(scene, bounds)
     res = resolution if resolution is not None else auto_resolution(lo, hi, cam.eye, cam.pixel_angle(wh[1]), quality)
-    grid = sample_field(scene, lo, hi, res, progress)
-    offset = (grid.lo + grid.hi) / 2
-    glo, ghi = grid.lo - offset, grid.hi - offset
+    fld = sample_field(scene, lo, hi, res, progress)
+    centre = (fld.lo + fld.hi) / 2
+    offset = centre if float(np.max(np.abs(centre))) > FAR_SHIFT * float(np.max(fld.hi - fld.lo)) else np.zeros(3)
+    blo, bhi = lo - offset, hi - offset
     scale = float((hi - lo).max())
 
     def albedo() -> dict:
-        colors = sample_colors(scene, grid, min(COLOR_CELLS, res), progress)
+        colors = sample_colors(scene, lo, hi, min(COLOR_CELLS, res), progress)
         return {"type": "volume", "volume": {"type": "gridvolume", "grid": mi.VolumeGrid(colors),
-                                             "to_world": _transform(mi, glo, ghi), "filter_type": "trilinear"}}
+                                             "to_world": _transform(mi, blo, bhi), "filter_type": "trilinear"}}
 
     def weight(boundary: Node, width: float) -> dict:
         def w(p: np.ndarray) -> np.ndarray:
-            t = np.clip((evaluate(boundary, p, origin=offset).astype(np.float64) + width) / (2 * width), 0, 1)
+            t = np.clip((evaluate(boundary, p, origin=centre).astype(np.float64) + width) / (2 * width), 0, 1)
             return (t * t * (3 - 2 * t)).astype(np.float32)
-        vals = sample_cells(w, grid.lo, grid.hi, min(COLOR_CELLS * 2, res), 1, progress, "sampling blend weights")
+        vals = sample_cells(w, lo, hi, min(COLOR_CELLS * 2, res), 1, progress, "sampling blend weights")
         return {"type": "volume", "volume": {"type": "gridvolume", "grid": mi.VolumeGrid(vals[..., None]),
-                                             "to_world": _transform(mi, glo, ghi), "filter_type": "trilinear"}}
+                                             "to_world": _transform(mi, blo, bhi), "filter_type": "trilinear"}}
 
     eye_dist = float(np.linalg.norm(cam.eye - offset))
-    far = eye_dist + 2.0 * float(np.linalg.norm(ghi - glo)) + (400.0 * scale if ground else 0.0)
+    far = eye_dist + 2.0 * float(np.linalg.norm(fld.hi - fld.lo)) + (400.0 * scale if ground else 0.0)
     d: dict[str, Any] = {
         "type": "scene",
         "integrator": {"type": "path", "max_depth": int(max_depth), "hide_emitters": True},
         "sensor": sensor(mi, cam, wh, spp, offset, far),
-        "sdf": {"type": "sdfgrid", "grid": mi.TensorXf(np.ascontiguousarray(grid.values[..., None])),
-                "to_world": _transform(mi, glo, ghi), "bsdf": bsdf(look, albedo, weight)},
+        "sdf_bsdf": bsdf(look, albedo, weight),
         "sky": {"type": "envmap", "bitmap": mi.Bitmap(sky.bitmap()), "scale": 1.0},
         "sun": sun.emitter(),
     }
+    for i, tile in enumerate(fld.tiles):
+        tlo = tile.lo - offset
+        d[f"sdf_{i}"] = {"type": "sdfgrid", "grid": mi.TensorXf(np.ascontiguousarray(tile.values[..., None])),
+                         "to_world": _transform(mi, tlo, tlo + tile.size), "bsdf": {"type": "ref", "id": "sdf_bsdf"}}
     if ground:
         d["ground"] = ground_shape(mi, float(lo[1]), (hi + lo) / 2, offset, scale)
-    info = {"geometry": "sdfgrid", "grid_cells": grid.cells, "cell_size": grid.cell_size,
-            "resolution": int(res), "spp": int(spp), "max_depth": int(max_depth),
+    if extra is not None:
+        if not isinstance(extra, dict) or not all(isinstance(k, str) for k in extra):
+            raise ParameterError(f"pbr: 'extra' must be a dict of Mitsuba objects by name, got {type(extra).__name__}")
+        for key, obj in extra.items():
+            if key in ("type", "integrator", "sensor", "sdf_bsdf") and obj is None:
+                raise ParameterError(f"pbr: 'extra' cannot remove {key!r}")
+            if obj is None:
+                d.pop(key, None)
+            else:
+                d[key] = obj
+    info = {"geometry": "sdfgrid", "grid_cells": fld.cells, "cell_size": fld.cell, "resolution": int(res),
+            "tiles": len(fld.tiles), "tiles_total": fld.tiles_total, "field_samples": fld.samples,
+            "spp": int(spp), "max_depth": int(max_depth),
             "material": type(look).__name__ if isinstance(look, Blend) else look.kind}
-    return Built(d, cam, offset, grid, info)
+    return Built(d, cam, offset, fld, info)
