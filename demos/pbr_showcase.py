@@ -40,7 +40,7 @@ def sierpinski_cornell() -> tuple:
     camera = sg.Camera.look_at((0, 2.0, 7.2), (0, 1.9, 0), fov=40)
     lamp = {"type": "rectangle", "to_world": lamp_transform((0, 3.98, 0), 0.6),
             "emitter": {"type": "area", "radiance": {"type": "rgb", "value": [18.0, 15.0, 11.0]}}}
-    return scene, camera, {"shadows": "soft"}, {"extra": {"lamp": lamp, "sun": None}, "quality": 3,
+    return scene, camera, {"shadows": "soft"}, {"extra": {"lamp": lamp, "sun": None}, "quality": 2,
                                                 "sky": Sky(intensity=0.02)}
 
 
@@ -56,7 +56,7 @@ def mountains() -> tuple:
     water = Material(color=(0.1, 0.25, 0.4), specular=1.0, roughness=0.05, ior=1.33)
     look = Blend(water, Blend(rock, snow, boundary=sg.plane((0, 1, 0), (0, 0.55, 0)), width=0.12),
                  boundary=sg.plane((0, 1, 0), (0, -0.17, 0)), width=0.02)
-    bounds = ((-9.0, -1.6, -9.0), (9.0, 1.8, 9.0))
+    bounds = ((-25.0, -1.6, -25.0), (25.0, 1.8, 25.0))
     return sf.scene, sf.camera, sf.settings, {"material": look, "bounds": bounds,
                                               "sun": Sun(direction=(0.6, 0.5, -0.3))}
 

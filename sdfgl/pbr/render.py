@@ -75,13 +75,18 @@ def render_pbr(scene: Node, camera: Camera | None = None, size: tuple[int, int] 
     w, h = built.scene["sensor"]["film"]["width"], built.scene["sensor"]["film"]["height"]
     acc = np.zeros((h, w, 4), dtype=np.float64)
     done = 0
-    for k in range(0, spp, PASS_SPP):
-        n = min(PASS_SPP, spp - k)
-        img = np.asarray(mi.render(loaded, spp=n, seed=seed * 65536 + k // PASS_SPP), dtype=np.float64)
-        acc += img[..., :4] * n
-        done += n
-        if progress is not None:
-            progress("path tracing", done / spp)
+    level = mi.log_level()
+    mi.set_log_level(mi.LogLevel.Error)  # Mitsuba warns of each NaN sample it discards (see README)
+    try:
+        for k in range(0, spp, PASS_SPP):
+            n = min(PASS_SPP, spp - k)
+            img = np.asarray(mi.render(loaded, spp=n, seed=seed * 65536 + k // PASS_SPP), dtype=np.float64)
+            acc += img[..., :4] * n
+            done += n
+            if progress is not None:
+                progress("path tracing", done / spp)
+    finally:
+        mi.set_log_level(level)
     t3 = time.perf_counter()
     rgba = np.nan_to_num(acc / spp).astype(np.float32)
     rgba[..., 3] = np.clip(rgba[..., 3], 0.0, 1.0)
