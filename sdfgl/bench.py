@@ -77,7 +77,7 @@ class FrameTimer:
         st = Settings.build(**v.settings)
         origin = shader_origin(v.node, v.camera.eye)
         t0 = time.perf_counter()
-        source = generate(v.node, st, origin)
+        source = generate(v.node, st, origin, projection=v.camera.projection)
         if v.source is not None:
             source = v.source(source)
         prog = self.r.programs.get(source)
@@ -208,7 +208,22 @@ def feature_variants() -> list[Variant]:
     toggles += [(f"aa{n}", {"aa": n}) for n in (2, 3, 4)]
     toggles += [("shadows hard", {"shadows": "hard"}), ("shadows soft", {"shadows": "soft"}), ("ao", {"ao": True}),
                 ("all (aa2, soft, ao)", {"aa": 2, "shadows": "soft", "ao": True})]
-    return [Variant("demo", name, {**base, **t}, node, cam) for name, t in toggles]
+    out = [Variant("demo", name, {**base, **t}, node, cam) for name, t in toggles]
+    return out + look_variants(node, cam, base)
+
+
+def look_variants(node: Node, cam: Camera, base: dict) -> list[Variant]:
+    """The look's features on the demo scene: lights, materials, transparency, fog."""
+    from .look import directional_light, point_light
+    four = [directional_light((0.5, 0.7, 0.4), "#fff0dd", shadow="soft"), directional_light((-1, 0.5, -0.5), "#99aaff"),
+            point_light((0, 3, 2), "orange", 2.0, range=3.0, shadow="hard"), directional_light((0, -1, 0), "#403020")]
+    metal = node.material(metallic=0.6, roughness=0.3, emission=(0.02, 0.01, 0.0))
+    rows = [("1 light, soft shadow", node, {"lights": [directional_light(shadow="soft")]}),
+            ("4 lights (soft, hard, 2 unshadowed)", node, {"lights": four}),
+            ("materials (metallic, roughness, emission)", metal, {}),
+            ("alpha (transparent background)", node, {"alpha": True}),
+            ("fog", node, {"fog": 10.0})]
+    return [Variant("demo", name, {**base, **t}, n, cam) for name, n, t in rows]
 
 
 # -- reports -------------------------------------------------------------------------------
@@ -317,6 +332,12 @@ def pareto_plot(variants: Sequence[Variant], path: Path) -> None:
     plt.close(fig)
 
 
+def _json_value(o: object) -> object:
+    """JSON for what json does not know: numpy numbers, and lights (dataclasses) in settings."""
+    from dataclasses import asdict, is_dataclass
+    return asdict(o) if is_dataclass(o) and not isinstance(o, type) else float(o)  # type: ignore[arg-type]
+
+
 def run(quick: bool, size: tuple[int, int] | None, out: Path, progress: bool = True,
         scenes: Sequence[str] | None = None) -> dict:
     """Run the benchmark, write bench.json, bench.md and pareto.png into ``out``; return the data.
@@ -366,7 +387,7 @@ def run(quick: bool, size: tuple[int, int] | None, out: Path, progress: bool = T
                           **{k: val for k, val in v.result.items() if not k.startswith("_")}} for v in variants],
             "features": [{"label": v.label, "settings": v.settings,
                           **{k: val for k, val in v.result.items() if not k.startswith("_")}} for v in features]}
-    (out / "bench.json").write_text(json.dumps(data, indent=1, default=float))
+    (out / "bench.json").write_text(json.dumps(data, indent=1, default=_json_value))
     pareto_plot(variants, out / "pareto.png")
     print(md)
     print(f"\nwrote {out / 'bench.md'}, {out / 'bench.json'}, {out / 'pareto.png'}")

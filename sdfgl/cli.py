@@ -1,4 +1,4 @@
-"""Command line: ``sdfgl render | shader | view | pbr | bench``."""
+"""Command line: ``sdfgl render | shader | view | html | pbr | bench``."""
 from __future__ import annotations
 
 import argparse
@@ -73,12 +73,31 @@ def cmd_render(a: argparse.Namespace) -> int:
     settings = _settings(a)
     if is_demo and not a.no_ground:
         settings["ground"] = True
-    res = render(scene, _camera(a, scene, camera), a.size, **settings)
+    settings.update(_look(a))
+    cam = _camera(a, scene, camera)
+    if a.ortho:
+        from .camera import OrbitCamera
+        yaw, pitch = (cam.yaw, cam.pitch) if isinstance(cam, OrbitCamera) else (30.0, 20.0)
+        cam = OrbitCamera.framing(*scene.bounds, yaw, pitch, aspect=a.size[0] / a.size[1], projection="orthographic")
+    res = render(scene, cam, a.size, **settings)
     path = res.save(a.output)
     t = res.timings
     print(f"wrote {path} ({a.size[0]}x{a.size[1]}, aa {a.aa}): compile {t['compile_s'] * 1000:.0f} ms, "
           f"draw {t['draw_s'] * 1000:.0f} ms")
     return 0
+
+
+def _look(a: argparse.Namespace) -> dict[str, object]:
+    """The look options of `sdfgl render`: --background, --alpha, --fog."""
+    out: dict[str, object] = {}
+    if a.background:
+        parts = a.background.split(",")
+        out["background"] = parts[0] if len(parts) == 1 else tuple(parts)
+    if a.alpha:
+        out["alpha"] = True
+    if a.fog is not None:
+        out["fog"] = a.fog
+    return out
 
 
 def cmd_shader(a: argparse.Namespace) -> int:
@@ -123,6 +142,10 @@ def build_parser() -> argparse.ArgumentParser:
     r.add_argument("--pitch", type=float, help="orbit camera pitch in degrees")
     r.add_argument("--distance", type=float, help="orbit camera distance")
     r.add_argument("--no-ground", action="store_true", help="with --demo: leave the ground plane out")
+    r.add_argument("--background", help="a colour ('#ffffff', 'white') or TOP,BOTTOM for a gradient")
+    r.add_argument("--alpha", action="store_true", help="transparent background: RGBA PNG, alpha = coverage")
+    r.add_argument("--fog", type=float, help="fade surfaces into the background over this distance")
+    r.add_argument("--ortho", action="store_true", help="orthographic camera framing the scene")
     _add_settings(r)
     r.set_defaults(func=cmd_render)
 
@@ -149,6 +172,8 @@ def build_parser() -> argparse.ArgumentParser:
 
     from .pbr.cli import add_parser as add_pbr
     add_pbr(sub, _size)
+    from .web.cli import add_parser as add_html
+    add_html(sub)
 
     from .bench import add_arguments
     b = sub.add_parser("bench", help="benchmark marching methods: frame time beside error")

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .codegen import generate
+from .codegen import EVALUATE_CHANNELS, generate, material_channels
 from .errors import ParameterError
 from .nodes.base import Node, as_points
 from .render import Renderer, default_renderer, scene_uniforms
@@ -23,14 +23,22 @@ def evaluate(scene: Node, points: object, origin: object = (0.0, 0.0, 0.0),
     return _run(scene, points, origin, renderer, "evaluate", 1, "evaluate")
 
 
-def evaluate_color(scene: Node, points: object, origin: object = (0.0, 0.0, 0.0),
-                   renderer: Renderer | None = None) -> np.ndarray:
-    """Float32 (..., 4) array: the generated mapColor() (linear rgb) and map() at points.
+def evaluate_channel(scene: Node, points: object, channel: str = "color", origin: object = (0.0, 0.0, 0.0),
+                     renderer: Renderer | None = None) -> np.ndarray:
+    """Float32 (..., 4) array: a material channel of the generated shader and map() at points.
 
-    The colour is the one the renderer shades a surface point with; away from the
-    surface it is the colour of the nearest part of the scene, as mapColor() picks it.
+    ``channel`` "color": mapColor(), the linear albedo the renderer shades with; "surface":
+    mapSurface(), (specular, shininess, metallic) where nodes set them; "emission":
+    mapEmission(). Away from the surface a channel is that of the nearest part of the
+    scene, as the generated function picks it. A scene without the surface or emission
+    channel (no node sets it) has no such function: ask ``codegen.material_channels``.
     """
-    return _run(scene, points, origin, renderer, "evaluate_color", 4, "evaluate_color")
+    target = f"evaluate_{channel}"
+    if target not in EVALUATE_CHANNELS:
+        raise ParameterError(f"evaluate_channel: 'channel' must be one of color, surface, emission, got {channel!r}")
+    if channel != "color" and isinstance(scene, Node) and channel not in material_channels(scene):
+        raise ParameterError(f"evaluate_channel: no node of {scene.label()} sets the {channel} channel")
+    return _run(scene, points, origin, renderer, target, 4, "evaluate_channel")
 
 
 def _run(scene: Node, points: object, origin: object, renderer: Renderer | None, target: str, comps: int,

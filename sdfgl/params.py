@@ -94,11 +94,22 @@ class Live:
 class Param(Live):
     """A scalar or 3-vector that is a shader uniform; set ``.value`` between renders."""
 
-    def __init__(self, value: Any, name: str | None = None) -> None:
+    def __init__(self, value: Any, name: str | None = None, range: tuple[float, float] | None = None) -> None:
         super().__init__("param")
         self.name = name
         self._checks: list[Callable[[Any], None]] = []
         self._value = self._coerce(value)
+        self.range = None if range is None else self._check_range(range)
+
+    def _check_range(self, rng: Any) -> tuple[float, float]:
+        """A slider range (lo, hi) with lo < hi (for a 3-vector, of each component)."""
+        try:
+            lo, hi = (float(x) for x in rng)
+        except (TypeError, ValueError):
+            raise ParameterError(f"param {self.label}: range must be (low, high), got {rng!r}") from None
+        if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
+            raise ParameterError(f"param {self.label}: range must be two finite numbers low < high, got {rng!r}")
+        return lo, hi
 
     @staticmethod
     def _coerce(value: Any) -> Any:
@@ -158,6 +169,10 @@ class Param(Live):
         return f"param({self._value!r}{', name=' + repr(self.name) if self.name else ''})"
 
 
-def param(value: Any, name: str | None = None) -> Param:
-    """A live value (number or 3-vector) that a render reads as a uniform: changing it needs no recompile."""
-    return Param(value, name)
+def param(value: Any, name: str | None = None, range: tuple[float, float] | None = None) -> Param:
+    """A live value (number or 3-vector) that a render reads as a uniform: changing it needs no recompile.
+
+    ``name`` labels it (in shaders, sliders and errors); ``range`` is the (low, high) of its
+    slider in the browser views (default: around the value, within what its nodes accept).
+    """
+    return Param(value, name, range)

@@ -29,6 +29,7 @@ class Reference:
     normal: np.ndarray     # float64 (H, W, 3) unit normal, 0 on a miss or where the gradient vanishes
     undecided: np.ndarray  # bool: rays the reference could not settle within its iteration limit
     pixel_angle: float
+    pixel_size: float = 0.0  # an orthographic camera's pixel width (its footprint at every t)
 
     @property
     def hit(self) -> np.ndarray:
@@ -111,7 +112,8 @@ def trace(scene: Node, camera: Camera, size: tuple[int, int], max_dist: float = 
     hit = np.isfinite(t)
     if hit.any():
         nrm[hit] = normals(scene, o.reshape(-1, 3)[hit] + d.reshape(-1, 3)[hit] * t[hit, None])
-    return Reference(t.reshape(h, w), nrm.reshape(h, w, 3), undecided.reshape(h, w), camera.pixel_angle(h))
+    return Reference(t.reshape(h, w), nrm.reshape(h, w, 3), undecided.reshape(h, w), camera.pixel_angle(h),
+                     float(camera.footprint(0.0, h)) if camera.orthographic else 0.0)
 
 
 @dataclass
@@ -158,7 +160,8 @@ def compare(result: RenderResult, ref: Reference) -> ErrorReport:
     g_hit = ref.hit & decided
     both = r_hit & g_hit
     err = np.abs(depth[both] - ref.t[both])
-    foot = np.maximum(ref.t[both], 1e-12) * ref.pixel_angle
+    foot = (np.full(err.shape, ref.pixel_size) if ref.pixel_size
+            else np.maximum(ref.t[both], 1e-12) * ref.pixel_angle)
     gn = ref.normal[both]
     defined = np.linalg.norm(gn, axis=-1) > 0.5
     cosang = np.sum(gn[defined] * result.normal[both][defined].astype(np.float64), axis=-1)

@@ -1,6 +1,7 @@
 """render(): scene + camera + settings -> program -> one draw -> RenderResult."""
 from __future__ import annotations
 
+import io
 import math
 import time
 from dataclasses import dataclass, field
@@ -42,7 +43,7 @@ def shader_origin(scene: Node, eye: np.ndarray) -> np.ndarray:
 class RenderResult:
     """Images of one draw. Row 0 is the top row of the image."""
 
-    color: np.ndarray                      # uint8 (H, W, 3), gamma-corrected
+    color: np.ndarray                      # uint8 (H, W, 3), gamma-corrected; (H, W, 4) with alpha=True
     depth: np.ndarray | None = None        # float32 (H, W): ray t of the pixel centre, inf on a miss
     normal: np.ndarray | None = None       # float32 (H, W, 3): unit normal, 0 on a miss
     steps: np.ndarray | None = None        # int32 (H, W): map() calls of the pixel-centre ray
@@ -50,6 +51,19 @@ class RenderResult:
     settings: Settings | None = None
     camera: Camera | None = None
     timings: dict[str, float] = field(default_factory=dict)
+
+    def __repr__(self) -> str:
+        h, w = self.color.shape[:2]
+        outs = ", ".join(n for n in ("color", "depth", "normal", "steps") if getattr(self, n) is not None)
+        ms = f", {1000 * self.timings['total_s']:.1f} ms" if "total_s" in self.timings else ""
+        lines = f", {len(self.source.owners)} GLSL lines" if self.source is not None else ""
+        return f"<RenderResult {w}x{h} [{outs}]{ms}{lines}>"
+
+    def _repr_png_(self) -> bytes:
+        """The colour image as PNG: Jupyter shows a result inline."""
+        buf = io.BytesIO()
+        Image.fromarray(self.color).save(buf, format="PNG")
+        return buf.getvalue()
 
     def save(self, path: str | Path) -> Path:
         """Write the colour image as PNG (or any format Pillow knows from the suffix)."""
@@ -87,6 +101,7 @@ def camera_uniforms(prog: moderngl.Program, camera: Camera, size: tuple[int, int
     _set_uniform(prog, "uUp", tuple(u.tolist()))
     _set_uniform(prog, "uForward", tuple(f.tolist()))
     _set_uniform(prog, "uTanHalfFov", camera.tan_half_fov)
+    _set_uniform(prog, "uOrthoHalfHeight", 0.5 * camera.ortho_height)
     _set_uniform(prog, "uJitter", jitter)
     _set_uniform(prog, "uZero", 0)
 
@@ -103,12 +118,16 @@ def scene_uniforms(prog: moderngl.Program, source: ShaderSource, scene: Node, or
         val = prm.value
         _set_uniform(prog, f"uP{i}", float(val) if np.ndim(val) == 0 else tuple(float(x) for x in val))
     if source.live_bounds:
-        lo, hi, scale = scene_frame(scene)
-        pad = BOUNDS_PAD * scale
-        _set_uniform(prog, "uBoundsLo", tuple((lo - pad - origin).tolist()))
-        _set_uniform(prog, "uBoundsHi", tuple((hi + pad - origin).tolist()))
-        _set_uniform(prog, "uGroundY", float((lo[1] if lo[1] > -GLSL_FAR else 0.0) - origin[1]))
-        _set_uniform(prog, "uSceneScale", float(scale))
+        for name, value in live_frame(scene, origin).items():
+            _set_uniform(prog, name, value)
+
+
+def live_frame(scene: Node, origin: np.ndarray) -> dict[str, object]:
+    """The uniforms a shader with live parameters reads for the scene box, at the current values."""
+    lo, hi, scale = scene_frame(scene)
+    pad = BOUNDS_PAD * scale
+    return {"uBoundsLo": tuple((lo - pad - origin).tolist()), "uBoundsHi": tuple((hi + pad - origin).tolist()),
+            "uGroundY": float((lo[1] if lo[1] > -GLSL_FAR else 0.0) - origin[1]), "uSceneScale": float(scale)}
 
 
 _data_textures: dict[int, tuple[ShaderSource, list[moderngl.Texture]]] = {}
@@ -166,13 +185,13 @@ class Renderer:
             raise ParameterError(f"render: 'scene' must be an sdfgl node, got {type(scene).__name__} {scene!r}")
         st = Settings.build(**settings)
         wh = _check_size(size)
-        cam = camera if camera is not None else OrbitCamera.framing(*scene.bounds)
+        cam = camera if camera is not None else OrbitCamera.framing(*scene.bounds, aspect=wh[0] / wh[1])
         if not isinstance(cam, Camera):
             raise ParameterError(f"render: 'camera' must be an sdfgl Camera, got {type(cam).__name__}")
         origin = shader_origin(scene, cam.eye)
 
         t0 = time.perf_counter()
-        source = generate(scene, st, origin)
+        source = generate(scene, st, origin, projection=cam.projection)
         t1 = time.perf_counter()
         prog = self.programs.get(source)
         compile_s = self.programs.last_compile_s
@@ -185,7 +204,7 @@ class Renderer:
         self.vao(prog).render(moderngl.TRIANGLES, vertices=3)
         self.ctx.finish()
         t3 = time.perf_counter()
-        res = RenderResult(color=np.ascontiguousarray(targets.read("color")[..., :3]), source=source,
+        res = RenderResult(color=np.ascontiguousarray(targets.read("color")[..., :4 if st.alpha else 3]), source=source,
                            settings=st, camera=cam)
         if "depth" in st.outputs:
             d = targets.read("depth")[..., 0].copy()

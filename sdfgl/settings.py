@@ -43,6 +43,17 @@ class Settings:
     grid: keep big unions of simple primitives as data with a cell grid (False writes
         them out as code, to compare).
     analytic: intersect a lone sphere or plane in closed form instead of marching it.
+    lights: None (the default rig: key light, back light) or a list of up to 8
+        sg.directional_light / sg.point_light; each casts the shadow it names, or the
+        ``shadows`` setting's where it names none.
+    ambient: hemisphere light, a (sky, ground) pair of colours or one colour; None for
+        the default (a blue sky, no ground bounce).
+    background: None or "sky" (the default environment), a colour, or a (top, bottom)
+        pair of colours (a vertical gradient over the image).
+    alpha: an RGBA image whose alpha is the share of each pixel's samples that hit
+        (colour un-premultiplied), so anti-aliased edges composite over anything.
+    fog: None, or a distance d: surfaces fade into the background by 1 - exp(-t / d)
+        (with alpha, they fade out).
     """
 
     aa: int = 1
@@ -61,6 +72,11 @@ class Settings:
     debug: Any = None
     grid: bool = True
     analytic: bool = True
+    lights: Any = None
+    ambient: Any = None
+    background: Any = None
+    alpha: bool = False
+    fog: Any = None
 
     def __post_init__(self) -> None:
         if isinstance(self.aa, bool) or not isinstance(self.aa, int) or not 1 <= self.aa <= 4:
@@ -71,7 +87,7 @@ class Settings:
             object.__setattr__(self, "shadows", False)
         if self.shadows not in SHADOWS:
             raise ParameterError(f"setting 'shadows' must be False, 'hard' or 'soft', got {self.shadows!r}")
-        for name in ("ao", "ground", "grid", "analytic"):
+        for name in ("ao", "ground", "grid", "analytic", "alpha"):
             if not isinstance(getattr(self, name), bool):
                 raise ParameterError(f"setting '{name}' must be True or False, got {getattr(self, name)!r}")
         if self.method not in METHODS:
@@ -110,6 +126,15 @@ class Settings:
         if bad:
             raise ParameterError(f"setting 'outputs' has unknown entries {bad}; choose from {', '.join(OUTPUTS)}")
         object.__setattr__(self, "outputs", tuple(o for o in OUTPUTS if o in outs or o == "color"))
+        from .look.background import check_background
+        from .look.lights import check_ambient, check_lights
+        object.__setattr__(self, "lights", check_lights(self.lights))
+        object.__setattr__(self, "ambient", None if self.ambient is None else check_ambient(self.ambient))
+        object.__setattr__(self, "background", check_background(self.background))
+        if self.fog is not None:
+            if isinstance(self.fog, bool) or not isinstance(self.fog, (int, float)) or not 0 < self.fog < float("inf"):
+                raise ParameterError(f"setting 'fog' must be None or a positive distance, got {self.fog!r}")
+            object.__setattr__(self, "fog", float(self.fog))
 
     @classmethod
     def build(cls, **kwargs: Any) -> "Settings":

@@ -91,8 +91,8 @@ class Viewer:
             base["method"] = "newton"
         self.state = ViewState(settings={**base, **settings})
         Settings.build(**self.state.settings)  # validate before opening a window
-        self.home = self._orbit_of(camera, scene)
-        self.camera = self._orbit_of(camera, scene)
+        self.home = self._orbit_of(camera, scene, size[0] / size[1])
+        self.camera = self._orbit_of(camera, scene, size[0] / size[1])
         self.size, self.target_ms, self.adaptive = size, target_ms, adaptive
         self.max_samples = max_samples
         self.state_file = Path(state_file) if state_file else None
@@ -107,16 +107,8 @@ class Viewer:
 
     # -- set-up ---------------------------------------------------------------------
     @staticmethod
-    def _orbit_of(camera: Camera | None, scene: Node) -> OrbitCamera:
-        if isinstance(camera, OrbitCamera):
-            return OrbitCamera(camera.target, camera.distance, camera.yaw, camera.pitch, camera.fov)
-        if camera is not None:  # a look-at camera: orbit about its target from where it stands
-            off = camera.eye - camera.target
-            dist = float(np.linalg.norm(off))
-            yaw = math.degrees(math.atan2(off[0], off[2]))
-            pitch = math.degrees(math.asin(max(-0.999, min(0.999, off[1] / dist))))
-            return OrbitCamera(camera.target, dist, yaw, pitch, camera.fov)
-        return OrbitCamera.framing(*scene.bounds)
+    def _orbit_of(camera: Camera | None, scene: Node, aspect: float) -> OrbitCamera:
+        return OrbitCamera.of(camera, *scene.bounds, aspect=aspect)
 
     def _open_window(self) -> None:
         if not glfw.init():
@@ -215,11 +207,12 @@ class Viewer:
             self._cycle("debug", DEBUG_CYCLE)
         elif key == glfw.KEY_F:
             framed = OrbitCamera.framing(*self.scene.bounds, yaw=self.camera.yaw, pitch=self.camera.pitch,
-                                         fov=self.camera.fov)
+                                         fov=self.camera.fov, aspect=self.size[0] / self.size[1],
+                                         projection=self.camera.projection)
             self.camera = framed
             self._mark(moved=True)
         elif key == glfw.KEY_R:
-            self.camera = self._orbit_of(self.home, self.scene)
+            self.camera = self._orbit_of(self.home, self.scene, self.size[0] / self.size[1])
             self._mark(moved=True)
         elif key == glfw.KEY_P:
             self.screenshot()
@@ -244,10 +237,11 @@ class Viewer:
     # -- drawing ----------------------------------------------------------------------
     def _program(self, scene: Node, settings: dict[str, Any]) -> tuple[moderngl.Program, np.ndarray]:
         origin = shader_origin(scene, self.camera.eye)
-        key = (id(scene), tuple(sorted(settings.items())), tuple(origin.tolist()))
+        st = Settings.build(**settings)
+        key = (id(scene), st, tuple(origin.tolist()), self.camera.projection)
         if key not in self._sources:  # codegen once per scene, settings and origin, not per frame
             self._sources = {k: v for k, v in self._sources.items() if k[0] == id(scene)}
-            self._sources[key] = generate(scene, Settings.build(**settings), origin)
+            self._sources[key] = generate(scene, st, origin, projection=self.camera.projection)
         before = self.renderer.programs.compiles
         prog = self.renderer.programs.get(self._sources[key])
         self.state.compiles += self.renderer.programs.compiles - before

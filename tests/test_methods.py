@@ -105,7 +105,12 @@ def test_bench_quick_writes_reports(tmp_path):
                 "depth_px_median", "depth_px_p99", "silhouette_mismatch", "normal_deg_median"):
         assert key in v
     assert (tmp_path / "pareto.png").stat().st_size > 1000
-    assert len(data["features"]) == 8
+    assert len(data["features"]) == 13  # aa, shadows, AO, all; then lights, materials, alpha, fog
+    feats = {f["label"]: f for f in data["features"]}
+    assert "materials (metallic, roughness, emission)" in feats
+    four = feats["4 lights (soft, hard, 2 unshadowed)"]
+    assert [lt["kind"] for lt in four["settings"]["lights"]] == ["directional", "directional", "point", "directional"]
+    assert four["frame_ms_median"] > 0
 
 
 def test_capped_newton_keeps_the_roots_of_an_implicit_surface():

@@ -15,3 +15,5 @@ def test_wheel_contains_all_shaders(tmp_path):
     names = set(zipfile.ZipFile(wheel).namelist())
     shipped = {f"sdfgl/shaders/{p.relative_to(ROOT / 'shaders').as_posix()}" for p in (ROOT / "shaders").rglob("*.glsl")}
     assert shipped and shipped <= names, sorted(shipped - names)
+    web = {f"sdfgl/web/{p.name}" for p in (ROOT / "sdfgl" / "web").iterdir() if p.suffix in (".js", ".css", ".html")}
+    assert {"sdfgl/web/viewer.js", "sdfgl/web/page.html"} <= web and web <= names, sorted(web - names)

@@ -146,3 +146,19 @@ def test_far_away_scene_renders_like_one_at_the_origin():
     far = sg.render_pbr(sg.sphere(1).translate(c), sg.Camera.look_at(c + (0, 0, 4), c, fov=40), (40, 40), spp=4)
     assert far.settings["offset"] == c.tolist() and near.settings["offset"] == [0.0, 0.0, 0.0]
     assert ((near.alpha > 0.5) != (far.alpha > 0.5)).sum() <= 4
+
+
+def test_node_materials_and_orthographic_cameras_carry_over():
+    metal = sg.sphere(0.6).material((0.9, 0.7, 0.3), metallic=1.0, shininess=200).translate((-0.8, 0, 0))
+    matte = sg.box(1.0).color(0.2, 0.4, 0.8).translate((0.8, 0, 0))
+    scene = metal | matte
+    d = sg.to_mitsuba(scene, size=(8, 8), spp=1)
+    assert d["sdf_bsdf"]["type"] == "principled"
+    metallic = np.asarray(d["sdf_bsdf"]["metallic"]["volume"]["grid"])
+    assert metallic.max() > 0.9 and metallic.min() < 0.1          # metal on the sphere only
+    cam = sg.Camera.look_at((0, 0, 5), projection="orthographic", ortho_height=2.0)
+    size = (64, 32)
+    img = sg.render_pbr(sg.box(1.0), cam, size, spp=4)
+    egl = np.isfinite(sg.render(sg.box(1.0), cam, size, outputs=("color", "depth")).depth)
+    assert img.settings["projection"] == "orthographic"
+    assert egl.sum() == 16 * 16 and ((img.alpha > 0.5) != egl).sum() <= 8

@@ -57,6 +57,13 @@ def test_orbit_pan_zoom_move_the_camera(viewer):
     assert s3["distance"] < 0.75 * s2["distance"]
     # frames drawn while moving were at reduced or full resolution, then refined when still
     drv.wait_for(lambda s: not s["moving"] and s["samples"] >= 4, what="refinement after moving")
+    # F frames the scene box for the window's aspect ratio, from the current direction
+    drv.key("f")
+    s4 = drv.wait_for(lambda s: s["target"] == [0.0, 0.0, 0.0], what="framing")
+    import sdfgl as sg
+    box = (sg.sphere(1) & sg.box(1.5)).bounds
+    want = sg.OrbitCamera.framing(*box, yaw=s4["yaw"], pitch=s4["pitch"], fov=45, aspect=320 / 240)
+    assert s4["distance"] == pytest.approx(want.distance, rel=1e-9)
 
 
 def test_toggles_recompile_and_screenshots_differ_after_orbit(viewer):

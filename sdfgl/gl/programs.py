@@ -9,6 +9,7 @@ import moderngl
 from .. import shaderlib
 from ..codegen import ShaderSource
 from ..errors import ShaderCompileError
+from .dialect import of_source
 
 # Mesa: "0:12(5): error: ...", NVIDIA: "0(12) : error ...", ANGLE/others: "ERROR: 0:12: ..."
 _LINE = re.compile(r"(?:^|\s)0[:(](\d+)[:)(]")
@@ -44,8 +45,8 @@ class ProgramCache:
         if prog is None:
             t0 = time.perf_counter()
             try:
-                prog = self.ctx.program(vertex_shader=shaderlib.read("fullscreen.vert"),
-                                        fragment_shader=source.text)
+                vertex = of_source(source.text).convert(shaderlib.read("fullscreen.vert"))
+                prog = self.ctx.program(vertex_shader=vertex, fragment_shader=source.text)
             except moderngl.Error as exc:
                 raise ShaderCompileError(explain_compile_error(source, str(exc))) from None
             self.last_compile_s = time.perf_counter() - t0

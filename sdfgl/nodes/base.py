@@ -81,6 +81,11 @@ class Node:
             return self.label()
         return f"{self.label()}[{', '.join(repr(c) for c in self.children)}]"
 
+    def _repr_png_(self) -> bytes | None:
+        """A small render, shown inline by Jupyter (``sg.set_preview(False)`` turns it off)."""
+        from ..web.notebook import preview_png
+        return preview_png(self)
+
     # -- the five things every node provides ----------------------------------------------
     def emit(self, em: "Emitter", p: str) -> str:
         """Append GLSL for this node's field at point variable ``p``; return the result variable.
@@ -201,15 +206,38 @@ class Node:
         from .transforms import scale
         return scale(self, factor)
 
-    def twist(self, rate: float) -> "Node":
-        """Twist about Y by ``rate`` degrees per unit of height (a bound; steps shortened here only)."""
+    def twist(self, rate: float, axis: str = "y") -> "Node":
+        """Twist about ``axis`` (x, y or z) by ``rate`` degrees per unit along it (a bound; steps
+        shortened here only)."""
         from .deform import Twist
-        return Twist(self, rate)
+        return Twist(self, rate, axis)
 
-    def bend(self, rate: float) -> "Node":
-        """Bend in the XY plane by ``rate`` degrees per unit along X (a bound)."""
+    def bend(self, rate: float, axis: str = "z") -> "Node":
+        """Bend about ``axis`` by ``rate`` degrees per unit: about Z the XY plane turns by
+        rate * x, about X the YZ plane by rate * y, about Y the ZX plane by rate * z (a bound)."""
         from .deform import Bend
-        return Bend(self, rate)
+        return Bend(self, rate, axis)
+
+    def taper(self, rate: float, axis: str | Sequence[float] = "y", origin: float = 0.0) -> "Node":
+        """Scale the cross-section across ``axis`` ("x", "y" or "z") by 1 + rate (u - origin)
+        along it (a bound; only this subtree's steps shrink)."""
+        from .deform import Taper
+        return Taper(self, rate, axis, origin)
+
+    def dilate(self, radius: float) -> "Node":
+        """Grow by ``radius`` (f - r; the same node as :meth:`round`)."""
+        return self.round(radius)
+
+    def erode(self, radius: float) -> "Node":
+        """Shrink by ``radius`` (f + r; a bound)."""
+        from .operators import Erode
+        return Erode(self, radius)
+
+    def shear(self, amount: float, along: str = "x", by: str = "y") -> "Node":
+        """Move coordinate ``along`` by ``amount`` times coordinate ``by`` (a bound; only this
+        subtree's steps shrink)."""
+        from .operators import Shear
+        return Shear(self, amount, along, by)
 
     def repeat(self, period: float | Sequence[float], count: int | Sequence[int] | None = None) -> "Node":
         """Copies every ``period`` along the axes with a non-zero period; ``count`` limits them."""
@@ -257,6 +285,20 @@ class Node:
         from .transforms import Material
         rgb = r if g is None and b is None else (r, g, b)
         return Material(self, rgb)
+
+    def material(self, color: object = None, *, specular: object = None, roughness: object = None,
+                 shininess: object = None, metallic: object = None, emission: object = None) -> "Node":
+        """Give every part of this node that does not set them itself these material fields.
+
+        ``color`` as for :meth:`color`; ``specular`` (>= 0, default 0.25) scales the
+        highlight; ``roughness`` in [0.05, 1] or ``shininess`` (the Blinn-Phong exponent,
+        1..10000, default 48) sets its size; ``metallic`` in [0, 1] tints the highlight by
+        the colour and removes the diffuse part; ``emission`` a colour added unlit. Fields
+        left out keep what an outer node (or the default) says.
+        """
+        from .material import SurfaceMaterial
+        return SurfaceMaterial(self, color, specular=specular, roughness=roughness, shininess=shininess,
+                               metallic=metallic, emission=emission)
 
 
 class Unary(Node):

@@ -129,8 +129,7 @@ class Union(_Boolean):
         if grid is None:
             return super()._emit(em, p)
         pt = em.point(p)
-        acc = em.assign("vec4", f"{em.grid_name(grid)}Union({pt})")
-        acc = acc if em.mode == "color" else em.assign("float", f"{acc}.w")
+        acc = em.grid_union(grid, pt)
         for c in self.children:
             if not any(c is g for g in grid.children):
                 acc = self._combine(em, acc, c.emit(em, pt))
@@ -270,15 +269,30 @@ def product(a: Node, b: Node) -> Node:
 
 def union(*nodes: Node, k: float = 0.0, blend: str = "quadratic") -> Node:
     """Union of two or more nodes; ``k`` > 0 blends them over that distance: ``blend`` is
-    "quadratic" (smooth), "circular" (a quarter-circle fillet) or "chamfer" (a bevel)."""
+    "quadratic" (smooth), "circular" (a quarter-circle fillet) or "chamfer" (a bevel).
+    2D shapes give a 2D union."""
+    if _all_2d(nodes):
+        from .shapes2d_ops import union as union2
+        return union2(*nodes, k=k, blend=blend)  # type: ignore[return-value]
     return Union(*nodes, k=k, blend=blend)
 
 
 def intersection(*nodes: Node, k: float = 0.0, blend: str = "quadratic") -> Node:
-    """Intersection of two or more nodes; ``k`` > 0 rounds the seam."""
+    """Intersection of two or more nodes (or 2D shapes); ``k`` > 0 rounds the seam."""
+    if _all_2d(nodes):
+        from .shapes2d_ops import intersection as intersection2
+        return intersection2(*nodes, k=k, blend=blend)  # type: ignore[return-value]
     return Intersection(*nodes, k=k, blend=blend)
 
 
 def difference(*nodes: Node, k: float = 0.0, blend: str = "quadratic") -> Node:
-    """The first node minus the others; ``k`` > 0 rounds the cut."""
+    """The first node (or 2D shape) minus the others; ``k`` > 0 rounds the cut."""
+    if _all_2d(nodes):
+        from .shapes2d_ops import difference as difference2
+        return difference2(*nodes, k=k, blend=blend)  # type: ignore[return-value]
     return Difference(*nodes, k=k, blend=blend)
+
+
+def _all_2d(nodes: tuple) -> bool:
+    from .shapes2d import Shape2D
+    return bool(nodes) and all(isinstance(n, Shape2D) for n in nodes)

@@ -14,22 +14,39 @@ if TYPE_CHECKING:  # pragma: no cover
 
 
 class Shape2D:
-    """A 2D signed distance: GLSL over a vec2, numpy over (..., 2), and its bounds."""
+    """A 2D signed distance: GLSL over a vec2, numpy over (..., 2), and its bounds.
+
+    Shapes combine like 3D nodes (``a | b``, ``a & b``, ``a - b``, ``sg.union(..., k=)``),
+    move (``translate``, ``rotate``, ``scale``), round and onion, and become solids by
+    ``extrude`` or ``revolve``. Each keeps its exactness and Lipschitz factor."""
 
     kind = "shape2d"
     exactness = EXACT
+    lipschitz = 1.0
 
-    def __init__(self, **params: object) -> None:
+    def __init__(self, children: Sequence["Shape2D"] = (), **params: object) -> None:
         v.fixed(self.kind, "2D shapes are baked", **params)
+        for i, c in enumerate(children):
+            if not isinstance(c, Shape2D):
+                raise ParameterError(f"{self.kind}: operand {i} must be a 2D shape, got {type(c).__name__} {c!r}")
+        self.children: tuple[Shape2D, ...] = tuple(children)
         self.params = params
 
     def label(self) -> str:
         def fmt(x: object) -> str:
+            if isinstance(x, str):
+                return x
             return "(" + ", ".join(f"{y:g}" for y in np.ravel(x)) + ")" if isinstance(x, np.ndarray) else f"{x:g}"
-        return f"{self.kind}({', '.join(f'{k}={fmt(x)}' for k, x in self.params.items())})"
+        own = f"{self.kind}({', '.join(f'{k}={fmt(x)}' for k, x in self.params.items())})"
+        return own if not self.children else f"{own}[{', '.join(c.label() for c in self.children)}]"
+
+    def __repr__(self) -> str:
+        return self.label()
 
     def key(self) -> tuple:
-        return (self.kind, tuple((k, tuple(np.ravel(x).tolist())) for k, x in self.params.items()))
+        def freeze(x: object) -> object:
+            return x if isinstance(x, str) else tuple(np.ravel(x).tolist())
+        return (self.kind, tuple((k, freeze(x)) for k, x in self.params.items()), tuple(c.key() for c in self.children))
 
     def expr(self, em: "Emitter", q: str) -> str:
         raise NotImplementedError
@@ -41,9 +58,50 @@ class Shape2D:
     def bounds2(self) -> tuple[np.ndarray, np.ndarray]:
         raise NotImplementedError
 
+    # -- combining and moving (sdfgl.nodes.shapes2d_ops) ---------------------------------
+    def _op(self, name: str, other: object) -> "Shape2D":
+        from . import shapes2d_ops as ops
+        if not isinstance(other, Shape2D):
+            raise ParameterError(f"2D {name}: both operands must be 2D shapes (extrude or revolve a 2D shape to "
+                                 f"combine it with 3D nodes), got {type(other).__name__}")
+        return getattr(ops, name)(self, other)
+
+    def __or__(self, other: object) -> "Shape2D":
+        return self._op("union", other)
+
+    def __and__(self, other: object) -> "Shape2D":
+        return self._op("intersection", other)
+
+    def __sub__(self, other: object) -> "Shape2D":
+        return self._op("difference", other)
+
+    def translate(self, offset: Sequence[float]) -> "Shape2D":
+        from .shapes2d_ops import Translate2D
+        return Translate2D(self, offset)
+
+    def rotate(self, angle: float) -> "Shape2D":
+        """Rotate by ``angle`` degrees (counter-clockwise) about the origin."""
+        from .shapes2d_ops import Rotate2D
+        return Rotate2D(self, angle)
+
+    def scale(self, factor: float | Sequence[float]) -> "Shape2D":
+        """Scale uniformly (exactness kept) or per axis (a bound)."""
+        from .shapes2d_ops import Scale2D
+        return Scale2D(self, factor)
+
+    def round(self, radius: float) -> "Shape2D":
+        """Grow by ``radius``: rounded corners."""
+        from .shapes2d_ops import Round2D
+        return Round2D(self, radius)
+
+    def onion(self, thickness: float) -> "Shape2D":
+        """A band ``thickness`` wide around the outline."""
+        from .shapes2d_ops import Onion2D
+        return Onion2D(self, thickness)
+
     # -- making solids ------------------------------------------------------------------
-    def extrude(self, height: float) -> "Extrude":
-        return Extrude(self, height)
+    def extrude(self, height: float, taper: float = 0.0, twist: float = 0.0) -> "Node":
+        return extrude(self, height, taper, twist)
 
     def revolve(self, offset: float = 0.0) -> "Revolve":
         return Revolve(self, offset)
@@ -154,7 +212,11 @@ class Extrude(Node):
 
     @property
     def exactness(self) -> str:
-        return EXACT
+        return self.shape.exactness
+
+    @property
+    def lipschitz(self) -> float:
+        return self.shape.lipschitz
 
     def _emit(self, em: "Emitter", p: str) -> str:
         em.require("op_extrude")
@@ -190,7 +252,11 @@ class Revolve(Node):
 
     @property
     def exactness(self) -> str:
-        return EXACT
+        return self.shape.exactness
+
+    @property
+    def lipschitz(self) -> float:
+        return self.shape.lipschitz
 
     def _emit(self, em: "Emitter", p: str) -> str:
         pt = em.point(p)
@@ -223,9 +289,27 @@ def polygon(points: Sequence[Sequence[float]]) -> Polygon:
     return Polygon(points)
 
 
-def extrude(shape: Shape2D, height: float) -> Extrude:
-    """Extrude a 2D shape along Z to full ``height``. Exact."""
-    return Extrude(shape, height)
+def extrude(shape: Shape2D, height: float, taper: float = 0.0, twist: float = 0.0) -> Node:
+    """Extrude a 2D shape along Z to full ``height``, centred on z = 0 (exact where the shape is).
+
+    ``taper``: the shape shrinks linearly from full size at the bottom (z = -height/2) to
+    (1 - taper) times it at the top (negative widens it); ``twist``: degrees the shape
+    turns (counter-clockwise seen from +Z) from bottom to top. Both are warps (sdfgl.nodes.deform) that divide only this
+    solid's field by their own stretch."""
+    t = v.scalar("extrude", "taper", taper)
+    w = v.scalar("extrude", "twist", twist)
+    v.fixed("extrude", "taper and twist are compiled into the warp", taper=t, twist=w)
+    if not t < 1.0:
+        raise ParameterError(f"extrude: parameter 'taper' must be < 1 (1 shrinks the top to a point), got {t:g}")
+    node: Node = Extrude(shape, height)
+    h = 2.0 * float(node.h)  # type: ignore[attr-defined]
+    if w:
+        from .deform import Twist
+        node = Twist(node, -w / h, "z")  # q = R(-a) p: the shape turns counter-clockwise by a
+    if t:
+        from .deform import Taper
+        node = Taper(node, -t / h, axis="z", origin=-h / 2)
+    return node
 
 
 def revolve(shape: Shape2D, offset: float = 0.0) -> Revolve:

@@ -200,9 +200,11 @@ class Material(Unary):
         c = v.color(self.kind, rgb)
         super().__init__(child, rgb=c)
         self.rgb = c
+        self.fields: dict[str, object] = {"albedo": c}  # the material fields this node sets
+        self.surface = False  # sets fields besides colour (see sdfgl.nodes.material)
 
     def _emit(self, em: "Emitter", p: str) -> str:
-        with em.colored(self.rgb):
+        with em.colored(self.fields):
             return self.child.emit(em, p)
 
     def _distance(self, p: np.ndarray) -> np.ndarray:

@@ -11,7 +11,7 @@ that renders in real time; Mitsuba itself is imported only when a render is aske
 """
 from .image import PBRImage
 from .lighting import Sky, Sun
-from .materials import Blend, Material
+from .materials import Blend, Material, SceneMaterial
 from .render import render_pbr, to_mitsuba
 
-__all__ = ["render_pbr", "to_mitsuba", "PBRImage", "Material", "Blend", "Sky", "Sun"]
+__all__ = ["render_pbr", "to_mitsuba", "PBRImage", "Material", "Blend", "SceneMaterial", "Sky", "Sun"]

@@ -24,7 +24,7 @@ from typing import Callable
 import numpy as np
 
 from ..errors import ParameterError
-from ..evaluate import evaluate, evaluate_color
+from ..evaluate import evaluate, evaluate_channel
 from ..nodes.base import Node
 
 CHUNK_POINTS = 1 << 22   # points per evaluate() call
@@ -179,6 +179,6 @@ def sample_colors(scene: Node, lo: np.ndarray, hi: np.ndarray, resolution: int,
                   progress: Progress | None = None) -> np.ndarray:
     """Linear albedo (mapColor()) over [lo, hi], float32 [Z, Y, X, 3]."""
     origin = (lo + hi) / 2
-    rgba = sample_cells(lambda p: evaluate_color(scene, p, origin=origin), lo, hi, resolution, 4,
+    rgba = sample_cells(lambda p: evaluate_channel(scene, p, "color", origin=origin), lo, hi, resolution, 4,
                         progress, "sampling colours")
     return np.clip(np.nan_to_num(rgba[..., :3]), 0.0, 1.0)

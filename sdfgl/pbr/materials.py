@@ -88,10 +88,11 @@ class Blend:
     outside: "Look"
     boundary: Node
     width: float = 0.05
+    kind = "blend"
 
     def __post_init__(self) -> None:
         for name in ("inside", "outside"):
-            if not isinstance(getattr(self, name), (Material, Blend)):
+            if not isinstance(getattr(self, name), (Material, Blend, SceneMaterial)):
                 raise ParameterError(f"pbr blend: '{name}' must be a Material or Blend, got "
                                      f"{type(getattr(self, name)).__name__}")
         if not isinstance(self.boundary, Node):
@@ -101,18 +102,33 @@ class Blend:
             raise ParameterError(f"pbr blend: parameter 'width' must be a finite number > 0, got {self.width!r}")
 
 
-Look = Union[Material, Blend]
+@dataclass(frozen=True)
+class SceneMaterial:
+    """The scene's own node materials (``.material(...)``): a ``principled`` BSDF whose base
+    colour, roughness and metallic vary over the surface as the generated mapColor() and
+    mapSurface() give them (the default when some node sets specular, shininess or metallic)."""
 
-# texture factories the scene builder supplies: the scene's albedo field, and a blend weight field
+    kind: str = "principled"
+
+
+Look = Union[Material, Blend, SceneMaterial]
+
+# texture factories the scene builder supplies: the scene's albedo field, a blend weight
+# field, and the scene's (roughness texture, metallic texture, specular) from its materials
 AlbedoTexture = Callable[[], dict]
 WeightTexture = Callable[[Node, float], dict]
+SurfaceTextures = Callable[[], tuple[dict, dict, float]]
 
 
-def bsdf(look: Look, albedo: AlbedoTexture, weight: WeightTexture) -> dict[str, Any]:
+def bsdf(look: Look, albedo: AlbedoTexture, weight: WeightTexture, surface: SurfaceTextures) -> dict[str, Any]:
     """The Mitsuba BSDF dictionary of ``look``."""
     if isinstance(look, Blend):
         return {"type": "blendbsdf", "weight": weight(look.boundary, look.width),
-                "bsdf_0": bsdf(look.inside, albedo, weight), "bsdf_1": bsdf(look.outside, albedo, weight)}
+                "bsdf_0": bsdf(look.inside, albedo, weight, surface),
+                "bsdf_1": bsdf(look.outside, albedo, weight, surface)}
+    if isinstance(look, SceneMaterial):
+        rough, metal, spec = surface()
+        return {"type": "principled", "base_color": albedo(), "roughness": rough, "metallic": metal, "specular": spec}
     color: Any = {"type": "rgb", "value": list(look.color)} if look.color is not None else albedo()
     alpha = look.roughness ** 2
     smooth = look.roughness < SMOOTH_ROUGHNESS

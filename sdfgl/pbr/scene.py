@@ -18,11 +18,12 @@ import numpy as np
 from ..camera import Camera, OrbitCamera
 from ..errors import ParameterError
 from ..nodes.base import Node
-from ..evaluate import evaluate
+from ..codegen import material_channels
+from ..evaluate import evaluate, evaluate_channel
 from .field_grid import (Progress, SampledField, auto_resolution, sample_cells, sample_colors, sample_field,
                          scene_box)
 from .lighting import Sky, Sun
-from .materials import Blend, Look, Material, bsdf
+from .materials import Blend, Look, Material, SceneMaterial, bsdf
 
 GROUND_COLORS = ((0.62, 0.61, 0.58), (0.72, 0.71, 0.68))  # the real-time ground's checker
 FAR_SHIFT = 100.0    # scenes further than this many sizes from the origin are moved to it
@@ -67,17 +68,21 @@ def _check_size(size: object) -> tuple[int, int]:
 
 
 def sensor(mi: Any, camera: Camera, size: tuple[int, int], spp: int, offset: np.ndarray, far: float) -> dict:
-    """A perspective sensor with the sdfgl camera's eye, basis and vertical field of view."""
+    """A sensor with the sdfgl camera's eye and basis: perspective with its vertical field of
+    view, or orthographic ``ortho_height`` tall (Mitsuba's orthographic view spans x in
+    [-1, 1] and y in [-1 / aspect, 1 / aspect] before its to_world scale)."""
     r, u, f = camera.basis()
     eye = camera.eye - offset
-    return {
-        "type": "perspective", "fov": float(camera.fov), "fov_axis": "y",
-        "near_clip": max(far * 1e-7, 1e-6), "far_clip": far,
-        "to_world": mi.ScalarTransform4f().look_at(origin=eye.tolist(), target=(eye + f).tolist(), up=u.tolist()),
-        "film": {"type": "hdrfilm", "width": size[0], "height": size[1], "pixel_format": "rgba",
-                 "rfilter": {"type": "box"}},
-        "sampler": {"type": "independent", "sample_count": int(spp)},
-    }
+    look = mi.ScalarTransform4f().look_at(origin=eye.tolist(), target=(eye + f).tolist(), up=u.tolist())
+    common = {"near_clip": max(far * 1e-7, 1e-6), "far_clip": far,
+              "film": {"type": "hdrfilm", "width": size[0], "height": size[1], "pixel_format": "rgba",
+                       "rfilter": {"type": "box"}},
+              "sampler": {"type": "independent", "sample_count": int(spp)}}
+    if camera.orthographic:
+        half_width = 0.5 * camera.ortho_height * size[0] / size[1]
+        return {"type": "orthographic", "to_world": look @ mi.ScalarTransform4f().scale([half_width, half_width, 1.0]),
+                **common}
+    return {"type": "perspective", "fov": float(camera.fov), "fov_axis": "y", "to_world": look, **common}
 
 
 def ground_shape(mi: Any, y: float, centre: np.ndarray, offset: np.ndarray, scale: float) -> dict:
@@ -111,8 +116,9 @@ def build(mi: Any, scene: Node, camera: Camera | None = None, size: object = (64
         raise ParameterError(f"pbr: 'max_depth' must be an integer in 1..64, got {max_depth!r}")
     if not (isinstance(quality, (int, float)) and 0.05 <= quality <= 8):
         raise ParameterError(f"pbr: 'quality' must be a number in [0.05, 8], got {quality!r}")
-    look = material if material is not None else Material()
-    if not isinstance(look, (Material, Blend)):
+    channels = material_channels(scene)
+    look = material if material is not None else (SceneMaterial() if "surface" in channels else Material())
+    if not isinstance(look, (Material, Blend, SceneMaterial)):
         raise ParameterError(f"pbr: 'material' must be a pbr Material or Blend, got {type(look).__name__}")
     sky = sky if sky is not None else Sky()
     sun = sun if sun is not None else Sun()
@@ -127,18 +133,30 @@ def build(mi: Any, scene: Node, camera: Camera | None = None, size: object = (64
     blo, bhi = lo - offset, hi - offset
     scale = float((hi - lo).max())
 
+    def texture(values: np.ndarray) -> dict:
+        """A gridvolume texture over the scene box from [Z, Y, X] or [Z, Y, X, C] samples."""
+        grid = values if values.ndim == 4 else values[..., None]
+        return {"type": "volume", "volume": {"type": "gridvolume", "filter_type": "trilinear",
+                                             "grid": mi.VolumeGrid(np.ascontiguousarray(grid, dtype=np.float32)),
+                                             "to_world": _transform(mi, blo, bhi)}}
+
     def albedo() -> dict:
-        colors = sample_colors(scene, lo, hi, min(COLOR_CELLS, res), progress)
-        return {"type": "volume", "volume": {"type": "gridvolume", "grid": mi.VolumeGrid(colors),
-                                             "to_world": _transform(mi, blo, bhi), "filter_type": "trilinear"}}
+        return texture(sample_colors(scene, lo, hi, min(COLOR_CELLS, res), progress))
+
+    def surface() -> tuple[dict, dict, float]:
+        """Roughness and metallic textures from the scene's mapSurface() (Blinn-Phong shininess n
+        -> Beckmann alpha sqrt(2 / (n + 2)) -> roughness sqrt(alpha)), and twice its median
+        specular weight (the real-time default 0.25 becomes the principled default 0.5)."""
+        sf = sample_cells(lambda p: evaluate_channel(scene, p, "surface", origin=centre)[:, :3], lo, hi,
+                          min(COLOR_CELLS, res), 3, progress, "sampling materials")
+        rough = np.clip((2.0 / (np.maximum(sf[..., 1], 0.0) + 2.0)) ** 0.25, 0.0, 1.0)
+        return texture(rough), texture(np.clip(sf[..., 2], 0.0, 1.0)), float(np.clip(2 * np.median(sf[..., 0]), 0, 1))
 
     def weight(boundary: Node, width: float) -> dict:
         def w(p: np.ndarray) -> np.ndarray:
             t = np.clip((evaluate(boundary, p, origin=centre).astype(np.float64) + width) / (2 * width), 0, 1)
             return (t * t * (3 - 2 * t)).astype(np.float32)
-        vals = sample_cells(w, lo, hi, min(COLOR_CELLS * 2, res), 1, progress, "sampling blend weights")
-        return {"type": "volume", "volume": {"type": "gridvolume", "grid": mi.VolumeGrid(vals[..., None]),
-                                             "to_world": _transform(mi, blo, bhi), "filter_type": "trilinear"}}
+        return texture(sample_cells(w, lo, hi, min(COLOR_CELLS * 2, res), 1, progress, "sampling blend weights"))
 
     eye_dist = float(np.linalg.norm(cam.eye - offset))
     far = eye_dist + 2.0 * float(np.linalg.norm(fld.hi - fld.lo)) + (400.0 * scale if ground else 0.0)
@@ -146,7 +164,7 @@ def build(mi: Any, scene: Node, camera: Camera | None = None, size: object = (64
         "type": "scene",
         "integrator": {"type": "path", "max_depth": int(max_depth), "hide_emitters": True},
         "sensor": sensor(mi, cam, wh, spp, offset, far),
-        "sdf_bsdf": bsdf(look, albedo, weight),
+        "sdf_bsdf": bsdf(look, albedo, weight, surface),
         "sky": {"type": "envmap", "bitmap": mi.Bitmap(sky.bitmap()), "scale": 1.0},
         "sun": sun.emitter(),
     }
@@ -166,8 +184,10 @@ def build(mi: Any, scene: Node, camera: Camera | None = None, size: object = (64
                 d.pop(key, None)
             else:
                 d[key] = obj
-    info = {"geometry": "sdfgrid", "grid_cells": fld.cells, "cell_size": fld.cell, "resolution": int(res),
+    info = {"geometry": "sdfgrid", "projection": cam.projection, "grid_cells": fld.cells, "cell_size": fld.cell, "resolution": int(res),
             "tiles": len(fld.tiles), "tiles_total": fld.tiles_total, "field_samples": fld.samples,
             "spp": int(spp), "max_depth": int(max_depth),
-            "material": type(look).__name__ if isinstance(look, Blend) else look.kind}
+            "material": look.kind}
+    if "emission" in channels:
+        info["not_rendered"] = "emission: Mitsuba's sdfgrid shape cannot be an emitter"
     return Built(d, cam, offset, fld, info)

@@ -1,9 +1,0 @@
-// mapColor() and map() at arbitrary points: texel (x, y) of uPoints holds a point, the
-// output (linear rgb, distance) there.
-uniform sampler2D uPoints;
-layout(location = 0) out vec4 outValue;
-
-void main() {
-    vec3 p = texelFetch(uPoints, ivec2(gl_FragCoord.xy), 0).xyz;
-    outValue = vec4(mapColor(p), map(p));
-}
