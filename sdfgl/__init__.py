@@ -11,6 +11,8 @@ from .codegen import compile
 from .errors import ContextError, ParameterError, SceneFileError, SdfglError, ShaderCompileError
 from .evaluate import evaluate
 from .look import directional_light, point_light
+from . import mesh  # the package is callable: sg.mesh(scene, step=0.01)
+from .mesh import Mesh
 from .nodes import (BOUND, EXACT, IMPLICIT, Node, bend, box, box_frame, capsule, circle, displace, elongate, extrude,
                     displace_expr, implicit, noise, parametric,
                     mirror, polygon, rectangle, repeat_polar, revolve, rounded, shell, sierpinski, symmetric, tree, cone, cylinder, difference, ellipsoid,
@@ -18,7 +20,10 @@ from .nodes import (BOUND, EXACT, IMPLICIT, Node, bend, box, box_frame, capsule,
                     union, Shape2D, arc, capsule2, ellipse, regular_polygon, star, triangle, slice,
                     bezier_tube, capped_torus, dodecahedron, gyroid, icosahedron, pyramid, slab, tetrahedron, tube,
                     morph, taper, glsl)
-from .params import Param, param
+from .params import Param, param, time
+from .functions import (abs, clamp, cos, exp, floor, fract, log, max, min, mix, mod, pow, radians, sign, sin,
+                        smoothstep, sqrt, step, tan)
+from .animate import animate, camera_path, keyframes, turntable
 from .render import RenderResult, Renderer, render
 
 
@@ -91,4 +96,7 @@ __all__ = [
     "SceneFileError", "Shape2D", "arc", "capsule2", "ellipse", "regular_polygon", "star", "triangle", "slice",
     "bezier_tube", "capped_torus", "dodecahedron", "gyroid", "icosahedron", "pyramid", "slab", "tetrahedron", "tube",
     "morph", "taper", "glsl",
+    "time", "keyframes", "turntable", "camera_path", "animate", "sin", "cos", "tan", "abs", "sqrt", "exp", "log",
+    "sign", "floor", "fract", "radians", "min", "max", "pow", "mod", "step", "clamp", "mix", "smoothstep",
+    "mesh", "Mesh",
 ]

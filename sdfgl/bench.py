@@ -370,6 +370,8 @@ def run(quick: bool, size: tuple[int, int] | None, out: Path, progress: bool = T
     from .bench_model import run_model
     model = run_model((160, 120) if quick else (320, 240), min(frames, 5), warmup,
                       (16, 64, 256) if quick else (16, 64, 256, 1024), progress)
+    from .mesh.bench import run_mesh
+    mesh_md, mesh_data = run_mesh(2 ** 18 if quick else 2 ** 22, 1 if quick else 3, None if quick else 1024)
 
     out.mkdir(parents=True, exist_ok=True)
     md = "\n\n".join([
@@ -380,13 +382,15 @@ def run(quick: bool, size: tuple[int, int] | None, out: Path, progress: bool = T
         "## Seed thesis tables beside ours\n\n" + seed_table(variants),
         "## Cost of each feature #define\n\n" + feature_table(features),
         "## Model only what a scene needs\n\n" + model,
+        "## Mesh export against fogleman/sdf and DistForge\n\n" + mesh_md,
     ])
     (out / "bench.md").write_text(md + "\n")
     data = {"size": size, "frames": frames, "warmup": warmup, "gl": describe(renderer.ctx),
             "variants": [{"scene": v.scene, "label": v.label, "settings": v.settings,
                           **{k: val for k, val in v.result.items() if not k.startswith("_")}} for v in variants],
             "features": [{"label": v.label, "settings": v.settings,
-                          **{k: val for k, val in v.result.items() if not k.startswith("_")}} for v in features]}
+                          **{k: val for k, val in v.result.items() if not k.startswith("_")}} for v in features],
+            "mesh": mesh_data}
     (out / "bench.json").write_text(json.dumps(data, indent=1, default=_json_value))
     pareto_plot(variants, out / "pareto.png")
     print(md)

@@ -1,4 +1,4 @@
-"""Command line: ``sdfgl render | shader | view | html | pbr | bench``."""
+"""Command line: ``sdfgl render | shader | view | html | mesh | pbr | bench | animate | batch``."""
 from __future__ import annotations
 
 import argparse
@@ -179,6 +179,13 @@ def build_parser() -> argparse.ArgumentParser:
     b = sub.add_parser("bench", help="benchmark marching methods: frame time beside error")
     add_arguments(b)
     b.set_defaults(func=cmd_bench)
+
+    from .animate.cli_animate import add_parser as add_animate
+    from .animate.cli_batch import add_parser as add_batch
+    add_animate(sub)
+    add_batch(sub)
+    from .mesh.cli import add_parser as add_mesh_parser
+    add_mesh_parser(sub)
     return parser
 
 

@@ -443,9 +443,11 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     """Build the fragment shader for ``scene``.
 
     ``origin`` (float64) is the world point that the shader's coordinates are relative
-    to; ``target`` is ``"render"`` (the image), ``"evaluate"`` (map() at given points) or
+    to; ``target`` is ``"render"`` (the image), ``"evaluate"`` (map() at given points),
     ``"evaluate_color"`` / ``"evaluate_surface"`` / ``"evaluate_emission"`` (a material
-    channel and map() at given points: see EVALUATE_CHANNELS);
+    channel and map() at given points: see EVALUATE_CHANNELS; mesh colours and path-traced
+    materials use them), or one of the mesh exporter's samplers (sdfgl.mesh: same map(), other main()s):
+    ``"mesh_grid"`` (a lattice of blocks), ``"mesh_gradient"`` (value and gradient at points);
     ``dialect`` is ``"desktop"`` (GLSL 3.30) or ``"webgl2"`` (GLSL ES 3.00): the same
     code under another header (see :mod:`sdfgl.gl.dialect`); ``projection`` is the
     camera's ("perspective" or "orthographic": it shapes the rays).
@@ -503,6 +505,10 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     _function(b, "float map(vec3 p)", dist, dist_result, "{}")
     if target == "evaluate":
         b.add_file("evaluate_main")
+        return b.build(params, live, data)
+    if target in ("mesh_grid", "mesh_gradient"):
+        b.add_file("mesh_clip")
+        b.add_file(f"{target}_main")
         return b.build(params, live, data)
     assert color is not None
     _helpers(b, color, done)

@@ -35,8 +35,9 @@ class Live:
     @property
     def value(self) -> Any:
         a = [x.value if isinstance(x, Live) else x for x in self.args]
-        return {"add": lambda: a[0] + a[1], "sub": lambda: a[0] - a[1], "mul": lambda: a[0] * a[1],
-                "div": lambda: a[0] / a[1], "neg": lambda: -a[0]}[self.op]()
+        with np.errstate(all="ignore"):  # a NaN here is caught by the checks of the nodes that use it
+            out = OPS[self.op][0](*a)
+        return float(out) if np.ndim(out) == 0 else np.asarray(out, dtype=np.float64)
 
     def __array__(self, dtype: Any = None, copy: Any = None) -> np.ndarray:
         return np.asarray(self.value, dtype=dtype)
@@ -46,7 +47,7 @@ class Live:
 
     @property
     def dims(self) -> int:
-        return max((x.dims if isinstance(x, Live) else (np.size(x) if np.size(x) > 1 else 1)) for x in self.args)
+        return max(_dims(x) for x in self.args)
 
     def roots(self) -> list["Param"]:
         """The parameters this expression reads."""
@@ -58,10 +59,9 @@ class Live:
 
     def glsl(self, em: "Emitter") -> str:
         g = [x.glsl(em) if isinstance(x, Live) else em.literal(x) for x in self.args]
-        if self.op == "neg":
-            return f"(-{g[0]})"
-        sym = {"add": "+", "sub": "-", "mul": "*", "div": "/"}[self.op]
-        return f"({g[0]} {sym} {g[1]})"
+        if self.op in FUNCS and self.dims == 3:  # GLSL has no min(float, vec3): promote scalars
+            g = [c if _dims(x) == 3 else f"vec3({c})" for c, x in zip(g, self.args)]
+        return OPS[self.op][1].format(*g)
 
     # -- arithmetic builds expressions; anything else falls back to the current value --
     def _bin(self, op: str, other: Any, swap: bool = False) -> Any:
@@ -70,8 +70,7 @@ class Live:
         if isinstance(other, Live) or (isinstance(other, Number) and not isinstance(other, bool)):
             return Live(op, other, self) if swap else Live(op, self, other)
         val = self.value
-        return {"add": np.add, "sub": np.subtract, "mul": np.multiply, "div": np.divide}[op](
-            *((other, val) if swap else (val, other)))
+        return OPS[op][0](*((other, val) if swap else (val, other)))
 
     def __add__(self, o: Any) -> Any: return self._bin("add", o)
     def __radd__(self, o: Any) -> Any: return self._bin("add", o, True)
@@ -81,7 +80,12 @@ class Live:
     def __rmul__(self, o: Any) -> Any: return self._bin("mul", o, True)
     def __truediv__(self, o: Any) -> Any: return self._bin("div", o)
     def __rtruediv__(self, o: Any) -> Any: return self._bin("div", o, True)
+    def __pow__(self, o: Any) -> Any: return self._bin("pow", o)
+    def __rpow__(self, o: Any) -> Any: return self._bin("pow", o, True)
+    def __mod__(self, o: Any) -> Any: return self._bin("mod", o)
+    def __rmod__(self, o: Any) -> Any: return self._bin("mod", o, True)
     def __neg__(self) -> "Live": return Live("neg", self)
+    def __abs__(self) -> "Live": return Live("abs", self)
     def __matmul__(self, o: Any) -> Any: return np.asarray(self.value) @ np.asarray(o)
     def __rmatmul__(self, o: Any) -> Any: return np.asarray(o) @ np.asarray(self.value)
 
@@ -176,3 +180,91 @@ def param(value: Any, name: str | None = None, range: tuple[float, float] | None
     slider in the browser views (default: around the value, within what its nodes accept).
     """
     return Param(value, name, range)
+
+
+class Time(Param):
+    """The animation clock in seconds: ``sg.time()``. ``sg.animate`` sets it for every frame.
+
+    It is an ordinary live scalar, so expressions over it (``1 + 0.2 * sg.sin(t)``) are
+    written over one uniform and checked, at every new time, by the nodes that use them.
+    """
+
+    def __init__(self, value: float = 0.0) -> None:
+        if np.ndim(value):
+            raise ParameterError(f"time: the clock is a number of seconds, got {value!r}")
+        super().__init__(value, "time")
+
+    def __repr__(self) -> str:
+        return f"time({self._value!r})"
+
+
+def time(start: float = 0.0) -> Time:
+    """A live parameter holding the animation time in seconds (``start`` until something sets it)."""
+    return Time(start)
+
+
+def _dims(x: Any) -> int:
+    return x.dims if isinstance(x, Live) else (3 if np.size(x) > 1 else 1)
+
+
+def _mix(a: Any, b: Any, t: Any) -> Any:
+    return a * (1.0 - t) + b * t
+
+
+def _smoothstep(e0: Any, e1: Any, x: Any) -> Any:
+    t = np.minimum(np.maximum((x - e0) / (e1 - e0), 0.0), 1.0)
+    return t * t * (3.0 - 2.0 * t)
+
+
+# op -> (numpy float64 evaluation, GLSL template). The same table drives both evaluators.
+OPS: dict[str, tuple[Callable[..., Any], str]] = {
+    "add": (np.add, "({0} + {1})"),
+    "sub": (np.subtract, "({0} - {1})"),
+    "mul": (np.multiply, "({0} * {1})"),
+    "div": (np.divide, "({0} / {1})"),
+    "neg": (np.negative, "(-{0})"),
+    "sin": (np.sin, "sin({0})"),
+    "cos": (np.cos, "cos({0})"),
+    "tan": (np.tan, "tan({0})"),
+    "abs": (np.abs, "abs({0})"),
+    "sqrt": (np.sqrt, "sqrt({0})"),
+    "exp": (np.exp, "exp({0})"),
+    "log": (np.log, "log({0})"),
+    "sign": (np.sign, "sign({0})"),
+    "floor": (np.floor, "floor({0})"),
+    "fract": (lambda x: x - np.floor(x), "fract({0})"),
+    "radians": (np.radians, "radians({0})"),
+    "min": (np.minimum, "min({0}, {1})"),
+    "max": (np.maximum, "max({0}, {1})"),
+    "pow": (np.power, "pow({0}, {1})"),
+    "mod": (lambda x, y: x - y * np.floor(x / y), "mod({0}, {1})"),
+    "step": (lambda e, x: np.where(x < e, 0.0, 1.0), "step({0}, {1})"),
+    "clamp": (lambda x, lo, hi: np.minimum(np.maximum(x, lo), hi), "clamp({0}, {1}, {2})"),
+    "mix": (_mix, "mix({0}, {1}, {2})"),
+    "smoothstep": (_smoothstep, "smoothstep({0}, {1}, {2})"),
+}
+FUNCS = frozenset(OPS) - {"add", "sub", "mul", "div", "neg"}  # written as GLSL calls
+
+
+def apply(op: str, *args: Any) -> Any:
+    """``op`` (a name in OPS) of ``args``: a Live expression if any argument is live, else a number now."""
+    vals = []
+    for i, x in enumerate(args):
+        if isinstance(x, Live):
+            vals.append(x)
+            continue
+        if isinstance(x, bool):
+            x = None
+        try:
+            arr = np.asarray(x, dtype=np.float64)
+        except (TypeError, ValueError):
+            arr = None
+        if arr is None or arr.shape not in ((), (3,)):
+            raise ParameterError(f"sg.{op}: argument {i + 1} must be a number, 3 numbers or a live value, "
+                                 f"got {type(args[i]).__name__} {args[i]!r}")
+        vals.append(float(arr) if arr.ndim == 0 else arr)
+    if any(isinstance(x, Live) for x in vals):
+        return Live(op, *vals)
+    with np.errstate(all="ignore"):
+        out = OPS[op][0](*vals)
+    return float(out) if np.ndim(out) == 0 else np.asarray(out, dtype=np.float64)

@@ -162,6 +162,7 @@ class Renderer:
         self.programs = ProgramCache(self.ctx)
         self._targets: Targets | None = None
         self._vao: dict[int, moderngl.VertexArray] = {}
+        self._last_source: tuple | None = None  # (key, scene, source): frames of one scene skip codegen
 
     def _targets_for(self, size: tuple[int, int], outputs: tuple[str, ...]) -> Targets:
         t = self._targets
@@ -191,7 +192,13 @@ class Renderer:
         origin = shader_origin(scene, cam.eye)
 
         t0 = time.perf_counter()
-        source = generate(scene, st, origin, projection=cam.projection)
+        key = (id(scene), st, origin.tobytes(), cam.projection)  # nodes are immutable, params are uniforms:
+        last = self._last_source                  # the same scene, settings and origin give the same source
+        if last is not None and last[0] == key and last[1] is scene:
+            source = last[2]
+        else:
+            source = generate(scene, st, origin, projection=cam.projection)
+            self._last_source = (key, scene, source)
         t1 = time.perf_counter()
         prog = self.programs.get(source)
         compile_s = self.programs.last_compile_s

@@ -163,6 +163,15 @@ class Node:
         return out
 
     # -- modelling API (fogleman/sdf style) ---------------------------------------------
+    def save(self, path: str, **mesh_options: Any) -> Any:
+        """Mesh this node and write it (fogleman/sdf's ``f.save("out.stl")``); returns the Mesh.
+
+        ``mesh_options`` are those of :func:`sdfgl.mesh` (step, resolution, samples, bounds, mode)."""
+        from ..mesh import mesh
+        m = mesh(self, **mesh_options)
+        m.save(path)
+        return m
+
     def __or__(self, other: "Node") -> "Node":
         from .booleans import union
         return union(self, other)
