@@ -151,6 +151,19 @@ def set_preview(enabled: bool = True, size: tuple[int, int] | None = None) -> No
     _set_preview(enabled, size)
 
 
+def render_pbr(scene: Node, camera: Camera | None = None, size: tuple[int, int] = (640, 480), spp: int = 64,
+               **options: object):  # -> sdfgl.pbr.PBRImage
+    """Path-trace ``scene`` through Mitsuba 3 (extra ``sdfgl[pbr]``); see :func:`sdfgl.pbr.render_pbr`."""
+    from .pbr import render_pbr as _render_pbr
+    return _render_pbr(scene, camera, size, spp, **options)  # type: ignore[arg-type]
+
+
+def to_mitsuba(scene: Node, camera: Camera | None = None, **options: object) -> dict:
+    """The Mitsuba 3 scene dictionary of ``scene``; see :func:`sdfgl.pbr.to_mitsuba`."""
+    from .pbr import to_mitsuba as _to_mitsuba
+    return _to_mitsuba(scene, camera, **options)  # type: ignore[arg-type]
+
+
 X = _np.array([1.0, 0.0, 0.0])
 Y = _np.array([0.0, 1.0, 0.0])
 Z = _np.array([0.0, 0.0, 1.0])
@@ -163,6 +176,7 @@ __all__ = [
     "circle", "rectangle", "polygon", "extrude", "revolve", "mirror", "symmetric", "repeat_polar", "elongate",
     "rounded", "shell", "sierpinski", "tree", "displace", "noise", "implicit", "parametric", "displace_expr", "intersection", "difference", "X", "Y", "Z",
     "EXACT", "BOUND", "IMPLICIT", "SdfglError", "ParameterError", "ShaderCompileError", "ContextError",
+    "render_pbr", "to_mitsuba",
     "SceneFileError", "SceneDocumentError", "save_scene", "load_scene", "from_dict",
     "Shape2D", "arc", "capsule2", "ellipse", "regular_polygon", "star", "triangle", "slice",
     "bezier_tube", "capped_torus", "dodecahedron", "gyroid", "icosahedron", "pyramid", "slab", "tetrahedron", "tube",

@@ -1,4 +1,4 @@
-"""Command line: ``sdfgl render | shader | view | html | mesh | bench | animate | batch`` (also ``python -m sdfgl``)."""
+"""Command line: ``sdfgl render | shader | view | html | mesh | pbr | bench | animate | batch`` (also ``python -m sdfgl``)."""
 from __future__ import annotations
 
 import argparse
@@ -194,6 +194,8 @@ def build_parser(argv: Sequence[str] | None = None) -> argparse.ArgumentParser:
     _add_settings(v)
     v.set_defaults(func=cmd_view)
 
+    from .pbr.cli import add_parser as add_pbr
+    add_pbr(sub, _size)
     from .web.cli import add_parser as add_html
     add_html(sub)
 

@@ -29,6 +29,8 @@ DEFAULT_SURFACE = {"albedo": DEFAULT_COLOR, "specular": 0.25, "shininess": 48.0,
                    "emission": (0.0, 0.0, 0.0)}
 # colour-mode passes: the vec3 each carries beside the distance
 CHANNELS = {"albedo": ("albedo",), "surface": ("specular", "shininess", "metallic"), "emission": ("emission",)}
+# evaluate targets: the material channel function each runs at given points (with map())
+EVALUATE_CHANNELS = {"evaluate_color": "mapColor", "evaluate_surface": "mapSurface", "evaluate_emission": "mapEmission"}
 FLOAT32_MAX = float(np.finfo(np.float32).max)
 # Stand-in for an infinite bound inside GLSL: finite in float32, so no inf*0 arises.
 GLSL_FAR = 1e30
@@ -441,10 +443,11 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     """Build the fragment shader for ``scene``.
 
     ``origin`` (float64) is the world point that the shader's coordinates are relative
-    to; ``target`` is ``"render"`` (the image), ``"evaluate"`` (map() at given points) or
-    one of the mesh exporter's samplers (sdfgl.mesh: same map(), other main()s):
-    ``"mesh_grid"`` (a lattice of blocks), ``"mesh_gradient"`` (value and gradient at points),
-    ``"mesh_color"`` (colour at points);
+    to; ``target`` is ``"render"`` (the image), ``"evaluate"`` (map() at given points),
+    ``"evaluate_color"`` / ``"evaluate_surface"`` / ``"evaluate_emission"`` (a material
+    channel and map() at given points: see EVALUATE_CHANNELS; mesh colours and path-traced
+    materials use them), or one of the mesh exporter's samplers (sdfgl.mesh: same map(), other main()s):
+    ``"mesh_grid"`` (a lattice of blocks), ``"mesh_gradient"`` (value and gradient at points);
     ``dialect`` is ``"desktop"`` (GLSL 3.30) or ``"webgl2"`` (GLSL ES 3.00): the same
     code under another header (see :mod:`sdfgl.gl.dialect`); ``projection`` is the
     camera's ("perspective" or "orthographic": it shapes the rays).
@@ -467,10 +470,11 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     helpers: dict = {}
     dist, dist_result = _emit_map(scene, "dist", org, params, shared, grids, settings.grid, helpers)
     color, color_result = (_emit_map(scene, "color", org, params, shared, grids, settings.grid, helpers)
-                           if target in ("render", "mesh_color") else (None, ""))
+                           if target == "render" or target in EVALUATE_CHANNELS else (None, ""))
     detail, detail_result = (_emit_map(scene, "dist", org, params, shared, grids, settings.grid, helpers, True)
                              if target == "render" and scene.has_detail else (None, ""))
-    channels = material_channels(scene) if target == "render" else []
+    channels = (material_channels(scene) if target == "render" else
+                [ch for ch in material_channels(scene) if EVALUATE_CHANNELS.get(target) == f"map{ch.capitalize()}"])
     passes = {ch: _emit_map(scene, "color", org, params, shared, grids, settings.grid, helpers, channel=ch)
               for ch in channels}
     libs = list(dict.fromkeys(dist.libs + (color.libs if color else []) + (detail.libs if detail else [])
@@ -512,8 +516,9 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     for ch, (em, result) in passes.items():
         _helpers(b, em, done)
         _function(b, f"vec3 map{ch.capitalize()}(vec3 p)", em, result, "{}.rgb")
-    if target == "mesh_color":
-        b.add_file("mesh_color_main")
+    if target in EVALUATE_CHANNELS:
+        b.add(f"#define EVAL_CHANNEL {EVALUATE_CHANNELS[target]}", "(codegen)")
+        b.add_file("evaluate_channel_main")
         return b.build(params, live, data)
     if detail is not None:
         _helpers(b, detail, done)

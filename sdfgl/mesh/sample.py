@@ -1,6 +1,6 @@
 """The scene's generated map() on the GPU, as the mesh exporter needs it.
 
-Three draws, all from the same codegen as render() (targets mesh_grid, mesh_gradient, mesh_color):
+Three draws, all from the same codegen as render() (targets mesh_grid, mesh_gradient, evaluate_color):
 lattice blocks of field values, value + gradient at points, colour at points. The field is
 map() cut by the sampling box (shaders/mesh_clip.glsl), so solids that leave the box close.
 """
@@ -122,4 +122,4 @@ class GPUField:
 
     def colors(self, points: np.ndarray) -> np.ndarray:
         """The scene's colour field (linear RGB in 0..1, float32 (N, 3)) at points."""
-        return self._at_points("mesh_color", points, 3)
+        return self._at_points("evaluate_color", points, 3)
