@@ -153,13 +153,41 @@ def set_preview(enabled: bool = True, size: tuple[int, int] | None = None) -> No
 
 def render_pbr(scene: Node, camera: Camera | None = None, size: tuple[int, int] = (640, 480), spp: int = 64,
                **options: object):  # -> sdfgl.pbr.PBRImage
-    """Path-trace ``scene`` through Mitsuba 3 (extra ``sdfgl[pbr]``); see :func:`sdfgl.pbr.render_pbr`."""
+    """Path-trace ``scene`` through Mitsuba 3 (extra ``sdfgl[pbr]``); see :func:`sdfgl.pbr.render_pbr`.
+
+    Args:
+        scene: the node to render; its field is sampled by the generated map() into
+            Mitsuba ``sdfgrid`` tiles (any exactness class works: only the sign matters).
+        camera: an sdfgl camera (default: the framing ``render()`` uses); perspective or
+            orthographic.
+        size: (width, height) in pixels.
+        spp: samples per pixel.
+        options: ``resolution``, ``quality``, ``bounds``, ``material``, ``sky``, ``sun``,
+            ``ground``, ``max_depth``, ``extra``, ``seed``, ``variant``, ``progress``.
+
+    Example:
+        >>> img = sg.render_pbr(sg.sphere(1), size=(16, 12), spp=1)
+        >>> img.alpha.shape, img.settings["geometry"]
+        ((12, 16), 'sdfgrid')
+    """
     from .pbr import render_pbr as _render_pbr
     return _render_pbr(scene, camera, size, spp, **options)  # type: ignore[arg-type]
 
 
 def to_mitsuba(scene: Node, camera: Camera | None = None, **options: object) -> dict:
-    """The Mitsuba 3 scene dictionary of ``scene``; see :func:`sdfgl.pbr.to_mitsuba`."""
+    """The Mitsuba 3 scene dictionary of ``scene`` (``mi.load_dict`` it, extend it by hand);
+    see :func:`sdfgl.pbr.to_mitsuba`.
+
+    Args:
+        scene: the node to convert.
+        camera: an sdfgl camera (default: the framing ``render()`` uses).
+        options: as :func:`render_pbr` (``size``, ``spp``, ``material``, ...).
+
+    Example:
+        >>> d = sg.to_mitsuba(sg.sphere(1), size=(8, 8), spp=1)
+        >>> d["sdf_0"]["type"], d["sdf_bsdf"]["type"]
+        ('sdfgrid', 'diffuse')
+    """
     from .pbr import to_mitsuba as _to_mitsuba
     return _to_mitsuba(scene, camera, **options)  # type: ignore[arg-type]
 
