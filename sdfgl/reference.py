@@ -43,7 +43,8 @@ def _clip(scene: Node, o: np.ndarray, d: np.ndarray, max_dist: float) -> tuple[n
     t1 = (hi + pad - o) / safe
     tn = np.minimum(t0, t1).max(axis=-1)
     tf = np.maximum(t0, t1).min(axis=-1)
-    return np.maximum(tn, 0.0), np.minimum(tf, max_dist)
+    far = max_dist if not (np.all(np.isfinite(scene.bounds[0])) and np.all(np.isfinite(scene.bounds[1]))) else np.inf
+    return np.maximum(tn, 0.0), np.minimum(tf, far)
 
 
 def _bisect(scene: Node, o: np.ndarray, d: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
