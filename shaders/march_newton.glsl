@@ -57,7 +57,7 @@ float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
             }
             tOut = t;
             fOut = f;
-            if (nearMiss(t, f, b, fb, ms, rounds)) {
+            if (th > -1.5 && nearMiss(t, f, b, fb, ms, rounds)) {
                 t = b;
                 carry = true;
                 fCarry = fb;

@@ -62,7 +62,7 @@ float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
             rPrev = r;
             over = false;
             haveSlope = true;
-            if (nearMiss(t, r, b, fb, ms, rounds)) {
+            if (th > -1.5 && nearMiss(t, r, b, fb, ms, rounds)) {
                 t = b;  // go on from the probe
                 carry = true;
                 rCarry = fb;

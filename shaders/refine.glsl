@@ -45,15 +45,20 @@ bool nearMiss(float t, float r, float b, float fb, float minStep, int rounds) {
 #ifdef IMPLICIT_FIELD
     return r <= minStep * exp2(0.25 * float(rounds));  // no Lipschitz bound: no spheres to overlap
 #else
-    return r + fb >= 0.999 * (b - t) || r <= minStep * exp2(0.25 * float(rounds));
+    return r + fb >= 0.999 * (b - t) || r <= minStep * exp2(min(0.25 * float(rounds), 4.0));
 #endif
 }
 
 // The root in [a, b] where f(a) = fa >= 0 and fb = f(b) < 0, or, with fb = UNSAMPLED,
-// b is a probe sampled first: then -1.0 when f(b) >= 0, with fb set to f(b). All map()
-// calls are in one loop (one copy of map()) and counted in steps.
+// b is a probe sampled first: then -1.0 when f(b) >= 0, with fb set to f(b). A probe
+// that lands inside with a gap the two spheres do not cover may have jumped an earlier
+// surface (a thin part, a twisted blade); its bracket is kept only if the first secant
+// sample agrees with the straight line (|f| below half of fa there, as on a face seen
+// at a grazing angle), else -2.0: the marcher steps closer in and probes again. All
+// map() calls are in one loop (one copy of map()) and counted in steps.
 float settle(vec3 ro, vec3 rd, float a, float fa, float b, inout float fb, inout int steps) {
     int side = 0;
+    bool check = false;
     for (int i = uZero; i < SETTLE_CALLS; i++) {
         bool probing = fb >= UNSAMPLED;
         float c = b;
@@ -66,8 +71,11 @@ float settle(vec3 ro, vec3 rd, float a, float fa, float b, inout float fb, inout
         if (probing) {
             fb = fc;
             if (fc >= 0.0) return -1.0;
+            check = fa - fc < 0.999 * (b - a);
             continue;
         }
+        if (check && abs(fc) > 0.5 * fa) return -2.0;
+        check = false;
         float tol = SETTLE_TOL * hitEpsilon(c);
         float sLeft = (fa - fc) / (c - a);
         float sRight = (fc - fb) / (b - c);
