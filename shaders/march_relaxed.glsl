@@ -12,8 +12,10 @@
 // with a fresh slope (enhanced).
 // The hit test (refine.glsl): a sample within the hit threshold (hitEpsilon) of a
 // surface probes past the root the slope predicts and needs a sign change; a near miss
-// goes on marching. A sample below 0 brackets the root. If the steps run out, the
-// closest sample within the threshold is taken as the hit (as before the sign test).
+// goes on marching. A sample below 0 brackets the root. Far from the surface, a ray
+// closing in at a shallow angle probes the predicted root every fourth step. If the
+// steps run out, the closest sample within the threshold is taken as the hit (as
+// before the sign test).
 float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
     float roLen = length(ro);
     float t = tmin;
@@ -27,6 +29,8 @@ float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
     float tBest = -1.0;
     float rBest = 3.0e38;
     int rounds = 0;          // probes from closer in since the ray came near
+    int sinceProbe = 0;      // steps since the last shallow-angle probe
+    int nearSteps = 0;
     for (int i = 0; i < MAX_STEPS; i++) {
         float r = rCarry;
         if (!carry) {
@@ -51,6 +55,14 @@ float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
                 rBest = r;
                 tBest = t;
             }
+            if (s < 0.5 && (++nearSteps & 1) == 0) {
+                tPrev = t;  // at a shallow angle, every other step near the surface is a
+                rPrev = r;  // plain one: most such rays pass by
+                t += r;
+                over = false;
+                haveSlope = true;
+                continue;
+            }
             float ms = minProbe(t, roLen);
             float b = t + probeStep(r, s, ms);
             float fb = UNSAMPLED;
@@ -73,6 +85,27 @@ float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
             }
             if (t > tmax) return -1.0;
             continue;
+        }
+        if (s > 1e-3 && s < 0.5 && ++sinceProbe >= 4) {
+            // closing in at a shallow angle: every fourth step, probe past the root the
+            // slope predicts (a plane seen at 0.5 degrees would take hundreds of steps)
+            sinceProbe = 0;
+            float b = t + probeStep(r, s, minProbe(t, roLen));
+            float fb = UNSAMPLED;
+            float th = settle(ro, rd, t, r, b, fb, steps);
+            if (th >= 0.0) {
+                return th <= tmax ? th : -1.0;
+            }
+            if (th > -1.5 && r + fb >= 0.999 * (b - t)) {
+                tPrev = t;  // the spheres cover the way: go on from the probe
+                rPrev = r;
+                t = b;
+                carry = true;
+                rCarry = fb;
+                over = false;
+                if (t > tmax) return -1.0;
+                continue;
+            }
         }
 #if defined(ENHANCED)
         float next = r;

@@ -27,9 +27,12 @@ float minProbe(float t, float roLen) {
 
 // The probe distance past a near sample (field r, falling at slope s per unit of t): a
 // quarter beyond the root the slope predicts, at least the covered step r, plus the
-// minimum step (on implicit fields at most 4 r).
+// minimum step (on implicit fields at most 4 r); where the field does not fall, 1.9 r.
 float probeStep(float r, float s, float minStep) {
-    float step = max(s > 1e-3 ? 1.25 * r / s : 2.0 * r, r);
+    if (s <= 1e-3) {
+        return max(1.9 * r, r + minStep);  // not closing in: a step the two spheres cover
+    }
+    float step = max(1.25 * r / s, r);
 #ifdef IMPLICIT_FIELD
     step = min(step, 4.0 * r);  // the field is no distance: its slope says little far off
 #endif
