@@ -417,7 +417,9 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
         b.add_file(f"lib/{name}")
     for name, code in helpers.items():
         b.add(code, f"(generated helper {name})")
-    data = _grid_code(b, grids, org)
+    # a union kept as data gets its point in its own frame (the origin shift is pending in
+    # em.point() and written out), so its data is not taken relative to the origin
+    data = _grid_code(b, grids, np.zeros(3))
     done: set[str] = set()
     _helpers(b, dist, done)
     _function(b, "float map(vec3 p)", dist, dist_result, "{}")

@@ -30,6 +30,7 @@ float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
     float tBest = -1.0;
     float fBest = 3.0e38;
     int rounds = 0;
+    float rRound = 3.0e38;  // the field when rounds last restarted
     for (int i = 0; i < MAX_STEPS; i++) {
         float f = fCarry;
         if (!carry) {
@@ -67,10 +68,16 @@ float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
                 carry = true;
                 fCarry = fb;
                 rounds = 0;
+                rRound = 3.0e38;
             } else {
                 // closer in: the root Newton predicts (f need not be a distance here)
                 t += df < 0.0 ? min(f / -df, b - t) * 0.999 : f;
-                rounds++;
+                if (f < 0.9 * rRound) {
+                    rRound = f;  // still closing in: not stuck
+                    rounds = 0;
+                } else {
+                    rounds++;
+                }
             }
             if (t > tmax) return -1.0;
             continue;

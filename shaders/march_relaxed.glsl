@@ -28,7 +28,8 @@ float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
     float rCarry = 0.0;
     float tBest = -1.0;
     float rBest = 3.0e38;
-    int rounds = 0;          // probes from closer in since the ray came near
+    int rounds = 0;          // probes from closer in while r stopped shrinking
+    float rRound = 3.0e38;   // r when rounds last restarted
     int sinceProbe = 0;      // steps since the last shallow-angle probe
     int nearSteps = 0;
     for (int i = 0; i < MAX_STEPS; i++) {
@@ -79,9 +80,15 @@ float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
                 carry = true;
                 rCarry = fb;
                 rounds = 0;
+                rRound = 3.0e38;
             } else {
                 t += r;  // a thin part may lie in the gap: the safe step, then probe again
-                rounds++;
+                if (r < 0.9 * rRound) {
+                    rRound = r;  // still closing in: not stuck
+                    rounds = 0;
+                } else {
+                    rounds++;
+                }
             }
             if (t > tmax) return -1.0;
             continue;

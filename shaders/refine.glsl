@@ -40,9 +40,9 @@ float probeStep(float r, float s, float minStep) {
 }
 
 // True when a positive probe fb at b, from a near sample (t, r), shows a near miss.
-// rounds counts the probes from closer in so far: the level below which r counts as a
-// touch of f = 0 doubles every four, so a ray that runs along a surface at a tiny
-// distance moves on after a few rounds. On an implicit field (no distance bound) only
+// rounds counts the probes from closer in during which r stopped shrinking (a ray that
+// runs along a surface at a tiny distance): the level below which r counts as a touch
+// of f = 0 doubles every four of them, up to 16 times, so such a ray moves on. On an implicit field (no distance bound) only
 // that level decides.
 bool nearMiss(float t, float r, float b, float fb, float minStep, int rounds) {
 #ifdef IMPLICIT_FIELD
