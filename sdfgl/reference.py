@@ -198,15 +198,16 @@ def surface_offsets(scene: Node, camera: Camera, result: RenderResult, reach: fl
     o, d = o[hit], d[hit]
     foot = np.maximum(t, 1e-12) * camera.pixel_angle(h)
     out = np.full(t.shape, np.inf)
-    u = np.linspace(-reach, reach, samples)
+    fine = np.linspace(-0.01, 0.01, 201)  # slivers: a chord far below a footprint near the hit
+    u = np.unique(np.concatenate([np.linspace(-reach, reach, samples), fine]))
     for s0 in range(0, t.size, 256):
         sl = slice(s0, s0 + 256)
         ts = t[sl, None] + foot[sl, None] * u[None, :]
         f = scene.distance((o[sl, None, :] + d[sl, None, :] * ts[..., None]).reshape(-1, 3)).reshape(ts.shape)
         change = (f[:, :-1] > 0) != (f[:, 1:] > 0)
-        mid = 0.5 * (u[:-1] + u[1:])
-        dist = np.where(change, np.abs(mid)[None, :], np.inf).min(axis=1)
-        out[sl] = np.where(dist < np.inf, np.maximum(dist - (u[1] - u[0]) / 2, 0.0), np.inf)
+        near = np.minimum(np.abs(u[:-1]), np.abs(u[1:]))  # the nearer end of each interval
+        near = np.where((u[:-1] < 0) & (u[1:] > 0), 0.0, near)
+        out[sl] = np.where(change, near[None, :], np.inf).min(axis=1)
     start = t <= 0.0
     if start.any():  # a ray that starts inside the solid hits at t = 0
         out[start] = np.where(scene.distance(o[start]) <= 0, 0.0, out[start])

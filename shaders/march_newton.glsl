@@ -27,8 +27,6 @@ float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
     float fOut = -1.0;  // < 0: no sample outside yet
     bool carry = false;
     float fCarry = 0.0;
-    float tBest = -1.0;
-    float fBest = 3.0e38;
     int rounds = 0;
     float rRound = 3.0e38;  // the field when rounds last restarted
     for (int i = 0; i < MAX_STEPS; i++) {
@@ -50,10 +48,6 @@ float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
         }
         float df = rayDerivative(ro, rd, t, f, steps);
         if (f < hitEpsilon(t)) {
-            if (f < fBest) {
-                fBest = f;
-                tBest = t;
-            }
             float ms = minProbe(t, roLen);
             float b = t + probeStep(f, -df, ms);
             float fb = UNSAMPLED;
@@ -98,5 +92,5 @@ float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
         }
 #endif
     }
-    return tBest;
+    return -1.0;  // out of steps: undecided, drawn as a miss (never a hit that may be a ghost)
 }

@@ -13,9 +13,9 @@
 // The hit test (refine.glsl): a sample within the hit threshold (hitEpsilon) of a
 // surface probes past the root the slope predicts and needs a sign change; a near miss
 // goes on marching. A sample below 0 brackets the root. Far from the surface, a ray
-// closing in at a shallow angle probes the predicted root every fourth step. If the
-// steps run out, the closest sample within the threshold is taken as the hit (as
-// before the sign test).
+// closing in at a shallow angle probes the predicted root every fourth step. A ray
+// that runs out of steps is a miss: undecided, it is not drawn as a surface that may
+// not be there.
 float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
     float roLen = length(ro);
     float t = tmin;
@@ -26,8 +26,6 @@ float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
     bool haveSlope = false;  // enhanced: the previous sample is usable
     bool carry = false;      // f(t) is known already (rCarry), from settle()'s probe
     float rCarry = 0.0;
-    float tBest = -1.0;
-    float rBest = 3.0e38;
     int rounds = 0;          // probes from closer in while r stopped shrinking
     float rRound = 3.0e38;   // r when rounds last restarted
     int sinceProbe = 0;      // steps since the last shallow-angle probe
@@ -52,10 +50,6 @@ float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
         float eps = hitEpsilon(t);
         float s = rPrev >= 0.0 ? (rPrev - r) / max(t - tPrev, 1e-30) : 0.0;
         if (r < eps) {
-            if (r < rBest) {
-                rBest = r;
-                tBest = t;
-            }
             if (s < 0.5 && (++nearSteps & 1) == 0) {
                 tPrev = t;  // at a shallow angle, every other step near the surface is a
                 rPrev = r;  // plain one: most such rays pass by
@@ -136,5 +130,5 @@ float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
             over = relax = haveSlope = false;
         }
     }
-    return tBest;
+    return -1.0;  // out of steps: undecided, drawn as a miss (never a hit that may be a ghost)
 }
