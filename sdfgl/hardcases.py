@@ -273,7 +273,9 @@ CASES: tuple[HardCase, ...] = (
              settings={"analytic": False}),
     HardCase("far_torus", "torus(1e4, 3e3) seen from 4e4", _far_torus),
     HardCase("near_face_forward_newton", "forward Newton 1e-6 of the scene size from a face", _near_face,
-             settings={"method": "forward_newton"}, expect=Expect(depth_px_median=0.5, depth_px_p99=0.5)),
+             settings={"method": "forward_newton"},
+             # the eye's own float32 rounding (8e-7 at 50) is 0.35 footprints at 64x48, 0.7 at 128x96
+             expect=Expect(depth_px_median=1.0, depth_px_p99=1.0, surface_px_max=1.0)),
     HardCase("on_surface", "the eye exactly on a face: rays leaving the solid must go on", _on_surface),
 )
 

@@ -37,7 +37,7 @@ float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
         }
         carry = false;
         if (isnan(f) || isinf(f)) {  // an overflowing field (x^1000 far out): step on through it
-            t += 0.02 * t + 1e-2 * SCENE_SCALE;
+            t += 0.05 * t + 1e-2 * SCENE_SCALE;
             if (t > tmax) return -1.0;
             continue;
         }
