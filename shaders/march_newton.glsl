@@ -4,9 +4,10 @@
 //                   g'(t) = f'(t) (T - t) / (t - t0) - f (T - t0) / (t - t0)^2, which adds
 //                   a root at the far limit T, so rays with no surface drift forward to T
 //                   instead of stalling in a local minimum of f. (The printed pseudo-code
-//                   has "eps^2" for t^2 and a flipped sign.) t0 lies a little before the
-//                   start of the ray (1e-4 of the scene size), so the march starts at tmin
-//                   itself and a surface closer than that is found, not skipped.
+//                   has "eps^2" for t^2 and a flipped sign.) t0 lies behind the start of
+//                   the ray by the field value there (at least 1e-6 of the scene size), so
+//                   the march starts at tmin itself, a surface however close is found, and
+//                   the first steps are not needlessly small.
 // f'(t) comes from rayDerivative, so an iteration costs two map() calls. A step that
 // would not go forward is replaced by a sphere step f. A sign change of f means the
 // step crossed a surface: settle() pins the root down; a sample within the hit
@@ -41,6 +42,9 @@ float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
             if (t > tmax) return -1.0;
             continue;
         }
+#ifdef FORWARD_NEWTON
+        if (i == 0) t0 = tmin - max(f, 1e-6 * SCENE_SCALE);  // the pole as far back as the surface may be near
+#endif
         if (f < 0.0) {
             if (fOut < 0.0) return t;  // the ray starts inside
             float fb = f;
