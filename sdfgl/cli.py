@@ -27,11 +27,12 @@ def _add_settings(p: argparse.ArgumentParser) -> None:
     p.add_argument("--shadows", type=_shadows, default="soft", help="off, hard or soft (default soft)")
     p.add_argument("--no-ao", dest="ao", action="store_false", help="turn ambient occlusion off")
     p.add_argument("--ground", action="store_true", help="add an analytic ground plane under the scene")
-    p.add_argument("--method", default="enhanced", help="marching method: sphere, relaxed, enhanced (default), newton, forward_newton, reference")
+    p.add_argument("--method", default="auto", help="marching method: auto (default: enhanced, newton for implicit "
+                   "fields), sphere, relaxed, enhanced, newton, forward_newton, reference")
     p.add_argument("--max-steps", type=int, default=256, help="step limit per primary ray (default 256)")
 
 
-CLI_DEFAULTS = {"aa": 1, "shadows": "soft", "ao": True, "ground": False, "method": "enhanced", "max_steps": 256}
+CLI_DEFAULTS = {"aa": 1, "shadows": "soft", "ao": True, "ground": False, "method": "auto", "max_steps": 256}
 
 
 def _overrides(a: argparse.Namespace) -> dict[str, object]:
