@@ -33,11 +33,12 @@ def _add_settings(p: argparse.ArgumentParser) -> None:
     p.add_argument("--shadows", choices=("off", "hard", "soft"), default="soft", help="(default soft)")
     p.add_argument("--no-ao", dest="ao", action="store_false", help="turn ambient occlusion off")
     p.add_argument("--ground", action="store_true", help="add an analytic ground plane under the scene")
-    p.add_argument("--method", choices=METHODS, default="enhanced", help="marching method (default enhanced)")
+    p.add_argument("--method", choices=METHODS, default="auto", help="marching method (default auto: enhanced, "
+                   "newton for implicit fields)")
     p.add_argument("--max-steps", type=int, default=256, help="step limit per primary ray, 1..100000 (default 256)")
 
 
-CLI_DEFAULTS = {"aa": 1, "shadows": "soft", "ao": True, "ground": False, "method": "enhanced", "max_steps": 256}
+CLI_DEFAULTS = {"aa": 1, "shadows": "soft", "ao": True, "ground": False, "method": "auto", "max_steps": 256}
 
 
 def _overrides(a: argparse.Namespace) -> dict[str, object]:

@@ -35,7 +35,7 @@ FLOAT32_MAX = float(np.finfo(np.float32).max)
 # Stand-in for an infinite bound inside GLSL: finite in float32, so no inf*0 arises.
 GLSL_FAR = 1e30
 # methods that share a loop file, told apart by a #define
-MARCH_FILES = {"enhanced": "relaxed", "forward_newton": "newton"}
+MARCH_FILES = {"sphere": "relaxed", "enhanced": "relaxed", "forward_newton": "newton"}
 
 
 def glsl_float(x: float) -> str:
@@ -281,6 +281,12 @@ def scene_frame(scene: Node) -> tuple[np.ndarray, np.ndarray, float]:
     return np.where(np.isfinite(lo), lo, -GLSL_FAR), np.where(np.isfinite(hi), hi, GLSL_FAR), scale
 
 
+def unbounded(scene: Node) -> bool:
+    """True where the scene box is infinite on some side: only then does max_dist limit a ray."""
+    lo, hi = scene.bounds
+    return not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi)))
+
+
 def analytic_shape(scene: Node) -> tuple[str, np.ndarray] | None:
     """("sphere", (centre, radius)) or ("plane", (normal, offset)) in world space when the
     scene is one sphere or plane under rigid transforms, uniform scales and colours."""
@@ -304,7 +310,8 @@ def max_steps_of(settings: Settings, scale: float, lo: np.ndarray, hi: np.ndarra
     """The loop limit the shader gets: max_steps, or enough fixed steps for "reference"."""
     if settings.method != "reference":
         return settings.max_steps
-    diag = float(np.linalg.norm(np.minimum(hi - lo, settings.max_dist)))
+    ext = hi - lo
+    diag = float(np.linalg.norm(np.where(ext >= GLSL_FAR, settings.max_dist, ext)))
     return max(settings.max_steps, int(diag / ref_step(settings, scale)) + 2)
 
 
@@ -327,7 +334,7 @@ def _defines(scene: Node, settings: Settings, origin: np.ndarray, live: bool, pr
         f"#define MAX_STEPS {max_steps_of(settings, scale, lo, hi)}",
         f"#define HIT_{settings.hit.upper()}",
         f"#define HIT_SCALE {glsl_float(settings.hit_scale)}",
-        f"#define MAX_DIST {glsl_float(settings.max_dist)}",
+        f"#define MAX_DIST {glsl_float(settings.max_dist if unbounded(scene) else GLSL_FAR)}",
         "#define SCENE_SCALE uSceneScale" if live else f"#define SCENE_SCALE {glsl_float(scale)}",
         *bounds,
     ]
@@ -349,6 +356,8 @@ def _defines(scene: Node, settings: Settings, origin: np.ndarray, live: bool, pr
         d += ["#define SHADOWS", f"#define SHADOWS_{settings.shadows.upper()}"]
     if settings.ao:
         d.append("#define AO")
+    if scene.exactness == IMPLICIT:
+        d.append("#define IMPLICIT_FIELD")
     if settings.ground:
         ground_y = lo[1] if lo[1] > -GLSL_FAR else 0.0
         d += ["#define GROUND", "#define GROUND_Y uGroundY" if live else f"#define GROUND_Y {glsl_float(ground_y - origin[1])}"]
@@ -455,14 +464,11 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     header = _dialect(dialect).header()
     if not isinstance(scene, Node):
         raise ParameterError(f"scene must be an sdfgl node, got {type(scene).__name__} {scene!r}")
-    if scene.exactness == IMPLICIT and target == "render":
-        if settings.method in DISTANCE_METHODS:
-            raise ParameterError(
-                f"{scene.label()} is an implicit field, not a distance bound: method {settings.method!r} would step "
-                f"through surfaces. Use method='newton', 'forward_newton' or 'reference'.")
-        if settings.ao:
-            raise ParameterError(f"{scene.label()} is an implicit field: ambient occlusion needs distances; "
-                                 f"pass ao=False")
+    settings = settings.resolved(scene.exactness)
+    if scene.exactness == IMPLICIT and target == "render" and settings.method in DISTANCE_METHODS:
+        raise ParameterError(
+            f"{scene.label()} is an implicit field, not a distance bound: method {settings.method!r} would step "
+            f"through surfaces. Use method='auto' (the default), 'newton', 'forward_newton' or 'reference'.")
     org = np.asarray(origin, dtype=np.float64)
     params: list[Param] = []
     shared = shared_subtrees(scene)
@@ -499,7 +505,9 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
         else:  # (line, owner) pairs: user code whose lines keep their own numbers
             for line, owner in code:
                 b.add(line, owner)
-    data = _grid_code(b, grids, org)
+    # a union kept as data gets its point in its own frame (the origin shift is pending in
+    # em.point() and written out), so its data is not taken relative to the origin
+    data = _grid_code(b, grids, np.zeros(3))
     done: set[str] = set()
     _helpers(b, dist, done)
     _function(b, "float map(vec3 p)", dist, dist_result, "{}")
@@ -526,8 +534,6 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
         b.add("#define DETAIL_NORMALS", "(codegen)")
     b.add_file("refine")
     marched = not (settings.analytic and analytic_shape(scene) is not None)
-    if marched and settings.method in ("newton", "forward_newton", "reference"):
-        b.add_file("bracket")
     if marched and settings.method in ("newton", "forward_newton"):
         b.add_file("ray_derivative")
     if settings.analytic and analytic_shape(scene) is not None:

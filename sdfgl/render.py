@@ -24,15 +24,21 @@ from .settings import Settings
 def shader_origin(scene: Node, eye: np.ndarray) -> np.ndarray:
     """The world point the shader's float32 coordinates are taken relative to.
 
-    The centre of a bounded scene (else the eye) is the anchor: where rays hit, float32
-    then only has to resolve the scene relative to itself. Within 1000 of the world
-    origin the origin stays 0; beyond, the anchor is snapped to a power-of-two grid
-    about 1/1000 of its distance wide, so a moving camera seldom changes the source.
+    A bounded scene with no live parameters is anchored exactly at the centre of its box:
+    float32 then only has to resolve the scene relative to itself, the same at any
+    offset from the world origin (the offset is folded into the scene's translations in
+    float64), and the camera never changes the source. Where the box moves with live
+    parameters (its centre) or is unbounded (the eye), the anchor is snapped to a
+    power-of-two grid about 1/1000 of its distance wide beyond 1000 (0 within), so a
+    moving parameter or camera seldom changes the source.
     """
     lo, hi = scene.bounds
-    anchor = (lo + hi) / 2 if np.all(np.isfinite(lo)) and np.all(np.isfinite(hi)) else eye
+    bounded = np.all(np.isfinite(lo)) and np.all(np.isfinite(hi))
+    anchor = (lo + hi) / 2 if bounded else eye
+    if bounded and not scene.live_params():
+        return np.asarray(anchor, dtype=np.float64)
     r = float(np.max(np.abs(anchor)))
-    if r <= 1000.0:
+    if not r > 1000.0:
         return np.zeros(3)
     step = 2.0 ** math.ceil(math.log2(r * 1e-3))
     return np.round(anchor / step) * step
@@ -97,6 +103,14 @@ def _check_size(size: Sequence[int]) -> tuple[int, int]:
     if not ok or not (1 <= w <= 16384 and 1 <= h <= 16384):
         raise ParameterError(f"render: 'size' must be two integers in 1..16384, got {size!r}")
     return w, h
+
+
+def check_float32_camera(camera: Camera, origin: np.ndarray) -> None:
+    """Refuse a camera whose eye, relative to the shader origin, float32 cannot hold."""
+    rel = np.asarray(camera.eye, dtype=np.float64) - origin
+    if not np.all(np.abs(rel) < 1e30):
+        raise ParameterError(f"render: camera eye {tuple(np.asarray(camera.eye).tolist())} is {float(np.max(np.abs(rel))):g} "
+                             f"from the scene, beyond what the shader's float32 can hold (1e30)")
 
 
 def camera_uniforms(prog: moderngl.Program, camera: Camera, size: tuple[int, int], origin: np.ndarray,
@@ -201,12 +215,13 @@ class Renderer:
         """Render ``scene``; see :func:`sdfgl.render`."""
         if not isinstance(scene, Node):
             raise ParameterError(f"render: 'scene' must be an sdfgl node, got {type(scene).__name__} {scene!r}")
-        st = Settings.build(**settings)
+        st = Settings.build(**settings).resolved(scene.exactness)
         wh = _check_size(size)
         cam = camera if camera is not None else OrbitCamera.framing(*scene.bounds, aspect=wh[0] / wh[1])
         if not isinstance(cam, Camera):
             raise ParameterError(f"render: 'camera' must be an sdfgl Camera, got {type(cam).__name__}")
         origin = shader_origin(scene, cam.eye)
+        check_float32_camera(cam, origin)
 
         t0 = time.perf_counter()
         key = (id(scene), st, origin.tobytes(), cam.projection)  # nodes are immutable, params are uniforms:

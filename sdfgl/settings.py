@@ -1,16 +1,16 @@
 """Render settings: validated once, turned into #defines by the code generator."""
 from __future__ import annotations
 
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, field, fields, replace
 from typing import Any
 
 from .errors import ParameterError
 
 OUTPUTS = ("color", "depth", "normal", "steps")
 SHADOWS = (False, "hard", "soft")
-METHODS = ("sphere", "relaxed", "enhanced", "newton", "forward_newton", "reference")
+METHODS = ("auto", "sphere", "relaxed", "enhanced", "newton", "forward_newton", "reference")
 # methods that step by the field value and so need a distance bound
-DISTANCE_METHODS = ("sphere", "relaxed", "enhanced")
+DISTANCE_METHODS = ("auto", "sphere", "relaxed", "enhanced")
 DEFAULT_OMEGA = {"relaxed": 1.6, "enhanced": 0.9}
 HIT_MODES = ("cone", "relative", "absolute")
 DEBUG_VIEWS = (None, "steps", "normal", "depth")
@@ -24,7 +24,9 @@ class Settings:
     shadows: False, "hard" or "soft" (Inigo Quilez's improved penumbra).
     ao: 5-tap ambient occlusion along the normal.
     ground: an analytic ground plane under the scene (intersected, not marched).
-    method: the marching algorithm: "sphere" (Hart), "relaxed" (Keinert et al.),
+    method: the marching algorithm: "auto" (the default: "enhanced" for exact and bound
+        fields, "newton" for implicit ones; resolved per scene, and the result's settings
+        show the choice), "sphere" (Hart), "relaxed" (Keinert et al.),
         "enhanced" (Balint & Valasek), "newton", "forward_newton" (the seed thesis) or
         "reference" (fixed small steps and bisection, for validation).
     omega: relaxation of "relaxed" (in (1, 2), default 1.6) or "enhanced" (in (0, 1],
@@ -36,7 +38,8 @@ class Settings:
     hit: "cone" (distance below hit_scale pixel footprints), "relative" (below
         hit_scale * t) or "absolute" (below hit_scale).
     hit_scale: the factor of the hit test.
-    max_dist: far limit along a ray where the scene is unbounded.
+    max_dist: far limit along a ray where the scene is unbounded (a bounded scene is
+        marched to the far side of its box, whatever max_dist says).
     outputs: which images the draw writes (color always).
     debug: None, or a debug view shown instead of the shaded image: "steps" (heat map of
         map() calls), "normal" or "depth".
@@ -60,7 +63,7 @@ class Settings:
     shadows: Any = "soft"
     ao: bool = True
     ground: bool = False
-    method: str = "enhanced"
+    method: str = "auto"
     omega: Any = None
     ref_step: Any = None
     newton_cap: Any = 2.0
@@ -93,7 +96,7 @@ class Settings:
         if self.method not in METHODS:
             raise ParameterError(f"setting 'method' must be one of {', '.join(METHODS)}, got {self.method!r}")
         if self.omega is not None:
-            lo_hi = {"relaxed": (1.0, 2.0), "enhanced": (0.0, 1.0)}.get(self.method)
+            lo_hi = {"relaxed": (1.0, 2.0), "enhanced": (0.0, 1.0), "auto": (0.0, 1.0)}.get(self.method)
             if lo_hi is None:
                 raise ParameterError(f"setting 'omega' applies to methods 'relaxed' and 'enhanced', not {self.method!r}")
             ok = isinstance(self.omega, (int, float)) and not isinstance(self.omega, bool)
@@ -138,6 +141,18 @@ class Settings:
             if isinstance(self.fog, bool) or not isinstance(self.fog, (int, float)) or not 0 < self.fog < float("inf"):
                 raise ParameterError(f"setting 'fog' must be None or a positive distance, got {self.fog!r}")
             object.__setattr__(self, "fog", float(self.fog))
+
+    def resolved(self, exactness: str) -> "Settings":
+        """These settings with method "auto" replaced by the method a scene of the given
+        exactness class ("exact", "bound" or "implicit") renders with."""
+        if self.method != "auto":
+            return self
+        if exactness == "implicit":
+            if self.omega is not None:
+                raise ParameterError("setting 'omega' applies to methods 'relaxed' and 'enhanced'; method 'auto' "
+                                     "picks 'newton' for this implicit field")
+            return replace(self, method="newton")
+        return replace(self, method="enhanced")
 
     @classmethod
     def build(cls, **kwargs: Any) -> "Settings":

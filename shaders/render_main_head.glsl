@@ -26,6 +26,7 @@ Hit tracePrimary(vec3 ro, vec3 rd) {
 #endif
     if (range.x <= range.y) {
         h.t = march(ro, rd, range.x, range.y, h.steps);
+        if (isnan(h.t) || isinf(h.t)) h.t = -1.0;  // a field that overflows (x^1000) is no hit, never NaN
     }
 #ifdef GROUND
     if (h.t < 0.0 && tg > 0.0) {
