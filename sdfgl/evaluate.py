@@ -1,15 +1,17 @@
-"""evaluate(): the generated GLSL map() run on the GPU at arbitrary points."""
+"""evaluate(): the generated GLSL map() run on the GPU at arbitrary points, in batches."""
 from __future__ import annotations
 
 import numpy as np
 
-from .codegen import generate
+from .codegen import ShaderSource, generate
 from .errors import ParameterError
 from .nodes.base import Node, as_points
 from .render import Renderer, default_renderer, scene_uniforms
 from .settings import Settings
 
-_ROW = 1024  # points per texture row
+ROW = 1024            # points per texture row
+BATCH_ROWS = 1024     # rows per draw: 1 M points (16 MB of input texture) a batch
+F32_MAX = float(np.finfo(np.float32).max)
 
 
 def evaluate(scene: Node, points: object, origin: object = (0.0, 0.0, 0.0),
@@ -18,7 +20,9 @@ def evaluate(scene: Node, points: object, origin: object = (0.0, 0.0, 0.0),
 
     ``origin`` is subtracted from the points in float64 and folded into the shader (as
     render() does for far-away cameras), so points far from the world origin keep
-    float32 precision relative to it.
+    float32 precision relative to it. Any number of points works: they are evaluated in
+    batches of ``ROW * BATCH_ROWS`` (1 M) points, each well inside the GL texture limits.
+    Safe to call from any thread.
     """
     if not isinstance(scene, Node):
         raise ParameterError(f"evaluate: 'scene' must be an sdfgl node, got {type(scene).__name__}")
@@ -30,30 +34,47 @@ def evaluate(scene: Node, points: object, origin: object = (0.0, 0.0, 0.0),
     if not np.all(np.isfinite(flat)):
         raise ParameterError("evaluate: points must be finite")
     org = np.asarray(origin, dtype=np.float64)
+    if org.shape != (3,) or not np.all(np.isfinite(org)):
+        raise ParameterError(f"evaluate: 'origin' must be 3 finite numbers, got {origin!r}")
+    local = flat - org
+    if np.abs(local).max() > F32_MAX:
+        raise ParameterError(f"evaluate: points minus 'origin' must fit in float32 (|x| <= {F32_MAX:.3g}); "
+                             f"the largest is {np.abs(local).max():.3g}")
     r = renderer or default_renderer()
-    ctx = r.ctx
     source = generate(scene, Settings(shadows=False, ao=False), org, target="evaluate")
-    prog = r.programs.get(source)
-    scene_uniforms(prog, source, scene, org)
-    n = flat.shape[0]
-    w = min(n, _ROW)
-    h = -(-n // w)
-    data = np.zeros((h * w, 4), dtype=np.float32)
-    data[:n, :3] = flat - org
-    tex = ctx.texture((w, h), 4, data.tobytes(), dtype="f4")
+    return r.run(_evaluate_gl, r, scene, source, org, local.astype(np.float32)).reshape(shape)
+
+
+def _evaluate_gl(r: Renderer, scene: Node, source: ShaderSource, org: np.ndarray, pts: np.ndarray) -> np.ndarray:
+    """Draw map() over ``pts`` batch by batch (on the renderer's GL thread)."""
+    ctx = r.ctx
+    prog, vao = r.programs.entry(source)
+    scene_uniforms(prog, source, scene, org, r.data)
+    n = pts.shape[0]
+    w = min(n, ROW)
+    h = min(-(-n // w), BATCH_ROWS)
+    per_batch = w * h
+    tex = ctx.texture((w, h), 4, dtype="f4")
     tex.filter = (ctx.NEAREST, ctx.NEAREST)
     out = ctx.texture((w, h), 1, dtype="f4")
     fbo = ctx.framebuffer(color_attachments=[out])
+    vals = np.empty(n, dtype=np.float32)
+    data = np.zeros((per_batch, 4), dtype=np.float32)
     try:
         tex.use(0)
         if "uPoints" in prog:
             prog["uPoints"].value = 0
         fbo.use()
         ctx.viewport = (0, 0, w, h)
-        r.vao(prog).render(vertices=3)
-        vals = np.frombuffer(out.read(), dtype=np.float32)[:n].copy()
+        for start in range(0, n, per_batch):
+            m = min(per_batch, n - start)
+            data[:m, :3] = pts[start:start + m]
+            data[m:, :3] = 0.0
+            tex.write(data.tobytes())
+            vao.render(vertices=3)
+            vals[start:start + m] = np.frombuffer(out.read(), dtype=np.float32)[:m]
     finally:
         fbo.release()
         out.release()
         tex.release()
-    return vals.reshape(shape)
+    return vals
