@@ -10,6 +10,7 @@ from .camera import Camera, OrbitCamera
 from .codegen import compile
 from .errors import ContextError, ParameterError, SceneFileError, SdfglError, ShaderCompileError
 from .evaluate import evaluate
+from .gl.cache import CacheBudget, cache_budget
 from .nodes import (BOUND, EXACT, IMPLICIT, Node, bend, box, box_frame, capsule, circle, displace, elongate, extrude,
                     displace_expr, implicit, noise, parametric,
                     mirror, polygon, rectangle, repeat_polar, revolve, rounded, shell, sierpinski, symmetric, tree, cone, cylinder, difference, ellipsoid,
@@ -38,5 +39,5 @@ __all__ = [
     "circle", "rectangle", "polygon", "extrude", "revolve", "mirror", "symmetric", "repeat_polar", "elongate",
     "rounded", "shell", "sierpinski", "tree", "displace", "noise", "implicit", "parametric", "displace_expr", "intersection", "difference", "X", "Y", "Z",
     "EXACT", "BOUND", "IMPLICIT", "SdfglError", "ParameterError", "ShaderCompileError", "ContextError",
-    "SceneFileError",
+    "SceneFileError", "cache_budget", "CacheBudget",
 ]

@@ -31,26 +31,32 @@ def evaluate(scene: Node, points: object, origin: object = (0.0, 0.0, 0.0),
     flat = p.reshape(-1, 3)
     if flat.shape[0] == 0:
         return np.zeros(shape, dtype=np.float32)
-    if not np.all(np.isfinite(flat)):
-        raise ParameterError("evaluate: points must be finite")
     org = np.asarray(origin, dtype=np.float64)
     if org.shape != (3,) or not np.all(np.isfinite(org)):
         raise ParameterError(f"evaluate: 'origin' must be 3 finite numbers, got {origin!r}")
-    local = flat - org
-    if np.abs(local).max() > F32_MAX:
-        raise ParameterError(f"evaluate: points minus 'origin' must fit in float32 (|x| <= {F32_MAX:.3g}); "
-                             f"the largest is {np.abs(local).max():.3g}")
     r = renderer or default_renderer()
     source = generate(scene, Settings(shadows=False, ao=False), org, target="evaluate")
-    return r.run(_evaluate_gl, r, scene, source, org, local.astype(np.float32)).reshape(shape)
+    return r.run(_evaluate_gl, r, scene, source, org, flat).reshape(shape)
 
 
-def _evaluate_gl(r: Renderer, scene: Node, source: ShaderSource, org: np.ndarray, pts: np.ndarray) -> np.ndarray:
-    """Draw map() over ``pts`` batch by batch (on the renderer's GL thread)."""
+def _batch(flat: np.ndarray, org: np.ndarray, out: np.ndarray) -> None:
+    """Points relative to ``org`` as float32 into out[:, :3], refusing what float32 cannot hold."""
+    local = flat - org
+    if not np.all(np.isfinite(local)):
+        raise ParameterError("evaluate: points must be finite")
+    big = float(np.abs(local).max())
+    if big > F32_MAX:
+        raise ParameterError(f"evaluate: points minus 'origin' must fit in float32 (|x| <= {F32_MAX:.3g}); "
+                             f"one is {big:.3g} away")
+    out[:, :3] = local
+
+
+def _evaluate_gl(r: Renderer, scene: Node, source: ShaderSource, org: np.ndarray, flat: np.ndarray) -> np.ndarray:
+    """Draw map() over the points batch by batch (on the renderer's GL thread)."""
     ctx = r.ctx
     prog, vao = r.programs.entry(source)
     scene_uniforms(prog, source, scene, org, r.data)
-    n = pts.shape[0]
+    n = flat.shape[0]
     w = min(n, ROW)
     h = min(-(-n // w), BATCH_ROWS)
     per_batch = w * h
@@ -68,9 +74,9 @@ def _evaluate_gl(r: Renderer, scene: Node, source: ShaderSource, org: np.ndarray
         ctx.viewport = (0, 0, w, h)
         for start in range(0, n, per_batch):
             m = min(per_batch, n - start)
-            data[:m, :3] = pts[start:start + m]
+            _batch(flat[start:start + m], org, data[:m])
             data[m:, :3] = 0.0
-            tex.write(data.tobytes())
+            tex.write(data)
             vao.render(vertices=3)
             vals[start:start + m] = np.frombuffer(out.read(), dtype=np.float32)[:m]
     finally:
