@@ -124,3 +124,39 @@ def test_multiprocessing_pool_renders_identical_to_serial(method):
     with mp.get_context(method).Pool(2) as pool:
         got = pool.map_async(image, ids).get(TIMEOUT_S)
     assert got == [image(i) for i in ids]
+
+
+def test_fork_while_another_thread_renders(tmp_path):
+    """The at-fork handler waits for GL work in flight; both sides render on afterwards."""
+    expected = {i: image(i) for i in (0, 1)}
+    stop = threading.Event()
+    seen: list[bool] = []
+
+    def busy() -> None:
+        while not stop.is_set():
+            seen.append(image(len(seen) % 2) == expected[len(seen) % 2])
+
+    th = threading.Thread(target=busy)
+    th.start()
+    try:
+        while not seen:
+            time.sleep(0.01)
+        out = tmp_path / "child.pkl"
+        pid = os.fork()
+        if pid == 0:
+            code = 1
+            try:
+                out.write_bytes(pickle.dumps(image(1)))
+                code = 0
+            finally:
+                os._exit(code)
+        assert _wait_child(pid) == 0
+        assert pickle.loads(out.read_bytes()) == expected[1]
+        n = len(seen)
+        deadline = time.time() + TIMEOUT_S
+        while len(seen) < n + 2 and time.time() < deadline:
+            time.sleep(0.01)
+    finally:
+        stop.set()
+        th.join(TIMEOUT_S)
+    assert len(seen) >= n + 2 and all(seen)

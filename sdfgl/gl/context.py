@@ -89,6 +89,7 @@ class GLThread:
         self._thread: threading.Thread | None = None
         self._ident: int | None = None
         self._start_lock = threading.Lock()
+        self._resume: threading.Event | None = None  # set while the thread is parked across a fork
 
     # -- running work on the GL thread ------------------------------------------------------
     def call(self, fn: Callable[..., T], *args: Any, **kwargs: Any) -> T:
@@ -181,6 +182,34 @@ class GLThread:
         fut.result(timeout)
 
 
+    def _park_for_fork(self, timeout: float = 60.0) -> None:
+        """Before a fork: finish the work in flight, tear the context down, and hold the GL thread
+        idle until the fork is done (so no other thread's render recreates the context meanwhile)."""
+        if self.pid != os.getpid() or self._thread is None or not self._thread.is_alive() or _EGL is None:
+            return
+        if threading.get_ident() == self._ident:  # forking from inside a GL job: nothing else runs now
+            self._teardown()
+            return
+        parked, resume = threading.Event(), threading.Event()
+
+        def park() -> None:
+            try:
+                self._teardown()
+            finally:
+                parked.set()
+                resume.wait()
+
+        self._resume = resume
+        self._jobs.put((Future(), park, (), {}))
+        parked.wait(timeout)  # past it, the fork goes on and the child reports a ContextError
+
+    def _unpark(self) -> None:
+        """After a fork, in the parent: let the GL thread take work again."""
+        if self._resume is not None:
+            self._resume.set()
+            self._resume = None
+
+
 class CurrentContext:
     """A context someone else made current on their thread (a window): GL work runs inline."""
 
@@ -229,10 +258,12 @@ def describe(ctx: moderngl.Context) -> str:
 
 def _before_fork() -> None:
     for t in list(_threads):
-        try:
-            t.release(timeout=60.0)
-        except Exception:  # noqa: BLE001 - never block a fork; the child then reports a ContextError
-            pass
+        t._park_for_fork()
+
+
+def _after_fork_in_parent() -> None:
+    for t in list(_threads):
+        t._unpark()
 
 
 def _after_fork_in_child() -> None:
@@ -256,5 +287,5 @@ def _at_exit() -> None:
             pass
 
 
-os.register_at_fork(before=_before_fork, after_in_child=_after_fork_in_child)
+os.register_at_fork(before=_before_fork, after_in_parent=_after_fork_in_parent, after_in_child=_after_fork_in_child)
 atexit.register(_at_exit)
