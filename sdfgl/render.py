@@ -145,6 +145,28 @@ def check_size(ctx: moderngl.Context, size: tuple[int, int], what: str = "render
                              f"{describe(ctx)})")
 
 
+class _Limits:
+    """A renderer's own budget, or the global one: what its caches ask for their limits."""
+
+    def __init__(self, budget: CacheBudget | None) -> None:
+        self.budget = budget
+
+    def __call__(self) -> CacheBudget:
+        return self.budget if self.budget is not None else default_budget()
+
+
+def _free_caches(gl: GLThread | CurrentContext, epoch: list[int], programs: ProgramCache, data: DataTextures,
+                 targets: TargetCache) -> None:
+    """Release a renderer's GL objects (on its context's thread); forget them if the context is gone."""
+    if epoch[0] != gl.epoch:
+        data.forget()
+        targets.forget()
+    else:
+        data.clear()
+        targets.clear()
+    programs._clear()  # syncs with the context itself
+
+
 class Renderer:
     """Draws scenes on one GL context, caching programs by source and targets by size (LRU, bounded).
 
@@ -156,14 +178,24 @@ class Renderer:
 
     def __init__(self, ctx: moderngl.Context | None = None, budget: CacheBudget | None = None) -> None:
         self.gl: GLThread | CurrentContext = gl_thread() if ctx is None else CurrentContext(ctx)
-        self.budget = budget
-        self.programs = ProgramCache(self.gl, self._budget)
-        self.data = DataTextures(self._budget)
-        self.targets = TargetCache(self._budget)
-        self._epoch = self.gl.epoch
+        self._limits = _Limits(budget)
+        self.programs = ProgramCache(self.gl, self._limits)
+        self.data = DataTextures(self._limits)
+        self.targets = TargetCache(self._limits)
+        self._epoch = [self.gl.epoch]
+        if isinstance(self.gl, GLThread):  # a dropped headless renderer frees its GL objects
+            fin = weakref.finalize(self, self.gl.submit, _free_caches, self.gl, self._epoch, self.programs,
+                                   self.data, self.targets)
+            fin.atexit = False
 
-    def _budget(self) -> CacheBudget:
-        return self.budget if self.budget is not None else default_budget()
+    @property
+    def budget(self) -> CacheBudget | None:
+        """This renderer's own cache limits (None: those of ``sg.cache_budget()``)."""
+        return self._limits.budget
+
+    @budget.setter
+    def budget(self, value: CacheBudget | None) -> None:
+        self._limits.budget = value
 
     @property
     def ctx(self) -> moderngl.Context:
@@ -176,12 +208,16 @@ class Renderer:
 
     def _synced(self, fn: Callable[..., T], args: tuple, kwargs: dict) -> T:
         self.gl.ctx  # noqa: B018 - (re)creates the context first, so a replaced one is noticed below
-        if self._epoch != self.gl.epoch:  # the context was replaced (fork): its objects are gone
+        if self._epoch[0] != self.gl.epoch:  # the context was replaced (fork): its objects are gone
             self.programs.sync()
             self.data.forget()
             self.targets.forget()
-            self._epoch = self.gl.epoch
+            self._epoch[0] = self.gl.epoch
         return fn(*args, **kwargs)
+
+    def release(self) -> None:
+        """Release every cached program, texture and target now (they are rebuilt when needed)."""
+        self.gl.call(_free_caches, self.gl, self._epoch, self.programs, self.data, self.targets)
 
     def vao(self, prog: moderngl.Program) -> moderngl.VertexArray:
         """The buffer-less vertex array drawing the full-screen triangle with cached ``prog``."""

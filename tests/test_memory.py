@@ -131,3 +131,18 @@ def test_soak_rss_stays_bounded():
     assert res["compiles"] >= 80 and res["cached_programs"] == 4
     # unbounded, each compiled program stays resident (about 2 MB here): 80 of them would add ~150 MB
     assert res["growth_mb"] < 40, res
+
+
+def test_a_dropped_or_released_renderer_frees_its_gl_objects():
+    from sdfgl.gl.context import gl_thread
+    r = sg.Renderer()
+    res = r.render(sg.sphere(0.77), size=(8, 8), shadows=False, ao=False)
+    prog = r.programs.get(res.source)
+    r.release()
+    assert released(prog) and len(r.programs) == 0 and len(r.targets) == 0
+    res = r.render(sg.sphere(0.77), size=(8, 8), shadows=False, ao=False)  # rebuilt on demand
+    prog = r.programs.get(res.source)
+    del r, res
+    gc.collect()
+    gl_thread().call(lambda: None)  # the release was queued before this
+    assert released(prog)

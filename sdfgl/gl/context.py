@@ -103,6 +103,11 @@ class GLThread:
         self._jobs.put((fut, fn, args, kwargs))
         return fut.result()
 
+    def submit(self, fn: Callable[..., Any], *args: Any) -> None:
+        """Queue ``fn(*args)`` on the GL thread without waiting (if that thread is running)."""
+        if self.pid == os.getpid() and self._thread is not None and self._thread.is_alive():
+            self._jobs.put((Future(), fn, args, {}))
+
     def _check_process(self) -> None:
         if self.pid != os.getpid():  # forked without the at-fork handlers (e.g. a raw fork syscall)
             if self._ctx is not None:

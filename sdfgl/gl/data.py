@@ -45,6 +45,10 @@ class DataTextures:
     def forget(self) -> None:
         self._lru.forget()
 
+    def clear(self) -> None:
+        """Release every texture."""
+        self._lru.clear()
+
     @property
     def bytes(self) -> int:
         return self._lru.bytes

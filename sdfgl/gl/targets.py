@@ -60,5 +60,9 @@ class TargetCache:
     def forget(self) -> None:
         self._lru.forget()
 
+    def clear(self) -> None:
+        """Release every target."""
+        self._lru.clear()
+
     def __len__(self) -> int:
         return len(self._lru)
