@@ -42,21 +42,27 @@ def turntable_frame(i: int, frames: int) -> sg.Node:
     return base.rotate(360.0 * i / frames, (0, 1, 0))
 
 
-def run(scenes: int, frames: int, size: tuple[int, int], every: int = 250) -> dict:
+def run(scenes: int, frames: int, size: tuple[int, int], every: int = 250, progress: bool = False) -> dict:
     r = default_renderer()
     cam = sg.OrbitCamera(distance=5, yaw=30, pitch=20)
     sg.render(sg.sphere(1), cam, size)  # warm-up: context, first program
     out: dict = {"size": list(size), "budget": vars(sg.cache_budget()), "start_rss_mb": rss_mb(), "trace": []}
+    if progress:
+        print(f"start: RSS {out['start_rss_mb']:.1f} MB", flush=True)
     t0 = time.perf_counter()
     for i in range(scenes):
         sg.render(distinct_scene(i), cam, size, shadows=False, ao=False)
         if (i + 1) % every == 0:
             out["trace"].append(("scenes", i + 1, round(rss_mb(), 1)))
+            if progress:
+                print(f"scenes {i + 1:5d}: RSS {rss_mb():.1f} MB ({time.perf_counter() - t0:.0f} s)", flush=True)
     out["after_scenes_rss_mb"] = rss_mb()
     for i in range(frames):
         sg.render(turntable_frame(i, frames), cam, size, shadows=False, ao=False)
         if (i + 1) % every == 0:
             out["trace"].append(("frames", i + 1, round(rss_mb(), 1)))
+            if progress:
+                print(f"frames {i + 1:5d}: RSS {rss_mb():.1f} MB ({time.perf_counter() - t0:.0f} s)", flush=True)
     out["end_rss_mb"] = rss_mb()
     out["growth_mb"] = out["end_rss_mb"] - out["start_rss_mb"]
     out["seconds"] = time.perf_counter() - t0
@@ -74,12 +80,10 @@ def main() -> None:
     p.add_argument("--json", action="store_true", help="print one JSON object only")
     a = p.parse_args()
     size = tuple(int(x) for x in a.size.split("x"))
-    res = run(a.scenes, a.frames, size)  # type: ignore[arg-type]
+    res = run(a.scenes, a.frames, size, every=100, progress=not a.json)  # type: ignore[arg-type]
     if a.json:
         print(json.dumps(res))
         return
-    for kind, n, mb in res["trace"]:
-        print(f"{kind:7s} {n:5d}: RSS {mb:.1f} MB")
     print(f"start RSS {res['start_rss_mb']:.1f} MB, after {a.scenes} scenes {res['after_scenes_rss_mb']:.1f} MB, "
           f"after {a.frames} turntable frames {res['end_rss_mb']:.1f} MB: growth {res['growth_mb']:.1f} MB "
           f"({res['compiles']} compiles, {res['cached_programs']} cached, {res['evicted_programs']} evicted, "

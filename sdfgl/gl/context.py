@@ -129,8 +129,6 @@ class GLThread:
         jobs = self._jobs
         while True:
             job = jobs.get()
-            if job is None:
-                return
             fut, fn, args, kwargs = job
             if not fut.set_running_or_notify_cancel():
                 continue
