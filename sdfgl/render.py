@@ -297,5 +297,8 @@ def render(scene: Node, camera: Camera | None = None, size: Sequence[int] = (640
     :class:`sdfgl.settings.Settings`): ``aa`` 1..4, ``shadows`` False/"hard"/"soft",
     ``ao``, ``ground``, ``method``, ``max_steps``, ``hit``, ``hit_scale``, ``max_dist`` and
     ``outputs`` (any of "color", "depth", "normal", "steps").
+
+    Safe to call from any thread and in forked children: the GL work runs on sdfgl's GL
+    thread (see :mod:`sdfgl.gl.context`); caches are bounded by :func:`sdfgl.cache_budget`.
     """
     return default_renderer().render(scene, camera, size, **settings)
