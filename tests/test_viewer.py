@@ -35,7 +35,12 @@ def viewer(display, tmp_path):
                              "--max-samples", "4"], env=drv.env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                             text=True)
     try:
-        drv.find_window(60.0)  # a loaded machine can take long to import and open the window
+        try:
+            drv.find_window(60.0)  # a loaded machine can take long to import and open the window
+        except AssertionError:
+            if proc.poll() is not None:  # say why the viewer died
+                raise AssertionError(f"the viewer exited ({proc.returncode}): {proc.stderr.read()[-2000:]}") from None
+            raise
         # the first compile (soft shadows, AO) takes a while on a loaded CPU rasteriser
         drv.wait_for(lambda s: s["frames"] > 0 and s["samples"] >= 1, timeout=60.0, what="the first frame")
         yield drv, proc, scene, tmp_path
