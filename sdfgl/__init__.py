@@ -11,6 +11,8 @@ from .codegen import compile
 from .errors import (ContextError, ParameterError, SceneDocumentError, SceneFileError, SdfglError,
                      ShaderCompileError)
 from .look import directional_light, point_light
+from .evaluate import evaluate
+from .gl.cache import CacheBudget, cache_budget
 from . import mesh  # the package is callable: sg.mesh(scene, step=0.01)
 from .mesh import Mesh
 from .nodes import (BOUND, EXACT, IMPLICIT, Node, bend, box, box_frame, capsule, circle, displace, elongate, extrude,
@@ -211,5 +213,5 @@ __all__ = [
     "morph", "taper", "glsl",
     "time", "keyframes", "turntable", "camera_path", "animate", "sin", "cos", "tan", "abs", "sqrt", "exp", "log",
     "sign", "floor", "fract", "radians", "min", "max", "pow", "mod", "step", "clamp", "mix", "smoothstep",
-    "mesh", "Mesh",
+    "mesh", "Mesh", "cache_budget", "CacheBudget",
 ]

@@ -25,6 +25,7 @@ from .errors import SdfglError
 from . import hardcases
 from .camera import Camera
 from .codegen import ShaderSource, generate, max_steps_of, scene_frame
+from .gl.cache import CacheBudget
 from .gl.context import describe
 from .nodes.base import IMPLICIT, Node
 from .reference import Reference, compare, trace
@@ -71,10 +72,13 @@ class FrameTimer:
 
     def __init__(self, renderer: Renderer, size: tuple[int, int]) -> None:
         self.r, self.size = renderer, size
-        self.fbo = renderer.ctx.simple_framebuffer(size)
+        self.fbo = renderer.run(lambda: renderer.ctx.simple_framebuffer(size))
 
     def prepare(self, v: Variant) -> tuple[float, float]:
         """Compile v's program; return (link seconds, first-frame seconds)."""
+        return self.r.run(self._prepare, v)
+
+    def _prepare(self, v: Variant) -> tuple[float, float]:
         st = Settings.build(**v.settings)
         origin = shader_origin(v.node, v.camera.eye)
         t0 = time.perf_counter()
@@ -88,6 +92,10 @@ class FrameTimer:
         return t1 - t0, first
 
     def draw(self, v: Variant) -> float:
+        """Draw v once on the GL thread; return the seconds the draw took."""
+        return self.r.run(self._draw, v)
+
+    def _draw(self, v: Variant) -> float:
         prog, origin, source = v.result["_prog"]
         camera_uniforms(prog, v.camera, self.size, origin)
         scene_uniforms(prog, source, v.node, origin)
@@ -354,7 +362,7 @@ def run(quick: bool, size: tuple[int, int] | None, out: Path, progress: bool = T
     names = list(scenes) if scenes else (list(SEED_SCENES) + ([] if quick else list(MORE_SCENES)))
     variants = build_variants(names, full=not quick)
     features = feature_variants()
-    renderer = Renderer()
+    renderer = Renderer(budget=CacheBudget(programs=None))  # timings hold every variant's program
     total = len(variants) * 2 + (warmup + frames) * 2 + len(features) + len(names)
     bar = Progress(total, progress)
 

@@ -29,6 +29,23 @@ def _projection(name: str, projection: str, ortho_height: float | None) -> float
         raise ParameterError(f"{name}: 'ortho_height' applies to projection='orthographic' only")
     return float(v.scalar(name, "ortho_height", ortho_height, positive=True))
 
+# camera positions and distances reach the shader as float32 (relative to the scene): keep them
+# well inside its range (3.4e38), the same bound as the settings
+COORD_MAX = 1e29
+
+
+def _finite(op: str, **values: float) -> None:
+    """Refuse NaN, inf or a non-number given to a camera operation, naming the operation and argument."""
+    for name, val in values.items():
+        if isinstance(val, bool) or not isinstance(val, (int, float, np.integer, np.floating)) or not math.isfinite(val):
+            raise ParameterError(f"{op}: '{name}' must be a finite number, got {val!r}")
+
+
+def _in_range(op: str, name: str, vec: np.ndarray) -> None:
+    if not np.all(np.isfinite(vec)) or np.max(np.abs(vec)) > COORD_MAX:
+        raise ParameterError(f"{op}: the camera's '{name}' would be {tuple(float(x) for x in vec)}, outside "
+                             f"+-{COORD_MAX:g} (what the float32 shader can hold); the camera is unchanged")
+
 
 class Camera:
     """Camera at ``eye`` looking at ``target`` (Y up, angles in degrees).
@@ -66,6 +83,8 @@ class Camera:
             raise ParameterError(f"camera: parameter 'fov' must be in [1e-4, 179] degrees, got {self.fov:g}")
         self.projection = projection
         self._ortho_height = _projection("camera", projection, ortho_height)
+        _in_range("camera", "eye", self.eye)
+        _in_range("camera", "target", self.target)
         self.basis()  # validate the geometry now
 
     @classmethod
@@ -174,6 +193,8 @@ class OrbitCamera(Camera):
                  yaw: float = 30.0, pitch: float = 20.0, fov: float = 45.0, projection: str = "perspective",
                  ortho_height: float | None = None) -> None:
         self.distance = v.scalar("OrbitCamera", "distance", distance, positive=True)
+        if self.distance > COORD_MAX:
+            raise ParameterError(f"OrbitCamera: parameter 'distance' must be at most {COORD_MAX:g}, got {self.distance:g}")
         self.yaw = v.scalar("OrbitCamera", "yaw", yaw)
         self.pitch = v.scalar("OrbitCamera", "pitch", pitch)
         if abs(self.pitch) > 89.9:
@@ -188,27 +209,47 @@ class OrbitCamera(Camera):
     def _update(self) -> None:
         self.eye = self._eye(self.target)
 
+    def _move(self, op: str, **state: object) -> None:
+        """Apply new yaw/pitch/distance/target only if the eye and target stay in range."""
+        old = {k: getattr(self, k) for k in state}
+        for k, val in state.items():
+            setattr(self, k, val)
+        eye = self._eye(self.target)
+        try:
+            _in_range(op, "target", self.target)
+            _in_range(op, "eye", eye)
+        except ParameterError:
+            for k, val in old.items():
+                setattr(self, k, val)
+            raise
+        self.eye = eye
+
     def orbit(self, dyaw: float, dpitch: float) -> None:
         """Turn about the target by the given angles in degrees (pitch is clamped)."""
-        self.yaw = (self.yaw + dyaw) % 360.0
-        self.pitch = max(-89.0, min(89.0, self.pitch + dpitch))
-        self._update()
+        _finite("OrbitCamera.orbit", dyaw=dyaw, dpitch=dpitch)
+        self._move("OrbitCamera.orbit", yaw=(self.yaw + float(dyaw)) % 360.0,
+                   pitch=max(-89.0, min(89.0, self.pitch + float(dpitch))))
 
     def pan(self, dx: float, dy: float) -> None:
         """Move target and eye along the image plane by fractions of the view height."""
+        _finite("OrbitCamera.pan", dx=dx, dy=dy)
         r, u, _ = self.basis()
         span = self.ortho_height if self.orthographic else 2.0 * self.distance * self.tan_half_fov
-        self.target = self.target + span * (-dx * r + dy * u)
-        self._update()
+        self._move("OrbitCamera.pan", target=self.target + span * (-float(dx) * r + float(dy) * u))
 
     def zoom(self, factor: float) -> None:
-        """Multiply the distance to the target by ``factor`` (> 0); there is no minimum."""
+        """Multiply the distance to the target by ``factor`` (> 0), down to 1e-9 and up to 1e29."""
+        _finite("OrbitCamera.zoom", factor=factor)
         if not factor > 0:
-            raise ParameterError(f"OrbitCamera.zoom: factor must be > 0, got {factor!r}")
-        self.distance = max(self.distance * factor, 1e-9)
-        if self._ortho_height is not None:
-            self._ortho_height = max(self._ortho_height * factor, 1e-9)
-        self._update()
+            raise ParameterError(f"OrbitCamera.zoom: 'factor' must be > 0, got {factor!r}")
+        old_height = self._ortho_height
+        if old_height is not None:
+            self._ortho_height = min(max(old_height * float(factor), 1e-9), COORD_MAX)
+        try:
+            self._move("OrbitCamera.zoom", distance=min(max(self.distance * float(factor), 1e-9), COORD_MAX))
+        except ParameterError:
+            self._ortho_height = old_height
+            raise
 
     @classmethod
     def framing(cls, lo: np.ndarray, hi: np.ndarray, yaw: float = 30.0, pitch: float = 20.0,

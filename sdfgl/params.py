@@ -12,7 +12,11 @@ compute with it as if it were a number (numpy sees its current value through
 """
 from __future__ import annotations
 
+import functools
+import itertools
 import math
+import threading
+import weakref
 from typing import TYPE_CHECKING, Any, Callable
 
 import numpy as np
@@ -23,6 +27,31 @@ if TYPE_CHECKING:  # pragma: no cover
     from .codegen import Emitter
 
 Number = (int, float, np.integer, np.floating)
+
+_building = threading.local()
+_tokens = itertools.count()
+
+
+def owns_checks(init: Callable[..., None]) -> Callable[..., None]:
+    """Wrap a node's ``__init__`` so the live-parameter checks it registers belong to the node.
+
+    A Param then holds those checks weakly: when the node is gone, so are its checks (a
+    discarded node never rejects a value, and rebuilt nodes do not pile up checks)."""
+    @functools.wraps(init)
+    def wrapper(self: Any, *args: Any, **kwargs: Any) -> None:
+        stack = _building.__dict__.setdefault("stack", [])
+        stack.append(self)
+        try:
+            init(self, *args, **kwargs)
+        finally:
+            stack.pop()
+    return wrapper
+
+
+def _owner() -> Any:
+    """The node whose constructor is running on this thread (innermost), or None."""
+    stack = getattr(_building, "stack", None)
+    return stack[-1] if stack else None
 
 
 class Live:
@@ -112,7 +141,8 @@ class Param(Live):
     def __init__(self, value: Any, name: str | None = None, range: tuple[float, float] | None = None) -> None:
         super().__init__("param")
         self.name = name
-        self._checks: list[Callable[[Any], None]] = []
+        # token -> callable returning the check (a weak reference when a node owns the check)
+        self._checks: dict[int, Callable[[], Callable[[Any], None] | None]] = {}
         self._value = self._coerce(value)
         self.range = None if range is None else self._check_range(range)
         self._in_range(self._value)
@@ -166,8 +196,10 @@ class Param(Live):
         self._in_range(v)
         old, self._value = self._value, v
         try:
-            for check in self._checks:
-                check(v)
+            for ref in list(self._checks.values()):
+                check = ref()
+                if check is not None:
+                    check(v)
         except ParameterError:
             self._value = old
             raise
@@ -181,9 +213,25 @@ class Param(Live):
         return self.name or f"#{id(self) & 0xffff:04x}"
 
     def add_check(self, check: Callable[[Any], None]) -> None:
-        """Run ``check(value)`` now and on every later assignment (it raises ParameterError)."""
+        """Run ``check(value)`` now and on every later assignment (it raises ParameterError).
+
+        Registered while a node is being built, the check lives as long as that node: the
+        node holds it and this parameter only a weak reference (dropped when the node dies).
+        """
         check(self._value)
-        self._checks.append(check)
+        token = next(_tokens)
+        owner = _owner()
+        if owner is None:
+            self._checks[token] = lambda: check
+            return
+        owner.__dict__.setdefault("_param_checks", []).append(check)
+        checks = self._checks
+        self._checks[token] = weakref.ref(check, lambda _r: checks.pop(token, None))
+
+    @property
+    def checks(self) -> int:
+        """How many live checks guard this parameter (those of nodes still alive)."""
+        return sum(1 for ref in self._checks.values() if ref() is not None)
 
     def roots(self) -> list["Param"]:
         return [self]

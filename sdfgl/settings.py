@@ -14,6 +14,29 @@ DISTANCE_METHODS = ("auto", "sphere", "relaxed", "enhanced")
 DEFAULT_OMEGA = {"relaxed": 1.6, "enhanced": 0.9}
 HIT_MODES = ("cone", "relative", "absolute")
 DEBUG_VIEWS = (None, "steps", "normal", "depth")
+# Settings become float32 literals and uniforms: magnitudes must stay inside what float32
+# holds (3.4e38) with room for the shader's arithmetic, and below its stand-in for infinity
+# (codegen.GLSL_FAR, 1e30); positive ones must not round to zero (float32's smallest normal is 1.2e-38).
+F32_SETTING_MAX = 1e29
+F32_SETTING_MIN = 1e-30
+
+
+def float32_setting(name: str, val: Any, lo: float = 0.0, inclusive: bool = False) -> float:
+    """``val`` as a float if it is a real number above ``lo`` that float32 arithmetic can hold."""
+    if isinstance(val, bool) or not isinstance(val, (int, float)):
+        raise ParameterError(f"setting '{name}' must be a number, got {type(val).__name__} {val!r}")
+    v = float(val)
+    if v != v or v in (float("inf"), float("-inf")):
+        raise ParameterError(f"setting '{name}' must be finite, got {val!r}")
+    if not (v >= lo if inclusive else v > lo):
+        raise ParameterError(f"setting '{name}' must be {'>=' if inclusive else '>'} {lo:g}, got {val!r}")
+    if abs(v) > F32_SETTING_MAX:
+        raise ParameterError(f"setting '{name}' must be at most {F32_SETTING_MAX:g} (the shader computes in float32, "
+                             f"which holds up to 3.4e38, and uses 1e30 as infinity), got {val!r}")
+    if v != 0 and abs(v) < F32_SETTING_MIN:
+        raise ParameterError(f"setting '{name}' must be at least {F32_SETTING_MIN:g} (smaller values round to 0 or "
+                             f"lose all precision in float32), got {val!r}")
+    return v
 
 
 @dataclass(frozen=True)
@@ -105,23 +128,15 @@ class Settings:
                                      f"{')' if self.method == 'relaxed' else ']'}, got {self.omega!r}")
             object.__setattr__(self, "omega", float(self.omega))
         if self.ref_step is not None:
-            if isinstance(self.ref_step, bool) or not isinstance(self.ref_step, (int, float)) or not self.ref_step > 0:
-                raise ParameterError(f"setting 'ref_step' must be a positive number, got {self.ref_step!r}")
-            object.__setattr__(self, "ref_step", float(self.ref_step))
+            object.__setattr__(self, "ref_step", float32_setting("ref_step", self.ref_step))
         if self.newton_cap is not None:
-            ok = isinstance(self.newton_cap, (int, float)) and not isinstance(self.newton_cap, bool)
-            if not ok or not self.newton_cap >= 1:
-                raise ParameterError(f"setting 'newton_cap' must be None or a number >= 1, got {self.newton_cap!r}")
-            object.__setattr__(self, "newton_cap", float(self.newton_cap))
+            object.__setattr__(self, "newton_cap", float32_setting("newton_cap", self.newton_cap, 1.0, inclusive=True))
         if isinstance(self.max_steps, bool) or not isinstance(self.max_steps, int) or not 1 <= self.max_steps <= 100000:
             raise ParameterError(f"setting 'max_steps' must be an integer 1..100000, got {self.max_steps!r}")
         if self.hit not in HIT_MODES:
             raise ParameterError(f"setting 'hit' must be one of {', '.join(HIT_MODES)}, got {self.hit!r}")
         for name in ("hit_scale", "max_dist"):
-            val = getattr(self, name)
-            if isinstance(val, bool) or not isinstance(val, (int, float)) or not (0 < float(val) < float("inf")):
-                raise ParameterError(f"setting '{name}' must be a positive finite number, got {val!r}")
-            object.__setattr__(self, name, float(val))
+            object.__setattr__(self, name, float32_setting(name, getattr(self, name)))
         if self.debug not in DEBUG_VIEWS:
             raise ParameterError(f"setting 'debug' must be None, 'steps', 'normal' or 'depth', got {self.debug!r}")
         if not isinstance(self.outputs, (str, list, tuple)):

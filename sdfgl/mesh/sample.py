@@ -37,7 +37,7 @@ class GPUField:
             prog = self.r.programs.get(source)
             self._progs[target] = (prog, source)
         prog, source = self._progs[target]
-        scene_uniforms(prog, source, self.scene, self.origin)
+        scene_uniforms(prog, source, self.scene, self.origin, self.r.data)
         for name, v in (("uClipLo", self.clip[0]), ("uClipHi", self.clip[1])):
             if name in prog:
                 prog[name].value = tuple(float(x) for x in v)
@@ -71,7 +71,11 @@ class GPUField:
 
     def blocks(self, start: np.ndarray, corners: np.ndarray, size: int, step: float) -> np.ndarray:
         """Field at ``size``^3 lattice points ``start + (corner + (i, j, k)) * step`` for each
-        (M, 3) integer corner: float32 (M, size, size, size), indexed [block, i, j, k]."""
+        (M, 3) integer corner: float32 (M, size, size, size), indexed [block, i, j, k].
+        The GL work runs on the renderer's GL thread (see sdfgl.gl.context)."""
+        return self.r.run(self._blocks, start, corners, size, step)
+
+    def _blocks(self, start: np.ndarray, corners: np.ndarray, size: int, step: float) -> np.ndarray:
         corners = np.asarray(corners, np.int64).reshape(-1, 3)
         if corners.size and corners.max() + size >= 1 << 24:
             raise ValueError("lattice coordinates beyond float32's exact integers")
@@ -97,6 +101,9 @@ class GPUField:
         return out
 
     def _at_points(self, target: str, points: np.ndarray, comps: int, eps: float = 0.0) -> np.ndarray:
+        return self.r.run(self._at_points_gl, target, points, comps, eps)
+
+    def _at_points_gl(self, target: str, points: np.ndarray, comps: int, eps: float) -> np.ndarray:
         pts = np.asarray(points, np.float64).reshape(-1, 3)
         out = np.empty((len(pts), comps), np.float32)
         if len(pts) == 0:

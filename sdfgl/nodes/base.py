@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING, Any, ClassVar, Sequence
 import numpy as np
 
 from ..errors import ParameterError
-from ..params import Live, Param
+from ..params import Live, Param, owns_checks
 from .record import Recorded
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -52,6 +52,11 @@ class Node(Recorded, register=False):
     """
 
     kind: ClassVar[str] = "node"
+
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        super().__init_subclass__(**kwargs)
+        if "__init__" in cls.__dict__:  # live-parameter checks made while building belong to the node
+            cls.__init__ = owns_checks(cls.__init__)  # type: ignore[method-assign]
 
     def __init__(self, children: Sequence["Node"] = (), **params: object) -> None:
         for i, c in enumerate(children):
