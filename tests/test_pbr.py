@@ -162,3 +162,12 @@ def test_node_materials_and_orthographic_cameras_carry_over():
     egl = np.isfinite(sg.render(sg.box(1.0), cam, size, outputs=("color", "depth")).depth)
     assert img.settings["projection"] == "orthographic"
     assert egl.sum() == 16 * 16 and ((img.alpha > 0.5) != egl).sum() <= 8
+
+
+def test_unknown_options_and_bad_seeds_are_named():
+    with pytest.raises(sg.ParameterError, match=r"render_pbr: unknown option 'colour'; it takes size, spp, .*seed"):
+        sg.render_pbr(sg.sphere(1), size=(8, 8), spp=1, colour=(1, 0, 0))
+    with pytest.raises(sg.ParameterError, match=r"to_mitsuba: unknown option 'seed'"):
+        sg.to_mitsuba(sg.sphere(1), seed=1)
+    with pytest.raises(sg.ParameterError, match=r"render_pbr: 'seed' must be an integer in 0\.\.65535, got 'x'"):
+        sg.render_pbr(sg.sphere(1), size=(8, 8), spp=1, seed="x")

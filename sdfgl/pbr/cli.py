@@ -47,10 +47,12 @@ def _progress_line() -> Callable[[str, float], None]:
 
 def cmd_pbr(a: argparse.Namespace) -> int:
     """Run ``sdfgl pbr``."""
-    from ..cli import _camera, _load
+    from ..cli import _load
+    from ..cli_common import camera_from_args
     from .render import render_pbr
     scene, camera, is_demo = _load(a)
-    img = render_pbr(scene, _camera(a, scene, camera), a.size, a.spp, resolution=a.resolution, quality=a.quality,
+    cam = camera_from_args(a, scene, camera)
+    img = render_pbr(scene, cam, a.size, a.spp, resolution=a.resolution, quality=a.quality,
                      ground=a.ground or is_demo, max_depth=a.max_depth, seed=a.seed, variant=a.variant,
                      progress=None if a.quiet else _progress_line())
     path = img.save(a.output, exposure=a.exposure, transparent=a.transparent)
