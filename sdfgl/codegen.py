@@ -17,6 +17,7 @@ import numpy as np
 from . import shaderlib
 from .errors import ParameterError
 from .nodes.base import IMPLICIT, Node
+from .nodes.traverse import run_deep
 from .params import Live, Param
 from .settings import DEFAULT_OMEGA, DISTANCE_METHODS, Settings
 
@@ -66,7 +67,9 @@ class Emitter:
         self.detail = parent.detail if parent else False  # emitting the normals-only field
         self.grids: dict[int, tuple[str, Any, tuple[float, float, float]]] = parent.grids if parent else {}
         self.use_grids = parent.use_grids if parent else True
+        self.data: dict[str, np.ndarray] = parent.data if parent else {}  # sampler -> float32 texels
         self._defining: set = set(parent._defining) if parent else set()
+        self.results: dict = {}  # (node key, point, colour) -> result variable, in this function
 
     # -- bookkeeping -------------------------------------------------------------------
     def enter(self, node: Node) -> None:
@@ -130,7 +133,7 @@ class Emitter:
     def vec(self, v: Sequence[float] | Live) -> str:
         """A vecN: constants, or a live value (a live scalar is broadcast to vec3)."""
         if isinstance(v, Live):
-            return v.glsl(self) if v.dims == 3 else f"vec3({v.glsl(self)})"
+            return f"vec3({v.glsl(self)})" if v.dims == 1 else v.glsl(self)
         vals = list(v)
         return f"vec{len(vals)}({', '.join(self.num(x) for x in vals)})"
 
@@ -328,36 +331,21 @@ def _defines(scene: Node, settings: Settings, origin: np.ndarray, live: bool) ->
 def shared_subtrees(scene: Node) -> set:
     """Keys of composite subtrees that occur more than once (each becomes one GLSL function)."""
     counts: dict = {}
-
-    def walk(n: Node) -> None:
+    stack = [scene]
+    while stack:
+        n = stack.pop()
         if n.children:
             counts[n.key] = counts.get(n.key, 0) + 1
             if counts[n.key] > 1:
-                return  # its inside is counted once; the function holds it
-        for c in n.children:
-            walk(c)
-    walk(scene)
+                continue  # its inside is counted once; the function holds it
+        stack.extend(n.children)
     return {k for k, c in counts.items() if c > 1}
 
 
-def _grid_code(b: "_Builder", grids: dict, origin: np.ndarray) -> list[tuple[str, np.ndarray]]:
-    """The code of each union kept as data, and its textures."""
-    from .nodes.grid import LIST_WIDTH
-    data: list[tuple[str, np.ndarray]] = []
-    if grids:
-        b.add(f"#define GRID_LIST_WIDTH {LIST_WIDTH}", "(grid)")
-    for gid, grid, default_color in grids.values():
-        lo = ", ".join(glsl_float(x) for x in grid.lo - origin)
-        b.add(f"#define {gid}_LO vec3({lo})\n#define {gid}_CELL {glsl_float(grid.cell)}\n"
-              f"#define {gid}_DIMS ivec3({', '.join(str(int(x)) for x in grid.dims)})", "(grid)")
-        b.add(shaderlib.read("grid_union").replace("GRIDID", gid), "shaders/grid_union.glsl")
-        data += [(f"u{gid}{name}", arr) for name, arr in grid.textures(origin, default_color).items()]
-    return data
-
-
 def _emit_map(scene: Node, mode: str, origin: np.ndarray, params: list[Param], shared: set,
-              grids: dict, use_grids: bool, helpers: dict, detail: bool = False) -> tuple[Emitter, str]:
+              grids: dict, use_grids: bool, helpers: dict, data: dict, detail: bool = False) -> tuple[Emitter, str]:
     em = Emitter(mode, params=params)
+    em.data = data
     em.helpers = helpers
     em.detail = detail
     em.shared_keys = shared
@@ -376,6 +364,10 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     """
     if not isinstance(scene, Node):
         raise ParameterError(f"scene must be an sdfgl node, got {type(scene).__name__} {scene!r}")
+    return run_deep(scene, lambda: _generate(scene, settings, origin, target))
+
+
+def _generate(scene: Node, settings: Settings, origin: Sequence[float], target: str) -> ShaderSource:
     if scene.exactness == IMPLICIT and target == "render":
         if settings.method in DISTANCE_METHODS:
             raise ParameterError(
@@ -389,10 +381,11 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     shared = shared_subtrees(scene)
     grids: dict = {}
     helpers: dict = {}
-    dist, dist_result = _emit_map(scene, "dist", org, params, shared, grids, settings.grid, helpers)
-    color, color_result = (_emit_map(scene, "color", org, params, shared, grids, settings.grid, helpers)
+    tex: dict = {}
+    dist, dist_result = _emit_map(scene, "dist", org, params, shared, grids, settings.grid, helpers, tex)
+    color, color_result = (_emit_map(scene, "color", org, params, shared, grids, settings.grid, helpers, tex)
                            if target == "render" else (None, ""))
-    detail, detail_result = (_emit_map(scene, "dist", org, params, shared, grids, settings.grid, helpers, True)
+    detail, detail_result = (_emit_map(scene, "dist", org, params, shared, grids, settings.grid, helpers, tex, True)
                              if target == "render" and scene.has_detail else (None, ""))
     libs = list(dict.fromkeys(dist.libs + (color.libs if color else []) + (detail.libs if detail else [])))
     live = bool(params)
@@ -409,9 +402,12 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     b.add_file("common")
     for name in libs:
         b.add_file(f"lib/{name}")
+    if grids:
+        from .nodes.grid import LIST_WIDTH
+        b.add(f"#define GRID_LIST_WIDTH {LIST_WIDTH}\n#define GRID_LIST_SHIFT {LIST_WIDTH.bit_length() - 1}", "(grid)")
     for name, code in helpers.items():
         b.add(code, f"(generated helper {name})")
-    data = _grid_code(b, grids, org)
+    data = list(tex.items())
     done: set[str] = set()
     _helpers(b, dist, done)
     _function(b, "float map(vec3 p)", dist, dist_result, "{}")

@@ -65,6 +65,42 @@ class _Boolean(Node):
         super().__init__(children, **params)
         self.k = kk
 
+    # children are kept in a list shared along a chain built by ``s = s | x`` (each step
+    # appends: O(1)); the tuple is made when first read
+    @property  # type: ignore[override]
+    def children(self) -> tuple[Node, ...]:
+        kids = self.__dict__.get("_kids")
+        if kids is None:
+            seq, n = self.__dict__["_seq"]
+            kids = self.__dict__["_kids"] = tuple(seq[:n])
+        return kids
+
+    @children.setter
+    def children(self, value: tuple[Node, ...]) -> None:
+        self.__dict__["_kids"] = tuple(value)
+
+    def _chained(self, right: Node) -> "_Boolean":
+        """This n-ary node with ``right`` appended (the left fold of one more operand)."""
+        seq, n = self.__dict__.get("_seq") or (list(self.children), len(self.children))
+        self.__dict__["_seq"] = (seq, n)
+        if len(seq) != n:  # another chain already grew from this node: branch off a copy
+            seq = seq[:n]
+        seq.append(right)
+        node = type(self).__new__(type(self))
+        from .base import _CACHES
+        node.__dict__.update({k: v for k, v in self.__dict__.items()
+                              if not k.startswith(_CACHES) and k not in ("_kids", "_seq")})
+        node.__dict__["_seq"] = (seq, n + 1)
+        return node
+
+    def _same_op(self, cls: type, k: object, blend: str) -> bool:
+        if type(self) is not cls or self.blend != blend:
+            return False
+        if isinstance(k, Live) or isinstance(self.k, Live):
+            return k is self.k
+        kk = float(k)
+        return float(self.k) == (0.0 if kk < K_MIN else kk)
+
     @property
     def _hard(self) -> bool:
         return not isinstance(self.k, Live) and self.k == 0
@@ -128,12 +164,11 @@ class Union(_Boolean):
         grid = self.grid if em.use_grids else None
         if grid is None:
             return super()._emit(em, p)
-        pt = em.point(p)
-        acc = em.assign("vec4", f"{em.grid_name(grid)}Union({pt})")
-        acc = acc if em.mode == "color" else em.assign("float", f"{acc}.w")
+        acc = grid.emit(em, p)
+        inside = {id(g) for g in grid.children}
         for c in self.children:
-            if not any(c is g for g in grid.children):
-                acc = self._combine(em, acc, c.emit(em, pt))
+            if id(c) not in inside:
+                acc = self._combine(em, acc, c.emit(em, p))
         return acc
 
     def _distance(self, p: np.ndarray) -> np.ndarray:
@@ -268,17 +303,35 @@ def product(a: Node, b: Node) -> Node:
     return Product(a, b)
 
 
+def _build(cls: type, nodes: tuple, k: object, blend: str) -> Node:
+    """The n-ary node: an operand that is the same operator with the same blend is
+    spliced in from the left (``s = s | x`` in a loop stays one flat node, O(1) a step);
+    a hard union or intersection of one node object with itself is that node."""
+    if (len(nodes) == 2 and nodes[0] is nodes[1] and cls is not Difference and isinstance(nodes[0], Node)
+            and not isinstance(k, Live) and float(k) < K_MIN):
+        return nodes[0]
+    first = nodes[0] if nodes else None
+    if (len(nodes) >= 2 and isinstance(first, _Boolean) and first._same_op(cls, k, blend)
+            and isinstance(k, (int, float, Live)) and blend in BLENDS
+            and all(isinstance(n, Node) and n is not first for n in nodes[1:])):
+        out = first
+        for n in nodes[1:]:
+            out = out._chained(n)
+        return out
+    return cls(*nodes, k=k, blend=blend)
+
+
 def union(*nodes: Node, k: float = 0.0, blend: str = "quadratic") -> Node:
     """Union of two or more nodes; ``k`` > 0 blends them over that distance: ``blend`` is
     "quadratic" (smooth), "circular" (a quarter-circle fillet) or "chamfer" (a bevel)."""
-    return Union(*nodes, k=k, blend=blend)
+    return _build(Union, nodes, k, blend)
 
 
 def intersection(*nodes: Node, k: float = 0.0, blend: str = "quadratic") -> Node:
     """Intersection of two or more nodes; ``k`` > 0 rounds the seam."""
-    return Intersection(*nodes, k=k, blend=blend)
+    return _build(Intersection, nodes, k, blend)
 
 
 def difference(*nodes: Node, k: float = 0.0, blend: str = "quadratic") -> Node:
     """The first node minus the others; ``k`` > 0 rounds the cut."""
-    return Difference(*nodes, k=k, blend=blend)
+    return _build(Difference, nodes, k, blend)

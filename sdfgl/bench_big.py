@@ -1,0 +1,119 @@
+"""Benchmarks of big scenes: growth with the number of objects, mixed primitive types,
+instanced subtrees, 10^5-deep chains, shared subtrees (DAGs) and big polygons.
+
+Each row says what was built and how long building, compiling (link and first frame)
+and drawing took, beside the steps per ray; frame times are medians of interleaved draws
+(see sdfgl.bench). ``scenes`` are also what the tests and the closing figures use.
+"""
+from __future__ import annotations
+
+import math
+import time
+from typing import Callable
+
+import numpy as np
+
+from .camera import Camera, OrbitCamera
+from .nodes import base as _base
+from .nodes import booleans, primitives, shapes2d
+from .nodes.base import Node
+
+NO_SHADING = {"shadows": False, "ao": False}
+
+
+def growth(n: int, seed: int = 0) -> tuple[Node, Camera]:
+    """The growth scene kind: n spheres of radius 0.15 scattered in a 12 x 2 x 12 box."""
+    rng = np.random.default_rng(seed)
+    pts = rng.uniform((-6, -1, -6), (6, 1, 6), (n, 3))
+    scene = booleans.union(*[primitives.sphere(0.15).translate(p) for p in pts]) if n > 1 else \
+        primitives.sphere(0.15).translate(pts[0])
+    return scene, OrbitCamera(target=(0, 0, 0), distance=14, yaw=30, pitch=35, fov=50)
+
+
+def _random_rotation(rng: np.random.Generator) -> tuple[float, tuple[float, float, float]]:
+    axis = rng.normal(size=3)
+    return float(rng.uniform(0, 360)), tuple(axis / np.linalg.norm(axis))
+
+
+def mixed(n: int, seed: int = 0) -> tuple[Node, Camera]:
+    """n capsules, cones, tori, boxes and spheres, each rotated, in a cube growing with n."""
+    rng = np.random.default_rng(seed)
+    ext = 1.2 * n ** (1 / 3)
+    kinds: list[Callable[[], Node]] = [
+        lambda: primitives.capsule((0, -0.3, 0), (0, 0.3, 0), float(rng.uniform(0.1, 0.2))),
+        lambda: primitives.cone(float(rng.uniform(0.4, 0.7)), float(rng.uniform(0.2, 0.35)), 0.05),
+        lambda: primitives.torus(float(rng.uniform(0.2, 0.35)), 0.08),
+        lambda: primitives.box(tuple(rng.uniform(0.2, 0.5, 3))),
+        lambda: primitives.sphere(float(rng.uniform(0.15, 0.3))),
+    ]
+    parts = []
+    for i in range(n):
+        angle, axis = _random_rotation(rng)
+        parts.append(kinds[i % 5]().rotate(angle, axis).translate(tuple(rng.uniform(-ext, ext, 3))))
+    return booleans.union(*parts), OrbitCamera(distance=3.2 * ext, yaw=30, pitch=25)
+
+
+def twenty_nodes() -> Node:
+    """A 20-node subtree: a little robot of primitives, booleans and moves."""
+    p = primitives
+    body = p.rounded_box((0.4, 0.5, 0.3), 0.05)
+    head = p.sphere(0.18).translate((0, 0.38, 0))
+    eyes = booleans.union(p.sphere(0.04).translate((-0.07, 0.42, 0.15)), p.sphere(0.04).translate((0.07, 0.42, 0.15)))
+    arms = p.capsule((-0.3, 0.15, 0), (0.3, 0.15, 0), 0.05)
+    legs = booleans.union(p.cylinder(0.06, 0.3).translate((-0.1, -0.35, 0)),
+                          p.cylinder(0.06, 0.3).translate((0.1, -0.35, 0)))
+    return booleans.difference(booleans.union(body, head, arms, legs), eyes).color(0.8, 0.5, 0.2)
+
+
+def instances(n: int, seed: int = 0, subtree: Node | None = None) -> tuple[Node, Camera]:
+    """n translated copies of one subtree (the 20-node robot) in a cube growing with n."""
+    rng = np.random.default_rng(seed)
+    ext = 1.0 * n ** (1 / 3)
+    sub = subtree if subtree is not None else twenty_nodes()
+    parts = [sub.translate(tuple(rng.uniform(-ext, ext, 3))) for _ in range(n)]
+    return booleans.union(*parts), OrbitCamera(distance=3.2 * ext, yaw=30, pitch=25)
+
+
+def spheres_like(n: int, seed: int = 0) -> tuple[Node, Camera]:
+    """n spheres where instances(n) puts its copies (the frame-time yardstick)."""
+    return instances(n, seed, primitives.sphere(0.35))
+
+
+def chain(kind: str, n: int) -> tuple[Node, Camera]:
+    """A chain of n operations as a loop writes it: ``s = s | x``, ``s = s.translate(...)``."""
+    s: Node = primitives.sphere(0.5)
+    if kind == "union":
+        for i in range(n):
+            s = s | primitives.sphere(0.02).translate((math.cos(i * 0.01) * 2, (i / n) * 2 - 1, math.sin(i * 0.01) * 2))
+    elif kind == "translate":
+        for _ in range(n):
+            s = s.translate((1e-5, 0, 0))
+    elif kind == "rotate":
+        s = primitives.box((1, 0.5, 0.25))
+        for _ in range(n):
+            s = s.rotate(0.01, (0, 1, 0))
+    elif kind == "mixed":  # union, then move: nothing to fold, the graph is n deep
+        for i in range(n):
+            s = (s | primitives.sphere(0.02).translate((0, 1, 0))).translate((1e-5, 0, 0))
+    else:
+        raise ValueError(kind)
+    return s, OrbitCamera(distance=6, yaw=30, pitch=20)
+
+
+def dag(levels: int) -> tuple[Node, Camera]:
+    """One node object used as both operands of a smooth union, ``levels`` deep (2^levels paths)."""
+    s: Node = primitives.sphere(0.5).union(primitives.box(0.6).translate((0.5, 0, 0)))
+    for _ in range(levels):
+        s = booleans.union(s, s, k=0.01)
+    return s, OrbitCamera(distance=4, yaw=30, pitch=20)
+
+
+def polygon(n: int) -> tuple[Node, Camera]:
+    """An extruded star polygon of n vertices."""
+    a = np.linspace(0, 2 * np.pi, n, endpoint=False)
+    r = 1 + 0.3 * np.cos(12 * a)
+    pts = np.stack([r * np.cos(a), r * np.sin(a)], axis=1)
+    return shapes2d.extrude(shapes2d.polygon(pts), 0.5), OrbitCamera(distance=4, yaw=30, pitch=40)
+
+
+del _base
