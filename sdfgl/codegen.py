@@ -69,7 +69,7 @@ class Emitter:
         self.use_grids = parent.use_grids if parent else True
         self.data: dict[str, np.ndarray] = parent.data if parent else {}  # sampler -> float32 texels
         self._defining: set = set(parent._defining) if parent else set()
-        self.results: dict = {}  # (node key, point, colour) -> result variable, in this function
+        self.results: dict = {}  # (node id, point, colour) -> (node, result variable), in this function
 
     # -- bookkeeping -------------------------------------------------------------------
     def enter(self, node: Node) -> None:
@@ -328,16 +328,23 @@ def _defines(scene: Node, settings: Settings, origin: np.ndarray, live: bool) ->
     return d
 
 
-def shared_subtrees(scene: Node) -> set:
+def shared_subtrees(scene: Node, use_grids: bool = True) -> set:
     """Keys of composite subtrees that occur more than once (each becomes one GLSL function)."""
+    from .nodes.booleans import Union
     counts: dict = {}
     stack = [scene]
     while stack:
         n = stack.pop()
-        if n.children:
+        if n.children and n is not scene:  # the scene itself occurs once
             counts[n.key] = counts.get(n.key, 0) + 1
             if counts[n.key] > 1:
                 continue  # its inside is counted once; the function holds it
+        grid = n.grid if use_grids and isinstance(n, Union) else None
+        if grid is not None:  # instances are data: only their types' code and the other children
+            inside = {id(c) for c in grid.children}
+            stack.extend(c for c in n.children if id(c) not in inside)
+            stack.extend(t.inner for t in grid.types if t.slots is None)
+            continue
         stack.extend(n.children)
     return {k for k, c in counts.items() if c > 1}
 
@@ -378,7 +385,7 @@ def _generate(scene: Node, settings: Settings, origin: Sequence[float], target: 
                                  f"pass ao=False")
     org = np.asarray(origin, dtype=np.float64)
     params: list[Param] = []
-    shared = shared_subtrees(scene)
+    shared = shared_subtrees(scene, settings.grid)
     grids: dict = {}
     helpers: dict = {}
     tex: dict = {}

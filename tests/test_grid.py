@@ -18,7 +18,7 @@ def test_big_union_is_data_and_matches_the_twin(renderer):
     s, _, ext = scattered(GRID_MIN + 40)
     assert s.grid is not None and s.exactness == sg.BOUND
     src = sg.compile(s)
-    assert "g0Dist(" in src and src.count("sdSphere(") == 2  # one loop per type: in map() and mapColor()
+    assert "g0Dist(" in src and src.count("sdSphere(") == 3  # the library function, one loop in map() and one in mapColor()
     pts = np.random.default_rng(1).uniform(-ext - 3, ext + 3, (20000, 3))
     err = np.abs(sg.evaluate(s, pts, renderer=renderer) - s.distance(pts))
     assert err.max() < 1e-5

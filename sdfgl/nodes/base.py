@@ -13,7 +13,7 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..params import Live, Param
-from .traverse import cached, postorder, run_deep
+from .traverse import SHALLOW, cached, depth, postorder, run_deep
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..codegen import Emitter
@@ -31,6 +31,11 @@ def as_points(points: object) -> np.ndarray:
     if p.ndim == 0 or p.shape[-1] != 3:
         raise ParameterError(f"points must have shape (..., 3), got {p.shape}")
     return p
+
+
+def _vec3(x: Any) -> np.ndarray:
+    a = np.array(x, dtype=np.float64)
+    return a if a.shape == (3,) else np.array(np.broadcast_to(a, (3,)))
 
 
 class _Token:
@@ -55,6 +60,14 @@ def _memo_property(name: str, fget: Callable[["Node"], Any]) -> property:
             return fget(self)
         if self.live_params():
             return fget(self)
+        if depth(self) <= SHALLOW or all(slot in c.__dict__ for c in self.children):
+            # shallow: compute directly (children memoise as they are asked, only those needed)
+            d[busy] = True
+            try:
+                d[slot] = getattr(self, name)
+            finally:
+                del d[busy]
+            return d[slot]
         for n in postorder(self, skip=lambda n: slot in n.__dict__):
             n.__dict__[busy] = True
             try:
@@ -203,11 +216,11 @@ class Node:
         vec4 (rgb, distance).
         """
         # the same subtree at the same point, met again in one function: its value is reused
-        memo = (self.key, p, em._colors[-1])
+        memo = (id(self), p, em._colors[-1])
         hit = em.results.get(memo)
         if hit is not None:
-            return hit
-        if self.key in em.shared_keys and self.key not in em._defining:
+            return hit[1]
+        if self.children and em.shared_keys and self.key in em.shared_keys and self.key not in em._defining:
             # a subtree that occurs more than once in the scene is one GLSL function
             fn = em.function(self)
             out = em.assign("float" if em.mode == "dist" else "vec4", f"{fn}({em.point(p)})")
@@ -217,7 +230,7 @@ class Node:
                 out = self._emit(em, p)
             finally:
                 em.leave()
-        em.results[memo] = out
+        em.results[memo] = (self, out)  # the node is held, so its id stays unique
         return out
 
     def _emit(self, em: "Emitter", p: str) -> str:
@@ -265,7 +278,7 @@ class Node:
 
         With live parameters, the box for their current values; without, it is computed once."""
         hit = self.__dict__.get("_bounds_cache")
-        if hit is None and not self.live_params():
+        if hit is None and depth(self) > SHALLOW and not self.live_params():
             # children first, bottom-up, so deep graphs need no recursion
             for n in postorder(self, skip=lambda n: "_bounds_cache" in n.__dict__):
                 if n is not self:
@@ -273,8 +286,7 @@ class Node:
         cached = hit if hit is not None else self.__dict__.get("_bounds_cache")
         if cached is None:
             lo, hi = self._bounds
-            cached = (np.array(np.broadcast_to(np.asarray(lo, dtype=np.float64), (3,))),
-                      np.array(np.broadcast_to(np.asarray(hi, dtype=np.float64), (3,))))
+            cached = (_vec3(lo), _vec3(hi))
             if not self.live_params():
                 self.__dict__["_bounds_cache"] = cached
         return cached[0].copy(), cached[1].copy()

@@ -180,8 +180,8 @@ class Grid:
     def __init__(self, children: list[Node], peeled: list[tuple], types: list[_Type]) -> None:
         self.children, self.types = children, types
         self.peeled = peeled  # (inner, t, R, s, colour) per child
-        los = np.array([c.bounds[0] for c in children])
-        his = np.array([c.bounds[1] for c in children])
+        boxes = np.array([_bounds_of(c) for c in children])
+        los, his = boxes[:, 0], boxes[:, 1]
         lo, hi = los.min(axis=0), his.max(axis=0)
         extent = np.maximum(hi - lo, 1e-9)
         cell = CELL_FACTOR * float(np.prod(extent) / len(children)) ** (1 / 3)
@@ -228,21 +228,24 @@ class Grid:
         sizes = [len(v) for _, v in _slot_values(t.inner)] if t.slots is not None else []
         scale_at, slots_at, color_at, texels = t.layout(sizes)
         out = np.zeros((len(t.members), texels * 4), dtype=np.float64)
-        for row, i in enumerate(t.members):
-            inner, tr, r, s, color = self.peeled[i]
-            tr = tr - self.centre
-            if t.affine:
-                a = r.T / s
-                out[row, 0:12] = np.concatenate([a, (-a @ tr)[:, None]], axis=1).ravel()
-            else:
-                out[row, 0:3] = tr
-            if t.scaled:
-                out[row, scale_at] = s
-            if t.slots is not None:
-                vals = dict(_slot_values(inner))
-                out[row, slots_at:color_at] = np.concatenate([vals[name] for name in t.slots] or [np.zeros(0)])
-            if t.color_in_code is None:
-                out[row, color_at:color_at + 3] = color if color is not None else default_color
+        peeled = [self.peeled[i] for i in t.members]
+        tr = np.array([u[1] for u in peeled]) - self.centre
+        s = np.array([u[3] for u in peeled], dtype=np.float64)
+        if t.affine:
+            a = np.array([u[2] for u in peeled]).transpose(0, 2, 1) / s[:, None, None]
+            b = -np.einsum("nij,nj->ni", a, tr)
+            out[:, 0:12] = np.concatenate([a, b[:, :, None]], axis=2).reshape(-1, 12)
+        else:
+            out[:, 0:3] = tr
+        if t.scaled:
+            out[:, scale_at] = s
+        if t.slots is not None:
+            pos = slots_at
+            for name, size in zip(t.slots, sizes):
+                out[:, pos:pos + size] = np.array([np.ravel(u[0].__dict__[name]) for u in peeled], dtype=np.float64)
+                pos += size
+        if t.color_in_code is None:
+            out[:, color_at:color_at + 3] = [u[4] if u[4] is not None else default_color for u in peeled]
         return out.astype(np.float32).reshape(len(t.members), texels, 4)
 
     def textures(self, default_color: tuple[float, float, float]) -> dict[str, np.ndarray]:
@@ -394,6 +397,12 @@ def _template(prim: Node, slots: list[str], at: int) -> Node:
     return tpl
 
 
+def _bounds_of(node: Node) -> tuple[np.ndarray, np.ndarray]:
+    """node.bounds without the defensive copies (read only)."""
+    hit = node.__dict__.get("_bounds_cache")
+    return hit if hit is not None else node.bounds
+
+
 def _centred(sph: Node) -> Node:
     """A copy of a sphere with its centre at the origin."""
     out = type(sph).__new__(type(sph))
@@ -428,8 +437,8 @@ def build(children: list[Node]) -> Grid | None:
     peeled: list[tuple] = []
     from .primitives import Sphere
     for c in children:
-        lo, hi = c.bounds
-        if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi))):
+        lo, hi = _bounds_of(c)
+        if not (np.isfinite(lo).all() and np.isfinite(hi).all()):
             continue
         u = unwrap(c)
         if u is None:
@@ -439,7 +448,10 @@ def build(children: list[Node]) -> Grid | None:
             # the centre joins the translation: a sphere is one texel (centre, radius)
             u = (_centred(inner), u[1] + u[3] * (u[2] @ inner.c), u[2], u[3], u[4])
             inner = u[0]
-        if inner.live_params() or inner.exactness == IMPLICIT or inner.lipschitz > 1.0:
+        if isinstance(inner, Primitive):
+            if any(isinstance(v, Live) for v in inner.params.values()):
+                continue
+        elif inner.live_params() or inner.exactness == IMPLICIT or inner.lipschitz > 1.0:
             continue
         if isinstance(inner, Primitive):
             cls = type(inner)

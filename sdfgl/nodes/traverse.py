@@ -45,9 +45,13 @@ def postorder(root: "Node", skip: Callable[["Node"], bool] = lambda n: False) ->
 def cached(node: "Node", name: str, compute: Callable[["Node"], T]) -> T:
     """``node.__dict__[name]``, computed bottom-up over the subtree by ``compute`` (which
     may read its children's cached values) without recursion."""
-    hit = node.__dict__.get(name, _MISSING)
+    d = node.__dict__
+    hit = d.get(name, _MISSING)
     if hit is not _MISSING:
         return hit  # type: ignore[return-value]
+    if all(name in c.__dict__ for c in node.children):  # the common case: no walk needed
+        value = d[name] = compute(node)
+        return value
     for n in postorder(node, skip=lambda n: name in n.__dict__):
         n.__dict__[name] = compute(n)
     return node.__dict__[name]
