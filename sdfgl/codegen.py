@@ -9,6 +9,7 @@ Every generated line remembers which node wrote it, so a compile error can name 
 from __future__ import annotations
 
 import contextlib
+import hashlib
 from dataclasses import dataclass
 from typing import Any, Iterator, Sequence
 
@@ -26,6 +27,9 @@ GLSL_VERSION = "#version 330 core"
 FLOAT32_MAX = float(np.finfo(np.float32).max)
 # Stand-in for an infinite bound inside GLSL: finite in float32, so no inf*0 arises.
 GLSL_FAR = 1e30
+# a node with this many constant rows (polygon vertices) keeps them as data, in a texture
+DATA_MIN = 64
+DATA_WIDTH = 1024  # texels per row of a data table (a power of two)
 # methods that share a loop file, told apart by a #define
 MARCH_FILES = {"enhanced": "relaxed", "forward_newton": "newton"}
 
@@ -68,6 +72,7 @@ class Emitter:
         self.grids: dict[int, tuple[str, Any, tuple[float, float, float]]] = parent.grids if parent else {}
         self.use_grids = parent.use_grids if parent else True
         self.data: dict[str, np.ndarray] = parent.data if parent else {}  # sampler -> float32 texels
+        self.data_min = parent.data_min if parent else DATA_MIN  # constants in one node above which they are data
         self._defining: set = set(parent._defining) if parent else set()
         self.results: dict = {}  # (node id, point, colour) -> (node, result variable), in this function
 
@@ -110,6 +115,19 @@ class Emitter:
                      (f"    return {result};", self.owner), ("}", self.owner)]
             self.functions[key] = (name, lines)
         return self.functions[key][0]
+
+    def table(self, values: np.ndarray) -> str:
+        """A sampler holding ``values`` (rows of up to 4 floats, one texel each), declared
+        once per content; the node's GLSL loops over it with texelFetch."""
+        rows = np.asarray(values, dtype=np.float32).reshape(len(values), -1)
+        name = "uT" + hashlib.sha1(rows.tobytes() + bytes([rows.shape[1]])).hexdigest()[:10]
+        if name not in self.data:
+            texels = np.zeros((-(-len(rows) // DATA_WIDTH) * DATA_WIDTH, 4), dtype=np.float32)
+            texels[:len(rows), :rows.shape[1]] = rows
+            self.data[name] = texels.reshape(-1, DATA_WIDTH, 4)
+            self.require("data_table")
+            self.helper(name, f"uniform sampler2D {name};")
+        return name
 
     def helper(self, name: str, code: str) -> None:
         """Include a generated helper function (e.g. a polygon of N vertices) once."""
