@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import contextlib
 import hashlib
+import dataclasses
 from dataclasses import dataclass
 from typing import Any, Iterator, Sequence
 
@@ -29,6 +30,8 @@ FLOAT32_MAX = float(np.finfo(np.float32).max)
 GLSL_FAR = 1e30
 # a node with this many constant rows (polygon vertices) keeps them as data, in a texture
 DATA_MIN = 64
+BUDGET_DATA_MIN = 8  # the same, when map() is over the code budget
+MAX_CODE_SIZE = 3_000_000  # characters of scene code refused even as data (the driver would take many minutes)
 DATA_WIDTH = 1024  # texels per row of a data table (a power of two)
 # methods that share a loop file, told apart by a #define
 MARCH_FILES = {"enhanced": "relaxed", "forward_newton": "newton"}
@@ -41,6 +44,37 @@ def glsl_float(x: float) -> str:
     if not any(ch in s for ch in ".e"):
         s += ".0"
     return s
+
+
+class DataPool:
+    """The float32 texels of every table a shader reads (grid lists, polygon vertices), in
+    one texture: one sampler however many tables (drivers allow only a few samplers)."""
+
+    def __init__(self) -> None:
+        self.chunks: list[np.ndarray] = []
+        self.size = 0
+        self._index: dict[bytes, int] = {}
+
+    def add(self, texels: np.ndarray) -> int:
+        """Append (n, 4) float32 texels (once per content); return the first one's index."""
+        arr = np.ascontiguousarray(texels, dtype=np.float32).reshape(-1, 4)
+        key = hashlib.sha1(arr.tobytes()).digest() + len(arr).to_bytes(8, "little")
+        if key not in self._index:
+            self._index[key] = self.size
+            self.chunks.append(arr)
+            self.size += len(arr)
+        return self._index[key]
+
+    def texture(self) -> tuple[tuple[str, np.ndarray], ...]:
+        """("uData", (rows, DATA_WIDTH, 4)) or nothing."""
+        if not self.chunks:
+            return ()
+        if self.size >= 2 ** 24:
+            raise ParameterError(f"scene: its data tables hold {self.size} texels, over the limit of 2^24 "
+                                 f"(float32 indices); use fewer or smaller instances")
+        flat = np.zeros((-(-self.size // DATA_WIDTH) * DATA_WIDTH, 4), dtype=np.float32)
+        flat[:self.size] = np.concatenate(self.chunks)
+        return (("uData", flat.reshape(-1, DATA_WIDTH, 4)),)
 
 
 class Emitter:
@@ -71,7 +105,7 @@ class Emitter:
         self.detail = parent.detail if parent else False  # emitting the normals-only field
         self.grids: dict[int, tuple[str, Any, tuple[float, float, float]]] = parent.grids if parent else {}
         self.use_grids = parent.use_grids if parent else True
-        self.data: dict[str, np.ndarray] = parent.data if parent else {}  # sampler -> float32 texels
+        self.data: DataPool = parent.data if parent else DataPool()  # tables the shader reads
         self.data_min = parent.data_min if parent else DATA_MIN  # constants in one node above which they are data
         self._defining: set = set(parent._defining) if parent else set()
         self.results: dict = {}  # (node id, point, colour) -> (node, result variable), in this function
@@ -116,18 +150,14 @@ class Emitter:
             self.functions[key] = (name, lines)
         return self.functions[key][0]
 
-    def table(self, values: np.ndarray) -> str:
-        """A sampler holding ``values`` (rows of up to 4 floats, one texel each), declared
-        once per content; the node's GLSL loops over it with texelFetch."""
+    def table(self, values: np.ndarray) -> int:
+        """The index of the first texel of ``values`` (rows of up to 4 floats, one texel
+        each) in the shader's one data texture; GLSL reads texel i with dataFetch(i)."""
         rows = np.asarray(values, dtype=np.float32).reshape(len(values), -1)
-        name = "uT" + hashlib.sha1(rows.tobytes() + bytes([rows.shape[1]])).hexdigest()[:10]
-        if name not in self.data:
-            texels = np.zeros((-(-len(rows) // DATA_WIDTH) * DATA_WIDTH, 4), dtype=np.float32)
-            texels[:len(rows), :rows.shape[1]] = rows
-            self.data[name] = texels.reshape(-1, DATA_WIDTH, 4)
-            self.require("data_table")
-            self.helper(name, f"uniform sampler2D {name};")
-        return name
+        texels = np.zeros((len(rows), 4), dtype=np.float32)
+        texels[:, :rows.shape[1]] = rows
+        self.require("data_table")
+        return self.data.add(texels)
 
     def helper(self, name: str, code: str) -> None:
         """Include a generated helper function (e.g. a polygon of N vertices) once."""
@@ -216,6 +246,9 @@ class ShaderSource:
     params: tuple[Param, ...] = ()
     live_bounds: bool = False
     data: tuple[tuple[str, np.ndarray], ...] = ()  # sampler name -> float32 RGBA texels (rows, width, 4)
+    code_size: int = 0  # characters of scene code (map(), mapColor(), their functions and helpers)
+    grid_min: int = 0   # the fewest instances a union kept as data had to have
+    choice: str = "code"  # how the scene was written: "code", or "data (...)" when over the budget
 
     def owner_of(self, line: int) -> str:
         """Who wrote 1-based source line ``line``."""
@@ -239,6 +272,10 @@ class _Builder:
               data: Sequence[tuple[str, np.ndarray]] = ()) -> ShaderSource:
         return ShaderSource("\n".join(self.lines) + "\n", tuple(self.owners), tuple(params), live_bounds,
                             tuple(data))
+
+    def size_since(self, start: int) -> int:
+        """Characters added since line ``start``."""
+        return sum(len(x) + 1 for x in self.lines[start:])
 
 
 def _helpers(b: _Builder, em: Emitter, done: set[str]) -> None:
@@ -368,9 +405,11 @@ def shared_subtrees(scene: Node, use_grids: bool = True) -> set:
 
 
 def _emit_map(scene: Node, mode: str, origin: np.ndarray, params: list[Param], shared: set,
-              grids: dict, use_grids: bool, helpers: dict, data: dict, detail: bool = False) -> tuple[Emitter, str]:
+              grids: dict, use_grids: bool, helpers: dict, data: DataPool, data_min: int,
+              detail: bool = False) -> tuple[Emitter, str]:
     em = Emitter(mode, params=params)
     em.data = data
+    em.data_min = data_min
     em.helpers = helpers
     em.detail = detail
     em.shared_keys = shared
@@ -393,6 +432,7 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
 
 
 def _generate(scene: Node, settings: Settings, origin: Sequence[float], target: str) -> ShaderSource:
+    """generate(), within the code-size budget."""
     if scene.exactness == IMPLICIT and target == "render":
         if settings.method in DISTANCE_METHODS:
             raise ParameterError(
@@ -402,15 +442,53 @@ def _generate(scene: Node, settings: Settings, origin: Sequence[float], target: 
             raise ParameterError(f"{scene.label()} is an implicit field: ambient occlusion needs distances; "
                                  f"pass ao=False")
     org = np.asarray(origin, dtype=np.float64)
+    from .nodes.grid import GRID_MIN
+    if settings.grid_min is not None:
+        _unions_as_data(scene, settings.grid_min)
+    src = _generate_once(scene, settings, org, target)
+    src = dataclasses.replace(src, grid_min=settings.grid_min or GRID_MIN)
+    if src.code_size <= settings.code_budget or not settings.grid or settings.grid_min is not None:
+        return _checked(src)
+    # over the budget: every hard union of two or more instances becomes data, and every
+    # node with more than a few constant rows keeps them in a texture
+    _unions_as_data(scene, 2)
+    small = _generate_once(scene, settings, org, target, data_min=BUDGET_DATA_MIN)
+    return _checked(dataclasses.replace(
+        small, grid_min=2, choice=f"data (scene code of {src.code_size} characters was over the code budget of "
+                                  f"{settings.code_budget}; as data {small.code_size})"))
+
+
+def _unions_as_data(scene: Node, least: int) -> None:
+    """Keep every hard union of ``least`` or more instances as data (the twin follows)."""
+    from .nodes.booleans import Union
+    from .nodes.traverse import postorder
+    nodes = list(postorder(scene))
+    if any([n.as_data(least) for n in nodes if isinstance(n, Union)]):
+        for n in nodes:  # exactness may have changed (a grid's cap makes a bound)
+            for k in ("_m_exactness", "_m_lipschitz"):
+                n.__dict__.pop(k, None)
+
+
+def _checked(src: ShaderSource) -> ShaderSource:
+    if src.code_size > MAX_CODE_SIZE:
+        raise ParameterError(f"scene: its generated code has {src.code_size} characters, over the limit of "
+                             f"{MAX_CODE_SIZE} that a GL driver compiles in reasonable time (e.g. a chain of "
+                             f"operations nested 10^5 deep with nothing to fold or keep as data); build big scenes "
+                             f"as unions of instances, or flatten the chain")
+    return src
+
+
+def _generate_once(scene: Node, settings: Settings, org: np.ndarray, target: str,
+                   data_min: int = DATA_MIN) -> ShaderSource:
     params: list[Param] = []
     shared = shared_subtrees(scene, settings.grid)
     grids: dict = {}
     helpers: dict = {}
-    tex: dict = {}
-    dist, dist_result = _emit_map(scene, "dist", org, params, shared, grids, settings.grid, helpers, tex)
-    color, color_result = (_emit_map(scene, "color", org, params, shared, grids, settings.grid, helpers, tex)
-                           if target == "render" else (None, ""))
-    detail, detail_result = (_emit_map(scene, "dist", org, params, shared, grids, settings.grid, helpers, tex, True)
+    tex = DataPool()
+    ems = (org, params, shared, grids, settings.grid, helpers, tex, data_min)
+    dist, dist_result = _emit_map(scene, "dist", *ems)
+    color, color_result = _emit_map(scene, "color", *ems) if target == "render" else (None, "")
+    detail, detail_result = (_emit_map(scene, "dist", *ems, True)
                              if target == "render" and scene.has_detail else (None, ""))
     libs = list(dict.fromkeys(dist.libs + (color.libs if color else []) + (detail.libs if detail else [])))
     live = bool(params)
@@ -427,18 +505,17 @@ def _generate(scene: Node, settings: Settings, origin: Sequence[float], target: 
     b.add_file("common")
     for name in libs:
         b.add_file(f"lib/{name}")
-    if grids:
-        from .nodes.grid import LIST_WIDTH
-        b.add(f"#define GRID_LIST_WIDTH {LIST_WIDTH}\n#define GRID_LIST_SHIFT {LIST_WIDTH.bit_length() - 1}", "(grid)")
+    start = len(b.lines)
     for name, code in helpers.items():
         b.add(code, f"(generated helper {name})")
-    data = list(tex.items())
+    data = tex.texture()
     done: set[str] = set()
     _helpers(b, dist, done)
     _function(b, "float map(vec3 p)", dist, dist_result, "{}")
     if target == "evaluate":
+        size = b.size_since(start)
         b.add_file("evaluate_main")
-        return b.build(params, live, data)
+        return dataclasses.replace(b.build(params, live, data), code_size=size)
     assert color is not None
     _helpers(b, color, done)
     _function(b, "vec3 mapColor(vec3 p)", color, color_result, "{}.rgb")
@@ -446,6 +523,7 @@ def _generate(scene: Node, settings: Settings, origin: Sequence[float], target: 
         _helpers(b, detail, done)
         _function(b, "float mapDetail(vec3 p)", detail, detail_result, "{}")
         b.add("#define DETAIL_NORMALS", "(codegen)")
+    size = b.size_since(start)
     b.add_file("refine")
     marched = not (settings.analytic and analytic_shape(scene) is not None)
     if marched and settings.method in ("newton", "forward_newton", "reference"):
@@ -468,7 +546,7 @@ def _generate(scene: Node, settings: Settings, origin: Sequence[float], target: 
     if settings.debug:
         b.add_file("debug")
     b.add_file("render_main")
-    return b.build(params, live, data)
+    return dataclasses.replace(b.build(params, live, data), code_size=size)
 
 
 def compile(scene: Node, **settings: object) -> str:  # noqa: A001 - public API name

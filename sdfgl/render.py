@@ -1,6 +1,7 @@
 """render(): scene + camera + settings -> program -> one draw -> RenderResult."""
 from __future__ import annotations
 
+import dataclasses
 import math
 import time
 from dataclasses import dataclass, field
@@ -186,7 +187,7 @@ class Renderer:
         self.ctx.finish()
         t3 = time.perf_counter()
         res = RenderResult(color=np.ascontiguousarray(targets.read("color")[..., :3]), source=source,
-                           settings=st, camera=cam)
+                           settings=dataclasses.replace(st, grid_min=source.grid_min), camera=cam)
         if "depth" in st.outputs:
             d = targets.read("depth")[..., 0].copy()
             d[d < 0] = np.inf

@@ -43,6 +43,10 @@ class Settings:
     grid: keep big unions of simple primitives as data with a cell grid (False writes
         them out as code, to compare).
     analytic: intersect a lone sphere or plane in closed form instead of marching it.
+    grid_min: the fewest instances a hard union keeps as data (None: automatic, 32, or 2
+        once the scene's code passes code_budget; the result's settings say which).
+    code_budget: characters of generated scene code (map(), mapColor() and their
+        functions) past which unions and big constant tables become data by themselves.
     """
 
     aa: int = 1
@@ -61,6 +65,8 @@ class Settings:
     debug: Any = None
     grid: bool = True
     analytic: bool = True
+    grid_min: Any = None
+    code_budget: int = 60000
 
     def __post_init__(self) -> None:
         if isinstance(self.aa, bool) or not isinstance(self.aa, int) or not 1 <= self.aa <= 4:
@@ -105,6 +111,12 @@ class Settings:
             object.__setattr__(self, name, float(val))
         if self.debug not in DEBUG_VIEWS:
             raise ParameterError(f"setting 'debug' must be None, 'steps', 'normal' or 'depth', got {self.debug!r}")
+        for name, low in (("grid_min", 2), ("code_budget", 1000)):
+            val = getattr(self, name)
+            if (val is not None or name == "code_budget") and (isinstance(val, bool) or not isinstance(val, int)
+                                                               or val < low):
+                raise ParameterError(f"setting '{name}' must be an integer >= {low}"
+                                     f"{' or None' if name == 'grid_min' else ''}, got {val!r}")
         outs = (self.outputs,) if isinstance(self.outputs, str) else tuple(self.outputs)
         bad = [o for o in outs if o not in OUTPUTS]
         if bad:

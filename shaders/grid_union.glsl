@@ -5,12 +5,8 @@
 // cell) and at least as far as the grid box, so the min of the listed ones and that cap
 // is a distance bound equal to the exact min wherever the min is below the cap.
 // GRIDID is replaced per union; p is relative to the grid's centre.
-uniform sampler2D uGRIDIDCells;  // per cell, per type pair: (first, count, first, count)
-uniform sampler2D uGRIDIDList;   // instance records, GRID_LIST_WIDTH texels per row
-
-vec4 GRIDIDFetch(sampler2D s, int i) {
-    return texelFetch(s, ivec2(i & (GRID_LIST_WIDTH - 1), i >> GRID_LIST_SHIFT), 0);
-}
+// Its tables are in the shader's data texture (lib/data_table.glsl): from GRIDID_CELLS,
+// per cell and type pair (first, count, first, count); from GRIDID_LIST, the records.
 
 // The index of p's cell (clamped to the grid), and the cap on unlisted instances.
 int GRIDIDCell(vec3 p, out float cap) {

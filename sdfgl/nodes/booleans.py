@@ -14,6 +14,7 @@ from ..errors import ParameterError
 from ..params import Live
 from . import validate as v
 from .base import BOUND, EXACT, IMPLICIT, Node
+from .grid import GRID_MIN
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..codegen import Emitter
@@ -157,8 +158,20 @@ class Union(_Boolean):
     def grid(self) -> "Grid | None":
         if "_grid" not in self.__dict__:
             from .grid import build
-            self.__dict__["_grid"] = build(list(self.children)) if self._hard else None
+            self.__dict__["_grid"] = (build(list(self.children), self.__dict__.get("_grid_min"))
+                                      if self._hard else None)
         return self.__dict__["_grid"]
+
+    def as_data(self, min_children: int) -> bool:
+        """Keep this union as data from ``min_children`` instances on (the code-size budget
+        lowers it); True if that changes the node's field (it then has a grid's cap)."""
+        if not self._hard or self.__dict__.get("_grid_min", GRID_MIN) <= min_children:
+            return False
+        had = self.grid
+        self.__dict__["_grid_min"] = min_children
+        for k in ("_grid", "_m_exactness", "_m_lipschitz"):
+            self.__dict__.pop(k, None)
+        return self.grid is not had
 
     def _emit(self, em: "Emitter", p: str) -> str:
         grid = self.grid if em.use_grids else None
@@ -172,8 +185,15 @@ class Union(_Boolean):
         return acc
 
     def _distance(self, p: np.ndarray) -> np.ndarray:
-        d = super()._distance(p)
-        return d if self.grid is None else np.minimum(d, self.grid.cap(p))
+        grid = self.grid
+        if grid is None:
+            return super()._distance(p)
+        d = grid.field(p)  # what the shader computes: the listed instances and the cap
+        inside = {id(g) for g in grid.children}
+        for c in self.children:
+            if id(c) not in inside:
+                d = np.minimum(d, c._distance(p))
+        return d
 
     @property
     def exactness(self) -> str:

@@ -205,11 +205,29 @@ class Grid:
         box = np.sqrt(np.sum(np.maximum(k, 0.0) ** 2, axis=-1)) + np.minimum(k.max(axis=-1), 0.0)
         return np.maximum(self.margin - np.sqrt(np.sum(outside ** 2, axis=-1)), box)
 
+    def field(self, p: np.ndarray) -> np.ndarray:
+        """The float64 twin of the shader's loop: min over the instances listed in each
+        point's cell, and the cap (for exact instances, min(all, cap))."""
+        flat = p.reshape(-1, 3)
+        cell = np.clip(np.floor((flat - self.lo) / self.cell), 0, self.dims - 1).astype(np.int64)
+        d = self.cap(flat)
+        a, b = self._ranges()
+        for i, c in enumerate(self.children):
+            m = np.all((cell >= a[i]) & (cell <= b[i]), axis=1)
+            if m.any():
+                d[m] = np.minimum(d[m], c._distance(flat[m]))
+        return d.reshape(p.shape[:-1])
+
+    def _ranges(self) -> tuple[np.ndarray, np.ndarray]:
+        """Per instance, the first and last cell (per axis) whose list holds it."""
+        a = np.clip(np.floor((self._los - self.margin - self.lo) / self.cell).astype(np.int64), 0, self.dims - 1)
+        b = np.clip(np.floor((self._his + self.margin - self.lo) / self.cell).astype(np.int64), 0, self.dims - 1)
+        return a, b
+
     # -- data ------------------------------------------------------------------------
     def _entries(self) -> tuple[np.ndarray, np.ndarray]:
         """(cell index, child index) of every list entry, sorted by cell."""
-        a = np.clip(np.floor((self._los - self.margin - self.lo) / self.cell).astype(np.int64), 0, self.dims - 1)
-        b = np.clip(np.floor((self._his + self.margin - self.lo) / self.cell).astype(np.int64), 0, self.dims - 1)
+        a, b = self._ranges()
         n = b - a + 1
         counts = n.prod(axis=1)
         child = np.repeat(np.arange(len(self.children)), counts)
@@ -301,18 +319,20 @@ class Grid:
         key = ("grid", gid, em.mode, em.detail)
         if key not in em.functions:
             default = em.grids[id(self)][2]
-            for name, arr in self.textures(default).items():
-                em.data[f"u{gid}{name}"] = arr
+            tex = self.textures(default)
+            em.require("data_table")
+            cells, lists = em.data.add(tex["Cells"]), em.data.add(tex["List"])
             head = shaderlib.read("grid_union").replace("GRIDID", gid)
             defs = (f"#define {gid}_LO vec3({', '.join(em.num(x) for x in self.lo - self.centre)})\n"
                     f"#define {gid}_CELL {em.num(self.cell)}\n"
                     f"#define {gid}_MARGIN {em.num(self.margin)}\n"
                     f"#define {gid}_DIMS ivec3({', '.join(str(int(x)) for x in self.dims)})\n"
-                    f"#define {gid}_PER_CELL {-(-len(self.types) // 2)}")
+                    f"#define {gid}_PER_CELL {-(-len(self.types) // 2)}\n"
+                    f"#define {gid}_CELLS {cells}\n#define {gid}_LIST {lists}")
             em.helper(f"{gid}_grid", defs + "\n" + head)
             color = em.mode == "color"
             owner = f"union of {len(self.children)} instances ({gid})"
-            body = [(f"    vec4 s{j} = {gid}Fetch(u{gid}Cells, cell + {j});", owner)
+            body = [(f"    vec4 s{j} = dataFetch({gid}_CELLS + cell + {j});", owner)
                     for j in range(-(-len(self.types) // 2))]
             for ti, t in enumerate(self.types):
                 body += self._loop(em, t, ti, color, owner)
@@ -342,9 +362,9 @@ class Grid:
         lines.append(f"    int first = int({first});")
         lines.append(f"    int count = int({count});")
         lines.append("    for (int k = 0; k < count; k++) {")
-        lines.append(f"        int e = first + k * {texels};")
+        lines.append(f"        int e = {gid}_LIST + first + k * {texels};")
         for j in range(need):
-            lines.append(f"        vec4 d{j} = {gid}Fetch(u{gid}List, e + {j});")
+            lines.append(f"        vec4 d{j} = dataFetch(e + {j});")
         if t.affine:
             lines.append("        vec3 q = vec3(dot(d0.xyz, p) + d0.w, dot(d1.xyz, p) + d1.w, dot(d2.xyz, p) + d2.w);")
         else:
@@ -426,10 +446,11 @@ def _primitive_slots(prim: Primitive) -> list[str] | None:
     return names
 
 
-def build(children: list[Node]) -> Grid | None:
-    """A grid for a union's children if at least GRID_MIN of them are instances (those
-    that are not stay code beside it)."""
-    if len(children) < GRID_MIN:
+def build(children: list[Node], min_children: int | None = None) -> Grid | None:
+    """A grid for a union's children if at least ``min_children`` (default GRID_MIN) of
+    them are instances (those that are not stay code beside it)."""
+    least = GRID_MIN if min_children is None else min_children
+    if len(children) < least:
         return None
     types: dict[tuple, _Type] = {}
     slot_cache: dict[type, list[str] | None] = {}
@@ -481,7 +502,7 @@ def build(children: list[Node]) -> Grid | None:
             t.affine = True
         kept.append(c)
         peeled.append(u)
-    if len(kept) < GRID_MIN:
+    if len(kept) < least:
         return None
     return Grid(kept, peeled, list(types.values()))
 

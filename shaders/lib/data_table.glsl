@@ -1,3 +1,7 @@
-// Data tables (sdfgl.codegen.Emitter.table): texel i of a table lies at (i % width, i / width).
-#define POLY_DATA_WIDTH 1024
-#define POLY_DATA_SHIFT 10
+// The shader's data tables (sdfgl.codegen.DataPool): one texture, texel i at
+// (i % DATA_WIDTH, i / DATA_WIDTH), read by index.
+uniform sampler2D uData;
+
+vec4 dataFetch(int i) {
+    return texelFetch(uData, ivec2(i & 1023, i >> 10), 0);
+}
