@@ -31,6 +31,7 @@ GLSL_FAR = 1e30
 # a node with this many constant rows (polygon vertices) keeps them as data, in a texture
 DATA_MIN = 64
 BUDGET_DATA_MIN = 8  # the same, when map() is over the code budget
+BUDGET_GRID_MIN = 8  # over the budget, unions of this many instances become data
 MAX_CODE_SIZE = 3_000_000  # characters of scene code refused even as data (the driver would take many minutes)
 DATA_WIDTH = 1024  # texels per row of a data table (a power of two)
 # methods that share a loop file, told apart by a #define
@@ -451,22 +452,44 @@ def _generate(scene: Node, settings: Settings, origin: Sequence[float], target: 
         return _checked(src)
     # over the budget: every hard union of two or more instances becomes data, and every
     # node with more than a few constant rows keeps them in a texture
-    _unions_as_data(scene, 2)
+    before = _unions_as_data(scene, BUDGET_GRID_MIN)
     small = _generate_once(scene, settings, org, target, data_min=BUDGET_DATA_MIN)
+    if small.code_size >= src.code_size:  # nothing to gain: the scene stays code
+        _restore(scene, before)
+        return _checked(src)
     return _checked(dataclasses.replace(
-        small, grid_min=2, choice=f"data (scene code of {src.code_size} characters was over the code budget of "
-                                  f"{settings.code_budget}; as data {small.code_size})"))
+        small, grid_min=BUDGET_GRID_MIN,
+        choice=f"data (scene code of {src.code_size} characters was over the code budget of "
+               f"{settings.code_budget}; as data {small.code_size})"))
 
 
-def _unions_as_data(scene: Node, least: int) -> None:
-    """Keep every hard union of ``least`` or more instances as data (the twin follows)."""
+def _unions_as_data(scene: Node, least: int) -> dict:
+    """Keep every hard union of ``least`` or more instances as data (the twin follows);
+    return what _restore needs to undo it."""
     from .nodes.booleans import Union
     from .nodes.traverse import postorder
     nodes = list(postorder(scene))
-    if any([n.as_data(least) for n in nodes if isinstance(n, Union)]):
-        for n in nodes:  # exactness may have changed (a grid's cap makes a bound)
-            for k in ("_m_exactness", "_m_lipschitz"):
-                n.__dict__.pop(k, None)
+    before = {id(n): (n, n.__dict__.get("_grid_min")) for n in nodes if isinstance(n, Union)}
+    if any([n.as_data(least) for n, _ in before.values()]):
+        _forget_exactness(nodes)
+    return before
+
+
+def _restore(scene: Node, before: dict) -> None:
+    from .nodes.traverse import postorder
+    for n, old in before.values():
+        if n.__dict__.get("_grid_min") != old:
+            n.__dict__.pop("_grid_min", None)
+            if old is not None:
+                n.__dict__["_grid_min"] = old
+            n.__dict__.pop("_grid", None)
+    _forget_exactness(list(postorder(scene)))
+
+
+def _forget_exactness(nodes: list) -> None:
+    for n in nodes:  # exactness may have changed (a grid's cap makes a bound)
+        for k in ("_m_exactness", "_m_lipschitz"):
+            n.__dict__.pop(k, None)
 
 
 def _checked(src: ShaderSource) -> ShaderSource:

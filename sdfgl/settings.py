@@ -43,7 +43,7 @@ class Settings:
     grid: keep big unions of simple primitives as data with a cell grid (False writes
         them out as code, to compare).
     analytic: intersect a lone sphere or plane in closed form instead of marching it.
-    grid_min: the fewest instances a hard union keeps as data (None: automatic, 32, or 2
+    grid_min: the fewest instances a hard union keeps as data (None: automatic, 32, or 8
         once the scene's code passes code_budget; the result's settings say which).
     code_budget: characters of generated scene code (map(), mapColor() and their
         functions) past which unions and big constant tables become data by themselves.
