@@ -350,6 +350,9 @@ def run(quick: bool, size: tuple[int, int] | None, out: Path, progress: bool = T
     model = run_model((160, 120) if quick else (320, 240), min(frames, 5), warmup,
                       (16, 64, 256) if quick else (16, 64, 256, 1024), progress)
 
+    from .bench_big import run_big
+    big = run_big(quick, progress)
+
     out.mkdir(parents=True, exist_ok=True)
     md = "\n\n".join([
         f"Machine: {platform.machine()}, {describe(renderer.ctx)}; size {size[0]}x{size[1]}, "
@@ -359,6 +362,7 @@ def run(quick: bool, size: tuple[int, int] | None, out: Path, progress: bool = T
         "## Seed thesis tables beside ours\n\n" + seed_table(variants),
         "## Cost of each feature #define\n\n" + feature_table(features),
         "## Model only what a scene needs\n\n" + model,
+        "## Big scenes\n\n" + big,
     ])
     (out / "bench.md").write_text(md + "\n")
     data = {"size": size, "frames": frames, "warmup": warmup, "gl": describe(renderer.ctx),

@@ -14,7 +14,6 @@ from typing import Callable
 import numpy as np
 
 from .camera import Camera, OrbitCamera
-from .nodes import base as _base
 from .nodes import booleans, primitives, shapes2d
 from .nodes.base import Node
 
@@ -116,4 +115,53 @@ def polygon(n: int) -> tuple[Node, Camera]:
     return shapes2d.extrude(shapes2d.polygon(pts), 0.5), OrbitCamera(distance=4, yaw=30, pitch=40)
 
 
-del _base
+def _timed(fn: Callable[[], object]) -> tuple[object, float]:
+    t0 = time.perf_counter()
+    out = fn()
+    return out, time.perf_counter() - t0
+
+
+def run_big(quick: bool, progress: bool = False) -> str:
+    """Every big-scene row; return the markdown section."""
+    from .bench import FrameTimer, Progress, Variant, time_interleaved
+    from .render import Renderer
+    renderer = Renderer()
+    size = (320, 240)
+    timer = FrameTimer(renderer, size)
+    frames, warmup = (3, 1) if quick else (5, 2)
+    rows = ["| scene | objects | build s | link ms | first frame ms | frame ms (median) | ratio | steps/px | "
+            "code chars | how |", "|---|---|---|---|---|---|---|---|---|---|"]
+
+    def measure(group: list[tuple[str, int, Callable[[], tuple[Node, Camera]]]], base: int = 0) -> None:
+        vs = []
+        for name, n, make in group:
+            (scene, cam), build = _timed(make)  # type: ignore[misc]
+            vs.append(Variant(name, str(n), dict(NO_SHADING), scene, cam, result={"build_s": build}))
+        time_interleaved(timer, vs, frames, warmup, Progress(0, False))
+        ref = vs[base].result["frame_ms_median"]
+        for v in vs:
+            res = renderer.render(v.node, v.camera, size, outputs=("color", "steps"), **v.settings)
+            r = v.result
+            src = r["_prog"][2]
+            rows.append(f"| {v.scene} | {v.label} | {r['build_s']:.2f} | {1000 * r['compile_s']:.0f} | "
+                        f"{1000 * r['first_frame_s']:.0f} | {r['frame_ms_median']:.1f} | "
+                        f"{r['frame_ms_median'] / ref:.2f} | {float(res.steps.mean()):.2f} | {src.code_size} | "
+                        f"{src.choice}, grid_min {src.grid_min} |")
+
+    sizes = (16, 256) if quick else (16, 256, 1024)
+    measure([("growth: spheres r 0.15 in 12x2x12", n, lambda n=n: growth(n)) for n in sizes])
+    n_inst = 200 if quick else 1000
+    measure([(f"{n_inst} spheres (yardstick)", n_inst, lambda: spheres_like(n_inst)),
+             (f"{n_inst} moved copies of a 20-node subtree", n_inst, lambda: instances(n_inst))])
+    n_mixed = 500 if quick else 5000
+    measure([("mixed rotated capsules, cones, tori, boxes, spheres", n_mixed, lambda: mixed(n_mixed))])
+    depth = 10 ** 4 if quick else 10 ** 5
+    measure([(f"chain of {depth} {kind}s", depth, lambda kind=kind: chain(kind, depth))
+             for kind in ("union", "translate", "rotate")])
+    measure([("one node as both operands, 30 levels (2^30 paths)", 30, lambda: dag(30))])
+    measure([(f"extruded polygon of {n} vertices", n, lambda n=n: polygon(n)) for n in ((2000,) if quick else (2000, 10000))])
+    return ("Size 320x240, shadows and AO off, frames interleaved within each group; 'build' is the Python "
+            "that makes the scene, 'link' generating the source plus the driver's compile and link, 'first "
+            "frame' adds llvmpipe's code generation; 'ratio' is to the group's first row; 'how' is the "
+            "code/data choice in the shader source (grid_min: the fewest instances a union kept as data had "
+            "to have).\n\n" + "\n".join(rows))

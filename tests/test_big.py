@@ -116,8 +116,8 @@ def test_grid_union_images_match_code(renderer):
 def test_big_polygons_are_data(renderer):
     small, _ = bench_big.polygon(20)
     big, cam = bench_big.polygon(500)
-    assert "vec2[500]" not in sg.compile(big) and "sdPolygonData" in sg.compile(big)
-    assert "vec2[20]" in sg.compile(small)
+    assert "vec2[500]" not in sg.compile(big) and "sdPolygonGrid" in sg.compile(big)
+    assert "vec2[20]" in sg.compile(small) and big.exactness == sg.BOUND and small.exactness == sg.EXACT
     pts = np.random.default_rng(5).uniform(-1.5, 1.5, (3000, 3))
     assert _parity(big, renderer, pts) < 1e-5
     res = renderer.render(big, cam, (32, 24), shadows=False, ao=False, outputs=("color", "depth"))

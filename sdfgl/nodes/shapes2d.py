@@ -7,9 +7,10 @@ import numpy as np
 
 from ..errors import ParameterError
 from . import validate as v
-from .base import EXACT, Node
+from .base import BOUND, EXACT, Node
 
 if TYPE_CHECKING:  # pragma: no cover
+    from .polygrid import PolygonGrid
     from ..codegen import Emitter
 
 
@@ -112,6 +113,11 @@ class Polygon(Shape2D):
     def expr(self, em: "Emitter", q: str) -> str:
         from .. import shaderlib
         n = len(self.v)
+        grid = self.grid
+        if grid is not None:  # many vertices: edges listed per cell of a 2D grid
+            em.require("sd_polygon_grid")
+            cells, edges = em.table(grid.cells), em.table(grid.edges)
+            return f"sdPolygonGrid({q}, {grid.defines(em, 'g', cells, edges)})"
         if n >= em.data_min:  # vertices as data: a loop over a texture, not an unrolled array
             em.require("sd_polygon_data")
             return f"sdPolygonData({q}, {em.table(self.v)}, {n})"
@@ -119,7 +125,20 @@ class Polygon(Shape2D):
         verts = ", ".join(em.vec(p) for p in self.v)
         return f"sdPolygon{n}({q}, vec2[{n}]({verts}))"
 
+    @property
+    def grid(self) -> "PolygonGrid | None":
+        """The edge grid of a polygon with at least GRID_VERTICES vertices, else None."""
+        from .polygrid import GRID_VERTICES, PolygonGrid
+        if "_grid" not in self.__dict__:
+            self.__dict__["_grid"] = PolygonGrid(self.v) if len(self.v) >= GRID_VERTICES else None
+        return self.__dict__["_grid"]
+
     def distance2(self, q: np.ndarray) -> np.ndarray:
+        d = self._exact2(q)
+        grid = self.grid
+        return d if grid is None else np.sign(d) * np.minimum(np.abs(d), grid.cap(q))
+
+    def _exact2(self, q: np.ndarray) -> np.ndarray:
         v = self.v
         d = np.sum((q - v[0]) ** 2, axis=-1)
         s = np.ones(q.shape[:-1])
@@ -157,7 +176,7 @@ class Extrude(Node):
 
     @property
     def exactness(self) -> str:
-        return EXACT
+        return BOUND if getattr(self.shape, "grid", None) is not None else EXACT
 
     def _emit(self, em: "Emitter", p: str) -> str:
         em.require("op_extrude")
@@ -193,7 +212,7 @@ class Revolve(Node):
 
     @property
     def exactness(self) -> str:
-        return EXACT
+        return BOUND if getattr(self.shape, "grid", None) is not None else EXACT
 
     def _emit(self, em: "Emitter", p: str) -> str:
         pt = em.point(p)
