@@ -146,7 +146,7 @@ def run_big(quick: bool, progress: bool = False) -> str:
             rows.append(f"| {v.scene} | {v.label} | {r['build_s']:.2f} | {1000 * r['compile_s']:.0f} | "
                         f"{1000 * r['first_frame_s']:.0f} | {r['frame_ms_median']:.1f} | "
                         f"{r['frame_ms_median'] / ref:.2f} | {float(res.steps.mean()):.2f} | {src.code_size} | "
-                        f"{src.choice}, grid_min {src.grid_min} |")
+                        f"{src.choice}; {src.data_unions} union(s) as data, grid_min {src.grid_min} |")
 
     sizes = (16, 256) if quick else (16, 256, 1024)
     measure([("growth: spheres r 0.15 in 12x2x12", n, lambda n=n: growth(n)) for n in sizes])

@@ -250,6 +250,7 @@ class ShaderSource:
     code_size: int = 0  # characters of scene code (map(), mapColor(), their functions and helpers)
     grid_min: int = 0   # the fewest instances a union kept as data had to have
     choice: str = "code"  # how the scene was written: "code", or "data (...)" when over the budget
+    data_unions: int = 0  # unions kept as data (grids) in this shader
 
     def owner_of(self, line: int) -> str:
         """Who wrote 1-based source line ``line``."""
@@ -538,7 +539,7 @@ def _generate_once(scene: Node, settings: Settings, org: np.ndarray, target: str
     if target == "evaluate":
         size = b.size_since(start)
         b.add_file("evaluate_main")
-        return dataclasses.replace(b.build(params, live, data), code_size=size)
+        return dataclasses.replace(b.build(params, live, data), code_size=size, data_unions=len(grids))
     assert color is not None
     _helpers(b, color, done)
     _function(b, "vec3 mapColor(vec3 p)", color, color_result, "{}.rgb")
@@ -569,7 +570,7 @@ def _generate_once(scene: Node, settings: Settings, org: np.ndarray, target: str
     if settings.debug:
         b.add_file("debug")
     b.add_file("render_main")
-    return dataclasses.replace(b.build(params, live, data), code_size=size)
+    return dataclasses.replace(b.build(params, live, data), code_size=size, data_unions=len(grids))
 
 
 def compile(scene: Node, **settings: object) -> str:  # noqa: A001 - public API name

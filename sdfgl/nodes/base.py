@@ -349,8 +349,8 @@ class Node:
 
     def rotate(self, angle: float, axis: Sequence[float] = (0.0, 0.0, 1.0)) -> "Node":
         """Rotate by ``angle`` degrees about ``axis`` (through the origin)."""
-        from .transforms import Rotate, fold
-        return fold(Rotate.axis_angle(self, angle, axis))
+        from .transforms import rotate
+        return rotate(self, angle, axis)
 
     def orient(self, axis: Sequence[float]) -> "Node":
         """Rotate so that the node's Y axis points along ``axis``."""

@@ -221,8 +221,8 @@ class Union(_Boolean):
 
     @property
     def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
-        lo = np.min([c.bounds[0] for c in self.children], axis=0)
-        hi = np.max([c.bounds[1] for c in self.children], axis=0)
+        boxes = np.array([c.bounds for c in self.children])
+        lo, hi = boxes[:, 0].min(axis=0), boxes[:, 1].max(axis=0)
         grow = float(self.k) * BLEND_REACH[self.blend]  # how far the blend lowers the field
         return lo - grow, hi + grow
 

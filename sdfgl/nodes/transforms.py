@@ -243,6 +243,15 @@ def _scale(child: Node, s: float) -> "Scale":
     return n
 
 
+def rotate(node: Node, angle: float | Live, axis: Sequence[float]) -> Node:
+    """``node`` rotated by ``angle`` degrees about ``axis``, folded into the moves under it."""
+    deg = v.scalar(Rotate.kind, "angle", angle)
+    ax = v.vector(Rotate.kind, "axis", axis, nonzero=True)
+    if isinstance(deg, Live) or isinstance(ax, Live):
+        return fold(Rotate.axis_angle(node, deg, ax))
+    return fold(_rotate(node, _axis_angle_matrix(ax, deg)))  # a rotation by construction
+
+
 def fold(node: Node) -> Node:
     """A new rigid transform or uniform scale merged with the ones directly under it, into
     the order translate(rotate(scale(x))): a chain of 10^5 moves stays three nodes deep.
@@ -268,4 +277,4 @@ def fold(node: Node) -> Node:
     return _rotate(fold(_scale(inner.child, s)), inner.m)  # scaling commutes with rotating
 
 
-__all__ = ["Translate", "Rotate", "Scale", "ScaleAxes", "Material", "scale", "fold"]
+__all__ = ["Translate", "Rotate", "Scale", "ScaleAxes", "Material", "scale", "fold", "rotate"]
