@@ -351,7 +351,7 @@ def run(quick: bool, size: tuple[int, int] | None, out: Path, progress: bool = T
                       (16, 64, 256) if quick else (16, 64, 256, 1024), progress)
 
     from .bench_big import run_big
-    big = run_big(quick, progress)
+    big = run_big(quick, (160, 120) if quick else (320, 240))
 
     out.mkdir(parents=True, exist_ok=True)
     md = "\n\n".join([

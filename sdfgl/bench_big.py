@@ -121,12 +121,11 @@ def _timed(fn: Callable[[], object]) -> tuple[object, float]:
     return out, time.perf_counter() - t0
 
 
-def run_big(quick: bool, progress: bool = False) -> str:
-    """Every big-scene row; return the markdown section."""
+def run_big(quick: bool, size: tuple[int, int] = (320, 240)) -> str:
+    """Every big-scene row at ``size`` (--quick: smaller scenes); return the markdown section."""
     from .bench import FrameTimer, Progress, Variant, time_interleaved
     from .render import Renderer
     renderer = Renderer()
-    size = (320, 240)
     timer = FrameTimer(renderer, size)
     frames, warmup = (3, 1) if quick else (5, 2)
     rows = ["| scene | objects | build s | link ms | first frame ms | frame ms (median) | ratio | steps/px | "
@@ -148,19 +147,19 @@ def run_big(quick: bool, progress: bool = False) -> str:
                         f"{r['frame_ms_median'] / ref:.2f} | {float(res.steps.mean()):.2f} | {src.code_size} | "
                         f"{src.choice}; {src.data_unions} union(s) as data, grid_min {src.grid_min} |")
 
-    sizes = (16, 256) if quick else (16, 256, 1024)
+    sizes = (16, 128) if quick else (16, 256, 1024)
     measure([("growth: spheres r 0.15 in 12x2x12", n, lambda n=n: growth(n)) for n in sizes])
-    n_inst = 200 if quick else 1000
+    n_inst = 64 if quick else 1000
     measure([(f"{n_inst} spheres (yardstick)", n_inst, lambda: spheres_like(n_inst)),
              (f"{n_inst} moved copies of a 20-node subtree", n_inst, lambda: instances(n_inst))])
-    n_mixed = 500 if quick else 5000
+    n_mixed = 100 if quick else 5000
     measure([("mixed rotated capsules, cones, tori, boxes, spheres", n_mixed, lambda: mixed(n_mixed))])
-    depth = 10 ** 4 if quick else 10 ** 5
+    depth = 2000 if quick else 10 ** 5
     measure([(f"chain of {depth} {kind}s", depth, lambda kind=kind: chain(kind, depth))
              for kind in ("union", "translate", "rotate")])
     measure([("one node as both operands, 30 levels (2^30 paths)", 30, lambda: dag(30))])
-    measure([(f"extruded polygon of {n} vertices", n, lambda n=n: polygon(n)) for n in ((2000,) if quick else (2000, 10000))])
-    return ("Size 320x240, shadows and AO off, frames interleaved within each group; 'build' is the Python "
+    measure([(f"extruded polygon of {n} vertices", n, lambda n=n: polygon(n)) for n in ((500,) if quick else (2000, 10000))])
+    return (f"Size {size[0]}x{size[1]}, shadows and AO off, frames interleaved within each group; 'build' is the Python "
             "that makes the scene, 'link' generating the source plus the driver's compile and link, 'first "
             "frame' adds llvmpipe's code generation; 'ratio' is to the group's first row; 'how' is the "
             "code/data choice in the shader source (grid_min: the fewest instances a union kept as data had "

@@ -177,7 +177,9 @@ def _small(node: Node) -> bool:
 class Grid:
     """The instances of one union, their types and the cell lists over their bounds."""
 
-    def __init__(self, children: list[Node], peeled: list[tuple], types: list[_Type]) -> None:
+    def __init__(self, children: list[Node], peeled: list[tuple], types: list[_Type], single_cell: bool = False) -> None:
+        """``single_cell`` makes one cell list every instance: a plain data-driven loop
+        (the uber-shader the benchmark compares against)."""
         self.children, self.types = children, types
         self.peeled = peeled  # (inner, t, R, s, colour) per child
         boxes = np.array([_bounds_of(c) for c in children])
@@ -185,7 +187,7 @@ class Grid:
         lo, hi = los.min(axis=0), his.max(axis=0)
         extent = np.maximum(hi - lo, 1e-9)
         cell = CELL_FACTOR * float(np.prod(extent) / len(children)) ** (1 / 3)
-        cell = max(cell, float(extent.max()) / MAX_DIMS)
+        cell = float(extent.max()) * 1.001 if single_cell else max(cell, float(extent.max()) / MAX_DIMS)
         self.dims = np.minimum(np.ceil(extent / cell).astype(int), MAX_DIMS)
         self.cell, self.lo = cell, lo
         self.margin = MARGIN * cell
@@ -446,7 +448,7 @@ def _primitive_slots(prim: Primitive) -> list[str] | None:
     return names
 
 
-def build(children: list[Node], min_children: int | None = None) -> Grid | None:
+def build(children: list[Node], min_children: int | None = None, single_cell: bool = False) -> Grid | None:
     """A grid for a union's children if at least ``min_children`` (default GRID_MIN) of
     them are instances (those that are not stay code beside it)."""
     least = GRID_MIN if min_children is None else min_children
@@ -504,7 +506,7 @@ def build(children: list[Node], min_children: int | None = None) -> Grid | None:
         peeled.append(u)
     if len(kept) < least:
         return None
-    return Grid(kept, peeled, list(types.values()))
+    return Grid(kept, peeled, list(types.values()), single_cell)
 
 
 __all__ = ["GRID_MIN", "Grid", "build", "pack", "unwrap", "BOUND"]
