@@ -46,12 +46,12 @@ def unwrap(node: Node) -> tuple[Node, np.ndarray, np.ndarray, float, tuple[float
     """Peel rigid transforms, uniform scales and colours off ``node``: (inner node, t, R, s,
     colour) with world = t + s * R @ local; None if a live parameter is in the way."""
     from .transforms import Material, Rotate, Scale, Translate
-    t, r, s, color = np.zeros(3), np.eye(3), 1.0, None
+    t, r, s, color = _ZERO, _EYE, 1.0, None  # r stays _EYE (the object) when nothing rotates
     while isinstance(node, (Material, Translate, Rotate, Scale)):
         if any(isinstance(v, Live) for v in node.params.values()):
             return None
         if isinstance(node, Translate):
-            t = t + s * (r @ node.offset)
+            t = t + (node.offset if r is _EYE and s == 1.0 else s * (r @ node.offset))
         elif isinstance(node, Rotate):
             r = r @ node.m
         elif isinstance(node, Scale):
@@ -60,6 +60,11 @@ def unwrap(node: Node) -> tuple[Node, np.ndarray, np.ndarray, float, tuple[float
             color = node.rgb  # the innermost colour wins, as in code
         node = node.child
     return node, t, r, s, color
+
+
+_ZERO, _EYE = np.zeros(3), np.eye(3)
+_ZERO.flags.writeable = False
+_EYE.flags.writeable = False
 
 
 @dataclass
@@ -456,6 +461,7 @@ def build(children: list[Node], min_children: int | None = None, single_cell: bo
         return None
     types: dict[tuple, _Type] = {}
     slot_cache: dict[type, list[str] | None] = {}
+    attrs: dict[type, Any] = {}  # attribute names of the first instance of each class
     kept: list[Node] = []
     peeled: list[tuple] = []
     from .primitives import Sphere
@@ -481,7 +487,8 @@ def build(children: list[Node], min_children: int | None = None, single_cell: bo
             if cls not in slot_cache:
                 slot_cache[cls] = _primitive_slots(inner)
             slots = slot_cache[cls]
-            if slots is not None and [n for n, _ in _slot_values(inner)] != slots:
+            if slots is not None and inner.__dict__.keys() != attrs.setdefault(cls, inner.__dict__.keys()) \
+                    and [n for n, _ in _slot_values(inner)] != slots:
                 slots = None
             key = ("prim", cls) if slots is not None else ("node", inner.key)
             color_in_code = None
@@ -500,7 +507,7 @@ def build(children: list[Node], min_children: int | None = None, single_cell: bo
         _, tr, r, s, _ = u
         if s != 1.0:
             t.scaled = t.affine = True
-        if not np.array_equal(r, np.eye(3)):
+        if r is not _EYE and not np.array_equal(r, _EYE):
             t.affine = True
         kept.append(c)
         peeled.append(u)
