@@ -199,9 +199,22 @@ class Union(_Boolean):
     def exactness(self) -> str:
         # min() of exact fields is exact outside the solid (a bound inside); smoothing and
         # the grid's cap break it
-        if self._hard and self.grid is None and all(c.exactness == EXACT for c in self.children):
+        grid = self.grid if self._hard else None
+        if grid is not None:  # its instances are bounded, not implicit, 1-Lipschitz (checked when built)
+            inside = {id(g) for g in grid.children}
+            rest = [c for c in self.children if id(c) not in inside]
+            return IMPLICIT if any(c.exactness == IMPLICIT for c in rest) else BOUND
+        if self._hard and all(c.exactness == EXACT for c in self.children):
             return EXACT
         return super().exactness
+
+    @property
+    def lipschitz(self) -> float:
+        grid = self.grid if self._hard else None
+        if grid is None:
+            return super().lipschitz
+        inside = {id(g) for g in grid.children}
+        return max([1.0] + [c.lipschitz for c in self.children if id(c) not in inside])
 
     def _combine(self, em: "Emitter", a: str, b: str) -> str:
         if em.mode == "dist":

@@ -462,6 +462,7 @@ def build(children: list[Node], min_children: int | None = None, single_cell: bo
     types: dict[tuple, _Type] = {}
     slot_cache: dict[type, list[str] | None] = {}
     attrs: dict[type, Any] = {}  # attribute names of the first instance of each class
+    lipschitz_ok: dict[type, bool] = {}
     kept: list[Node] = []
     peeled: list[tuple] = []
     from .primitives import Sphere
@@ -486,6 +487,10 @@ def build(children: list[Node], min_children: int | None = None, single_cell: bo
             cls = type(inner)
             if cls not in slot_cache:
                 slot_cache[cls] = _primitive_slots(inner)
+                if inner.lipschitz > 1.0 or inner.exactness == IMPLICIT:
+                    lipschitz_ok[cls] = False
+            if not lipschitz_ok.get(cls, True):
+                continue
             slots = slot_cache[cls]
             if slots is not None and inner.__dict__.keys() != attrs.setdefault(cls, inner.__dict__.keys()) \
                     and [n for n, _ in _slot_values(inner)] != slots:

@@ -49,7 +49,10 @@ def cached(node: "Node", name: str, compute: Callable[["Node"], T]) -> T:
     hit = d.get(name, _MISSING)
     if hit is not _MISSING:
         return hit  # type: ignore[return-value]
-    if all(name in c.__dict__ for c in node.children):  # the common case: no walk needed
+    pending = [c for c in node.children if name not in c.__dict__]
+    if all(name in g.__dict__ for c in pending for g in c.children):  # the common cases: no walk
+        for c in pending:
+            c.__dict__[name] = compute(c)
         value = d[name] = compute(node)
         return value
     for n in postorder(node, skip=lambda n: name in n.__dict__):
