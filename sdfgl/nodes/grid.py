@@ -11,8 +11,8 @@ into *types*:
   distinct structure, one GLSL function shared by all its instances (so 1000 moved copies
   of a subtree are one function and 1000 transforms).
 
-Each grid cell lists, per type, the instances whose bounds come within one cell size of
-it, with the instance's data (inverse transform, parameters, colour) inline in the list,
+Each grid cell lists, per type, the instances whose bounds come within MARGIN (half a
+cell) of it, with the instance's data (inverse transform, parameters, colour) inline in the list,
 so the shader runs one tight loop per type over what is near a point: no type branches
 run masked, and a list entry costs one to four texel fetches (shaders/grid_union.glsl
 finds the cell). The field is min(listed, cap), where every unlisted instance is at least
@@ -27,7 +27,7 @@ import numpy as np
 
 from ..errors import SdfglError
 from ..params import Live
-from .base import BOUND, IMPLICIT, Node, Primitive
+from .base import IMPLICIT, Node, Primitive
 from .traverse import postorder
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -38,8 +38,9 @@ SUBTREE_MAX = 64    # distinct nodes of a subtree that may become an instance ty
 LIST_WIDTH = 1024   # texels per row of the cell and list textures (a power of two)
 MAX_DIMS = 64       # cells per axis at most
 MAX_TYPES = 16      # more distinct types than this stay code
-CELL_FACTOR = float(__import__("os").environ.get("SDFGL_CELL", "0.5"))  # cell edge / (volume per instance)^(1/3)
-MARGIN = float(__import__("os").environ.get("SDFGL_MARGIN", "0.5"))       # cells: how near an instance must come to be listed
+# chosen on the growth scene (1024 spheres; see the closing note of issue 12)
+CELL_FACTOR = 0.5  # cell edge / (volume per instance)^(1/3)
+MARGIN = 0.5       # in cells: how near an instance's bounds must come to a cell to be listed
 
 
 def unwrap(node: Node) -> tuple[Node, np.ndarray, np.ndarray, float, tuple[float, float, float] | None] | None:
@@ -521,4 +522,4 @@ def build(children: list[Node], min_children: int | None = None, single_cell: bo
     return Grid(kept, peeled, list(types.values()), single_cell)
 
 
-__all__ = ["GRID_MIN", "Grid", "build", "pack", "unwrap", "BOUND"]
+__all__ = ["GRID_MIN", "Grid", "build", "pack", "unwrap"]
