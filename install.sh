@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Set up sdfgl on a fresh Debian/Ubuntu machine: Mesa EGL (and, with --test, Xvfb,
-# xdotool and glslang-tools), a virtual environment in .venv, and the package in it.
+# xdotool, glslang-tools and chromium for the browser tests), a virtual environment in .venv, and the package in it.
 #   ./install.sh          the library and the `sdfgl` command
 #   ./install.sh --test   also what the test suite needs
 set -euo pipefail
@@ -10,7 +10,7 @@ with_tests=0
 [ "${1:-}" = "--test" ] && with_tests=1
 
 packages=(libegl1 libegl-mesa0 libgl1-mesa-dri)
-[ "$with_tests" = 1 ] && packages+=(xvfb xdotool glslang-tools)
+[ "$with_tests" = 1 ] && packages+=(xvfb xdotool glslang-tools chromium)
 
 missing=()
 for p in "${packages[@]}"; do
@@ -33,6 +33,6 @@ python3 -m venv .venv
 if [ "$with_tests" = 1 ]; then
     .venv/bin/pip install -q --disable-pip-version-check -e ".[test]"
 else
-    .venv/bin/pip install -q --disable-pip-version-check .
+    .venv/bin/pip install -q --disable-pip-version-check ".[implicit,plots]"
 fi
 echo "install.sh: sdfgl installed in $(pwd)/.venv"

@@ -45,6 +45,17 @@ METHOD_CYCLE = ("sphere", "relaxed", "enhanced", "newton", "forward_newton")
 DEBUG_CYCLE = (None, "steps", "normal", "depth")
 SHADOW_CYCLE = (False, "hard", "soft")
 MOVE_HOLD_S = 0.15  # a camera change keeps the low-resolution mode this long
+ZOOM_RANGE = (1e-4, 100.0)  # wheel zoom keeps the distance within these multiples of the framing distance
+
+
+def describe_error(exc: BaseException, where: str) -> str:
+    """One message for the overlay, whatever the exception (ours name their node or file)."""
+    if isinstance(exc, SdfglError):
+        return str(exc)
+    if isinstance(exc, RecursionError):
+        return f"{where}: the scene is nested too deeply for Python's recursion limit ({exc})"
+    text = f"{where}: {type(exc).__name__}: {exc}"
+    return text if len(text) < 800 else text[:800] + " ..."
 
 
 def _r2(n: int) -> tuple[float, float]:
@@ -78,21 +89,21 @@ class Viewer:
                  max_samples: int = 16, state_file: str | Path | None = None,
                  screenshot_dir: str | Path = ".", **settings: Any) -> None:
         self.path = Path(path) if path else None
+        self._explicit = dict(settings)  # given by the caller: a reload keeps them
+        self._file_settings: dict[str, Any] = {}
         if self.path is not None:
             sf = load_scene_file(self.path)
             scene, camera = sf.scene, camera or sf.camera
+            self._file_settings = sf.settings
             settings = {**sf.settings, **settings}
             self._mtime = self.path.stat().st_mtime
         if scene is None:
             raise SdfglError("Viewer needs a scene or a scene file")
         self.scene = scene
-        base = {"aa": 1, "shadows": "soft", "ao": scene.exactness != IMPLICIT, "ground": False}
-        if scene.exactness == IMPLICIT:
-            base["method"] = "newton"
-        self.state = ViewState(settings={**base, **settings})
+        self.state = ViewState(settings={**self._base(scene), **settings})
         Settings.build(**self.state.settings)  # validate before opening a window
-        self.home = self._orbit_of(camera, scene)
-        self.camera = self._orbit_of(camera, scene)
+        self.home = self._orbit_of(camera, scene, size[0] / size[1])
+        self.camera = self._orbit_of(camera, scene, size[0] / size[1])
         self.size, self.target_ms, self.adaptive = size, target_ms, adaptive
         self.max_samples = max_samples
         self.state_file = Path(state_file) if state_file else None
@@ -107,16 +118,16 @@ class Viewer:
 
     # -- set-up ---------------------------------------------------------------------
     @staticmethod
-    def _orbit_of(camera: Camera | None, scene: Node) -> OrbitCamera:
-        if isinstance(camera, OrbitCamera):
-            return OrbitCamera(camera.target, camera.distance, camera.yaw, camera.pitch, camera.fov)
-        if camera is not None:  # a look-at camera: orbit about its target from where it stands
-            off = camera.eye - camera.target
-            dist = float(np.linalg.norm(off))
-            yaw = math.degrees(math.atan2(off[0], off[2]))
-            pitch = math.degrees(math.asin(max(-0.999, min(0.999, off[1] / dist))))
-            return OrbitCamera(camera.target, dist, yaw, pitch, camera.fov)
-        return OrbitCamera.framing(*scene.bounds)
+    def _base(scene: Node) -> dict[str, Any]:
+        """The window's default settings for ``scene``."""
+        base: dict[str, Any] = {"aa": 1, "shadows": "soft", "ao": scene.exactness != IMPLICIT, "ground": False}
+        if scene.exactness == IMPLICIT:
+            base["method"] = "newton"
+        return base
+
+    @staticmethod
+    def _orbit_of(camera: Camera | None, scene: Node, aspect: float) -> OrbitCamera:
+        return OrbitCamera.of(camera, *scene.bounds, aspect=aspect)
 
     def _open_window(self) -> None:
         if not glfw.init():
@@ -139,11 +150,11 @@ class Viewer:
         self.present_vao = self.ctx.vertex_array(self.present, [])
         self._targets: dict[str, Any] = {}
         self._resize_targets()
-        glfw.set_cursor_pos_callback(self.window, self._on_cursor)
-        glfw.set_mouse_button_callback(self.window, self._on_button)
-        glfw.set_scroll_callback(self.window, self._on_scroll)
-        glfw.set_key_callback(self.window, self._on_key)
-        glfw.set_framebuffer_size_callback(self.window, lambda *_: self._resize_targets())
+        glfw.set_cursor_pos_callback(self.window, self._guarded(self._on_cursor, "mouse"))
+        glfw.set_mouse_button_callback(self.window, self._guarded(self._on_button, "mouse"))
+        glfw.set_scroll_callback(self.window, self._guarded(self._on_scroll, "zoom"))
+        glfw.set_key_callback(self.window, self._guarded(self._on_key, "key"))
+        glfw.set_framebuffer_size_callback(self.window, self._guarded(lambda *_: self._resize_targets(), "resize"))
         glfw.set_window_refresh_callback(self.window, lambda *_: self._mark())
 
     def _resize_targets(self) -> None:
@@ -159,6 +170,15 @@ class Viewer:
         self._mark()
 
     # -- events -----------------------------------------------------------------------
+    def _guarded(self, fn: Any, where: str) -> Any:
+        """``fn`` as a glfw callback that shows any exception in the window instead of raising it."""
+        def callback(*args: Any) -> None:
+            try:
+                fn(*args)
+            except Exception as exc:  # noqa: BLE001 - the window never dies from input
+                self._set_error(describe_error(exc, where))
+        return callback
+
     def _mark(self, moved: bool = False) -> None:
         self._dirty = True
         self.state.samples = 0
@@ -186,7 +206,10 @@ class Viewer:
             self._drag = None
 
     def _on_scroll(self, _w: Any, _dx: float, dy: float) -> None:
-        self.camera.zoom(0.88 ** dy)
+        framing = OrbitCamera.framing(*self.scene.bounds, fov=self.camera.fov).distance
+        lo, hi = ZOOM_RANGE[0] * framing, ZOOM_RANGE[1] * framing
+        target = min(max(self.camera.distance * 0.88 ** dy, lo), hi)
+        self.camera.zoom(target / self.camera.distance)
         self._mark(moved=True)
 
     def _cycle(self, key: str, values: tuple) -> None:
@@ -215,11 +238,12 @@ class Viewer:
             self._cycle("debug", DEBUG_CYCLE)
         elif key == glfw.KEY_F:
             framed = OrbitCamera.framing(*self.scene.bounds, yaw=self.camera.yaw, pitch=self.camera.pitch,
-                                         fov=self.camera.fov)
+                                         fov=self.camera.fov, aspect=self.size[0] / self.size[1],
+                                         projection=self.camera.projection)
             self.camera = framed
             self._mark(moved=True)
         elif key == glfw.KEY_R:
-            self.camera = self._orbit_of(self.home, self.scene)
+            self.camera = self._orbit_of(self.home, self.scene, self.size[0] / self.size[1])
             self._mark(moved=True)
         elif key == glfw.KEY_P:
             self.screenshot()
@@ -234,8 +258,8 @@ class Viewer:
         try:
             Settings.build(**new)
             self._program(self.scene, new)
-        except SdfglError as exc:
-            self._set_error(str(exc))
+        except Exception as exc:  # noqa: BLE001 - shown in the window; the old settings stay
+            self._set_error(describe_error(exc, "settings"))
             return
         self.state.settings = new
         self._set_error("")
@@ -244,14 +268,15 @@ class Viewer:
     # -- drawing ----------------------------------------------------------------------
     def _program(self, scene: Node, settings: dict[str, Any]) -> tuple[moderngl.Program, np.ndarray]:
         origin = shader_origin(scene, self.camera.eye)
-        key = (id(scene), tuple(sorted(settings.items())), tuple(origin.tolist()))
+        st = Settings.build(**settings)
+        key = (id(scene), st, tuple(origin.tolist()), self.camera.projection)
         if key not in self._sources:  # codegen once per scene, settings and origin, not per frame
             self._sources = {k: v for k, v in self._sources.items() if k[0] == id(scene)}
-            self._sources[key] = generate(scene, Settings.build(**settings), origin)
+            self._sources[key] = generate(scene, st, origin, projection=self.camera.projection)
         before = self.renderer.programs.compiles
         prog = self.renderer.programs.get(self._sources[key])
         self.state.compiles += self.renderer.programs.compiles - before
-        scene_uniforms(prog, self._sources[key], scene, origin)
+        scene_uniforms(prog, self._sources[key], scene, origin, self.renderer.data)
         return prog, origin
 
     def _moving(self) -> bool:
@@ -358,7 +383,10 @@ class Viewer:
     # -- actions ----------------------------------------------------------------------
     def screenshot(self) -> Path:
         """Render the current view at the window's framebuffer size and save it as PNG."""
-        self.screenshot_dir.mkdir(parents=True, exist_ok=True)
+        try:
+            self.screenshot_dir.mkdir(parents=True, exist_ok=True)
+        except OSError as exc:
+            raise SdfglError(f"cannot write screenshots to '{self.screenshot_dir}': {exc}") from exc
         path = self.screenshot_dir / f"sdfgl-{time.strftime('%Y%m%d-%H%M%S')}-{len(self.state.screenshots):03d}.png"
         res = self.renderer.render(self.scene, self.camera, self.fb_size, **self.state.settings)
         res.save(path)
@@ -387,17 +415,52 @@ class Viewer:
         self._mtime = mtime
         try:
             sf = load_scene_file(self.path)
-            settings = dict(self.state.settings)
+            settings = self._reloaded_settings(sf.scene, sf.settings)
             if sf.scene.exactness == IMPLICIT and settings.get("method", "enhanced") in DISTANCE_METHODS:
                 settings.update(method="newton", ao=False)
-            self._program(sf.scene, settings)  # compile before switching: a GLSL error keeps the old scene
-        except SdfglError as exc:
-            self._set_error(str(exc))
+            Settings.build(**settings)
+            self._program(sf.scene, settings)  # compile before switching: any error keeps the old scene
+        except Exception as exc:  # noqa: BLE001 - a scene file may raise anything: show it, keep the window
+            self._set_error(describe_error(exc, f"reload of '{self.path}'"))
             return
+        self._file_settings = sf.settings
         self.scene, self.state.settings = sf.scene, settings
         self.state.reloads += 1
         self._set_error("")
         self._mark()
+
+    def _reloaded_settings(self, scene: Node, file_settings: dict[str, Any]) -> dict[str, Any]:
+        """Settings after a reload: what the file changed applies, key toggles of the rest stay,
+        and what the caller gave explicitly wins."""
+        new = dict(self.state.settings)
+        base = self._base(scene)
+        for k in set(self._file_settings) - set(file_settings):  # removed from the file: back to the default
+            if k in base:
+                new[k] = base[k]
+            else:
+                new.pop(k, None)
+        new.update({k: v for k, v in file_settings.items() if k not in self._file_settings
+                    or self._file_settings[k] != v})
+        new.update(self._explicit)
+        return new
+
+    def _safe_frame(self) -> None:
+        """Draw a frame; on any error show it and go back to the last scene and settings that drew."""
+        try:
+            self.frame()
+            self._good = (self.scene, dict(self.state.settings))
+        except Exception as exc:  # noqa: BLE001 - the window never dies from a scene
+            self._set_error(describe_error(exc, "render"))
+            good = getattr(self, "_good", None)
+            if good is not None and (good[0] is not self.scene or good[1] != self.state.settings):
+                self.scene, self.state.settings = good[0], dict(good[1])
+                self._mark()
+                return
+            self._dirty = False  # nothing to go back to: show the error until something changes
+            try:
+                self._present(self._targets["accum"], 1.0 / max(1, self.state.samples))
+            except Exception:  # noqa: BLE001 - the title and state file still carry the error
+                pass
 
     def _write_state(self) -> None:
         if self.state_file is None:
@@ -416,7 +479,7 @@ class Viewer:
         try:
             while not glfw.window_should_close(self.window):
                 if self._dirty:
-                    self.frame()
+                    self._safe_frame()
                     self._write_state()
                     glfw.poll_events()
                 else:

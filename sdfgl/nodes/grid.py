@@ -57,6 +57,8 @@ def unwrap(node: Node) -> tuple[Node, np.ndarray, np.ndarray, float, tuple[float
             r = r @ node.m
         elif isinstance(node, Scale):
             s = s * float(node.s)
+        elif node.surface:  # packed primitives carry a colour only, not a full material
+            return None
         else:
             color = node.rgb  # the innermost colour wins, as in code
         node = node.child
@@ -323,8 +325,9 @@ class Grid:
         """Call this grid's union function at point ``p``: (rgb, d) in colour mode, else d."""
         from .. import shaderlib
         gid = em.grid_name(self)
-        fn = f"{gid}{'Color' if em.mode == 'color' else ('Detail' if em.detail else 'Dist')}"
-        key = ("grid", gid, em.mode, em.detail)
+        channel = "Color" if em.channel == "albedo" else em.channel.capitalize()
+        fn = f"{gid}{channel if em.mode == 'color' else ('Detail' if em.detail else 'Dist')}"
+        key = ("grid", gid, em.mode, em.channel, em.detail)
         if key not in em.functions:
             default = em.grids[id(self)][2]
             tex = self.textures(default)
@@ -388,7 +391,7 @@ class Grid:
             result_color = None
         elif color and t.color_in_code is not None:
             own = em.grids[id(self)][2] if t.color_in_code == ("default",) else t.color_in_code
-            with em.colored(own):
+            with em.colored({"albedo": own}):
                 name = em.function(t.inner)
             out.append((f"        vec4 r = {name}(q);", owner))
             d, result_color = "r.w", "r.rgb"
@@ -404,7 +407,7 @@ class Grid:
         if t.scaled:
             d = f"({d}) * {_component(scale_at, 0)}"
         if color:
-            rgb = result_color or _slot_expr(color_at, 3)
+            rgb = result_color or (_slot_expr(color_at, 3) if em.channel == "albedo" else em.vec(em.current()))
             out.append((f"        float dist = {d};", owner))
             out.append((f"        if (dist < best.w) best = vec4({rgb}, dist);", owner))
         else:

@@ -16,6 +16,8 @@ if TYPE_CHECKING:  # pragma: no cover
 
 
 class Translate(Unary):
+    """The child moved by ``offset`` (x, y, z); keeps its exactness."""
+
     kind = "translate"
 
     def __init__(self, child: Node, offset: Sequence[float]) -> None:
@@ -203,9 +205,11 @@ class Material(Unary):
         c = v.color(self.kind, rgb)
         super().__init__(child, rgb=c)
         self.rgb = c
+        self.fields: dict[str, object] = {"albedo": c}  # the material fields this node sets
+        self.surface = False  # sets fields besides colour (see sdfgl.nodes.material)
 
     def _emit(self, em: "Emitter", p: str) -> str:
-        with em.colored(self.rgb):
+        with em.colored(self.fields):
             return self.child.emit(em, p)
 
     def _distance(self, p: np.ndarray) -> np.ndarray:
@@ -222,22 +226,24 @@ def _baked(node: Node) -> bool:
 
 def _translate(child: Node, offset: np.ndarray) -> "Translate":
     """A Translate by a checked, finite offset (no validation: folds of checked values)."""
-    n = Translate.__new__(Translate)
+    n = Translate.__new__(Translate, child, offset)  # records the call that rebuilds it
     Unary.__init__(n, child, offset=offset)
     n.offset = offset
     return n
 
 
 def _rotate(child: Node, m: np.ndarray) -> "Rotate":
-    """A Rotate by a product of checked rotations (no validation)."""
-    n = Rotate.__new__(Rotate)
+    """A Rotate by a product of checked rotations (no validation; rounded as Rotate() rounds,
+    so the recorded call rebuilds the same node)."""
+    m = np.where(np.abs(m) < 1e-15, 0.0, m)
+    n = Rotate.__new__(Rotate, child, m)
     Unary.__init__(n, child, matrix=m)
     n.angle, n._m = None, m
     return n
 
 
 def _scale(child: Node, s: float) -> "Scale":
-    n = Scale.__new__(Scale)
+    n = Scale.__new__(Scale, child, s)
     Unary.__init__(n, child, factor=s)
     n.s = s
     return n
