@@ -35,8 +35,9 @@ def _printer_class() -> type:
     from sympy.printing.glsl import GLSLPrinter
 
     class _Printer(GLSLPrinter):
-        """sympy's GLSL printer, but integer powers become products (GLSL's pow(x, 2.0) is
-        undefined for negative x) and every number is a float literal."""
+        """sympy's GLSL printer, but integer powers become products, or pow() of the absolute
+        value with the sign restored for odd powers (GLSL's pow(x, y) is undefined for
+        negative x), and every number is a float literal."""
 
         def _print_Pow(self, expr: Any) -> str:  # noqa: N802 - sympy's naming
             import sympy as sp
@@ -44,6 +45,11 @@ def _printer_class() -> type:
             if exp.is_Integer and 0 < abs(int(exp)) <= 8:
                 prod = " * ".join([f"({self._print(base)})"] * abs(int(exp)))
                 return f"({prod})" if exp > 0 else f"(1.0 / ({prod}))"
+            if exp.is_Integer and int(exp) != 0:
+                b, n = self._print(base), abs(int(exp))
+                mag = f"pow(abs({b}), {float(n)!r})"
+                val = mag if n % 2 == 0 else f"(sign({b}) * {mag})"
+                return val if exp > 0 else f"(1.0 / {val})"
             if exp == sp.Rational(1, 2):
                 return f"sqrt({self._print(base)})"
             return f"pow({self._print(base)}, {self._print(sp.Float(exp))})"
