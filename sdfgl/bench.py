@@ -385,6 +385,9 @@ def run(quick: bool, size: tuple[int, int] | None, out: Path, progress: bool = T
     from .mesh.bench import run_mesh
     mesh_md, mesh_data = run_mesh(2 ** 18 if quick else 2 ** 22, 1 if quick else 3, None if quick else 1024)
 
+    from .bench_big import run_big
+    big = run_big(quick, (160, 120) if quick else (320, 240))
+
     out.mkdir(parents=True, exist_ok=True)
     md = "\n\n".join([
         f"Machine: {platform.machine()}, {describe(renderer.ctx)}; size {size[0]}x{size[1]}, "
@@ -394,6 +397,7 @@ def run(quick: bool, size: tuple[int, int] | None, out: Path, progress: bool = T
         "## Seed thesis tables beside ours\n\n" + seed_table(variants),
         "## Cost of each feature #define\n\n" + feature_table(features),
         "## Model only what a scene needs\n\n" + model,
+        "## Big scenes\n\n" + big,
         "## Mesh export against fogleman/sdf and DistForge\n\n" + mesh_md,
     ])
     (out / "bench.md").write_text(md + "\n")

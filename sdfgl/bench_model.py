@@ -16,7 +16,7 @@ from .gl.cache import CacheBudget
 from .demo import demo_camera, demo_scene
 from .nodes import box, cylinder, plane, rounded_box, sphere, torus, union
 from .nodes.base import Node
-from .nodes.grid import Grid, pack
+from .nodes.grid import build
 from .params import param
 from .render import Renderer
 
@@ -70,8 +70,7 @@ def scattered(n: int, seed: int = 0) -> tuple[Node, Camera]:
 
 def with_grid(scene: Node, single_cell: bool) -> Node:
     """The same union kept as data: a real grid, or one cell listing everything (an uber-shader)."""
-    kids = list(scene.children)
-    scene.__dict__["_grid"] = Grid(kids, [pack(c) for c in kids], single_cell=single_cell)  # type: ignore[misc]
+    scene.__dict__["_grid"] = build(list(scene.children), 2, single_cell=single_cell)
     return scene
 
 

@@ -9,6 +9,8 @@ Every generated line remembers which node wrote it, so a compile error can name 
 from __future__ import annotations
 
 import contextlib
+import hashlib
+import dataclasses
 from dataclasses import dataclass
 from typing import Any, Iterator, Sequence
 
@@ -18,6 +20,7 @@ from . import shaderlib
 from .errors import ParameterError
 from .gl.dialect import dialect as _dialect
 from .nodes.base import IMPLICIT, Node
+from .nodes.traverse import run_deep
 from .params import Live, Param
 from .look.lights import DEFAULT_LIGHTS
 from .look.shading import background_code, shade_function, shadow_code, shadow_kinds
@@ -34,6 +37,12 @@ EVALUATE_CHANNELS = {"evaluate_color": "mapColor", "evaluate_surface": "mapSurfa
 FLOAT32_MAX = float(np.finfo(np.float32).max)
 # Stand-in for an infinite bound inside GLSL: finite in float32, so no inf*0 arises.
 GLSL_FAR = 1e30
+# a node with this many constant rows (polygon vertices) keeps them as data, in a texture
+DATA_MIN = 64
+BUDGET_DATA_MIN = 8  # the same, when map() is over the code budget
+BUDGET_GRID_MIN = 8  # over the budget, unions of this many instances become data
+MAX_CODE_SIZE = 3_000_000  # characters of scene code refused even as data (the driver would take many minutes)
+DATA_WIDTH = 1024  # texels per row of a data table (a power of two)
 # methods that share a loop file, told apart by a #define
 MARCH_FILES = {"sphere": "relaxed", "enhanced": "relaxed", "forward_newton": "newton"}
 
@@ -45,6 +54,37 @@ def glsl_float(x: float) -> str:
     if not any(ch in s for ch in ".e"):
         s += ".0"
     return s
+
+
+class DataPool:
+    """The float32 texels of every table a shader reads (grid lists, polygon vertices), in
+    one texture: one sampler however many tables (drivers allow only a few samplers)."""
+
+    def __init__(self) -> None:
+        self.chunks: list[np.ndarray] = []
+        self.size = 0
+        self._index: dict[bytes, int] = {}
+
+    def add(self, texels: np.ndarray) -> int:
+        """Append (n, 4) float32 texels (once per content); return the first one's index."""
+        arr = np.ascontiguousarray(texels, dtype=np.float32).reshape(-1, 4)
+        key = hashlib.sha1(arr.tobytes()).digest() + len(arr).to_bytes(8, "little")
+        if key not in self._index:
+            self._index[key] = self.size
+            self.chunks.append(arr)
+            self.size += len(arr)
+        return self._index[key]
+
+    def texture(self) -> tuple[tuple[str, np.ndarray], ...]:
+        """("uData", (rows, DATA_WIDTH, 4)) or nothing."""
+        if not self.chunks:
+            return ()
+        if self.size >= 2 ** 24:
+            raise ParameterError(f"scene: its data tables hold {self.size} texels, over the limit of 2^24 "
+                                 f"(float32 indices); use fewer or smaller instances")
+        flat = np.zeros((-(-self.size // DATA_WIDTH) * DATA_WIDTH, 4), dtype=np.float32)
+        flat[:self.size] = np.concatenate(self.chunks)
+        return (("uData", flat.reshape(-1, DATA_WIDTH, 4)),)
 
 
 class Emitter:
@@ -78,7 +118,10 @@ class Emitter:
         self.detail = parent.detail if parent else False  # emitting the normals-only field
         self.grids: dict[int, tuple[str, Any, tuple[float, float, float]]] = parent.grids if parent else {}
         self.use_grids = parent.use_grids if parent else True
+        self.data: DataPool = parent.data if parent else DataPool()  # tables the shader reads
+        self.data_min = parent.data_min if parent else DATA_MIN  # constants in one node above which they are data
         self._defining: set = set(parent._defining) if parent else set()
+        self.results: dict = {}  # (node id, point, colour) -> (node, result variable), in this function
 
     # -- bookkeeping -------------------------------------------------------------------
     def enter(self, node: Node) -> None:
@@ -121,6 +164,15 @@ class Emitter:
             self.functions[key] = (name, lines)
         return self.functions[key][0]
 
+    def table(self, values: np.ndarray) -> int:
+        """The index of the first texel of ``values`` (rows of up to 4 floats, one texel
+        each) in the shader's one data texture; GLSL reads texel i with dataFetch(i)."""
+        rows = np.asarray(values, dtype=np.float32).reshape(len(values), -1)
+        texels = np.zeros((len(rows), 4), dtype=np.float32)
+        texels[:, :rows.shape[1]] = rows
+        self.require("data_table")
+        return self.data.add(texels)
+
     def helper(self, name: str, code: str | list[tuple[str, str]]) -> None:
         """Include a generated helper function (e.g. a polygon of N vertices) once; ``code``
         may be (line, owner) pairs, so compile errors name the owner of each line."""
@@ -132,15 +184,10 @@ class Emitter:
             self.grids[id(grid)] = (f"g{len(self.grids)}", grid, self.field("albedo"))
         return self.grids[id(grid)][0]
 
-    def grid_union(self, grid: Any, pt: str) -> str:
-        """The union kept as data at point ``pt``: its distance, or (vec3, distance) in colour
-        mode. Packed primitives carry colours only, so other channels are the current ones."""
-        acc = self.assign("vec4", f"{self.grid_name(grid)}Union({pt})")
-        if self.mode == "dist":
-            return self.assign("float", f"{acc}.w")
-        if self.channel == "albedo":
-            return acc
-        return self.assign("vec4", f"vec4({self.vec(self.current())}, {acc}.w)")
+    def grid_union(self, grid: Any, p: str) -> str:
+        """The union kept as data at point ``p``: its distance, or (vec3, distance) in colour
+        mode (packed primitives carry colours only: other channels are the current ones)."""
+        return grid.emit(self, p)
 
     # -- literals ----------------------------------------------------------------------
     def num(self, x: float | Live) -> str:
@@ -154,7 +201,7 @@ class Emitter:
     def vec(self, v: Sequence[float] | Live) -> str:
         """A vecN: constants, or a live value (a live scalar is broadcast to vec3)."""
         if isinstance(v, Live):
-            return v.glsl(self) if v.dims == 3 else f"vec3({v.glsl(self)})"
+            return f"vec3({v.glsl(self)})" if v.dims == 1 else v.glsl(self)
         vals = list(v)
         return f"vec{len(vals)}({', '.join(self.num(x) for x in vals)})"
 
@@ -232,6 +279,10 @@ class ShaderSource:
     params: tuple[Param, ...] = ()
     live_bounds: bool = False
     data: tuple[tuple[str, np.ndarray], ...] = ()  # sampler name -> float32 RGBA texels (rows, width, 4)
+    code_size: int = 0  # characters of scene code (map(), mapColor(), their functions and helpers)
+    grid_min: int = 0   # the fewest instances a union kept as data had to have
+    choice: str = "code"  # how the scene was written: "code", or "data (...)" when over the budget
+    data_unions: int = 0  # unions kept as data (grids) in this shader
 
     def owner_of(self, line: int) -> str:
         """Who wrote 1-based source line ``line``."""
@@ -255,6 +306,10 @@ class _Builder:
               data: Sequence[tuple[str, np.ndarray]] = ()) -> ShaderSource:
         return ShaderSource("\n".join(self.lines) + "\n", tuple(self.owners), tuple(params), live_bounds,
                             tuple(data))
+
+    def size_since(self, start: int) -> int:
+        """Characters added since line ``start``."""
+        return sum(len(x) + 1 for x in self.lines[start:])
 
 
 def _helpers(b: _Builder, em: Emitter, done: set[str]) -> None:
@@ -379,18 +434,24 @@ def _defines(scene: Node, settings: Settings, origin: np.ndarray, live: bool, pr
     return d
 
 
-def shared_subtrees(scene: Node) -> set:
+def shared_subtrees(scene: Node, use_grids: bool = True) -> set:
     """Keys of composite subtrees that occur more than once (each becomes one GLSL function)."""
+    from .nodes.booleans import Union
     counts: dict = {}
-
-    def walk(n: Node) -> None:
-        if n.children:
+    stack = [scene]
+    while stack:
+        n = stack.pop()
+        if n.children and n is not scene:  # the scene itself occurs once
             counts[n.key] = counts.get(n.key, 0) + 1
             if counts[n.key] > 1:
-                return  # its inside is counted once; the function holds it
-        for c in n.children:
-            walk(c)
-    walk(scene)
+                continue  # its inside is counted once; the function holds it
+        grid = n.grid if use_grids and isinstance(n, Union) else None
+        if grid is not None:  # instances are data: only their types' code and the other children
+            inside = {id(c) for c in grid.children}
+            stack.extend(c for c in n.children if id(c) not in inside)
+            stack.extend(t.inner for t in grid.types if t.slots is None)
+            continue
+        stack.extend(n.children)
     return {k for k, c in counts.items() if c > 1}
 
 
@@ -419,25 +480,12 @@ def _surface_function(channels: Sequence[str]) -> str:
     return f"Surface sceneSurface(vec3 p) {{\n{head}    return Surface(mapColor(p), {spec}, {emis});\n}}"
 
 
-def _grid_code(b: "_Builder", grids: dict, origin: np.ndarray) -> list[tuple[str, np.ndarray]]:
-    """The code of each union kept as data, and its textures."""
-    from .nodes.grid import LIST_WIDTH
-    data: list[tuple[str, np.ndarray]] = []
-    if grids:
-        b.add(f"#define GRID_LIST_WIDTH {LIST_WIDTH}", "(grid)")
-    for gid, grid, default_color in grids.values():
-        lo = ", ".join(glsl_float(x) for x in grid.lo - origin)
-        b.add(f"#define {gid}_LO vec3({lo})\n#define {gid}_CELL {glsl_float(grid.cell)}\n"
-              f"#define {gid}_DIMS ivec3({', '.join(str(int(x)) for x in grid.dims)})", "(grid)")
-        b.add(shaderlib.read("grid_union").replace("GRIDID", gid), "shaders/grid_union.glsl")
-        data += [(f"u{gid}{name}", arr) for name, arr in grid.textures(origin, default_color).items()]
-    return data
-
-
 def _emit_map(scene: Node, mode: str, origin: np.ndarray, params: list[Param], shared: set,
-              grids: dict, use_grids: bool, helpers: dict, detail: bool = False,
-              channel: str = "albedo") -> tuple[Emitter, str]:
+              grids: dict, use_grids: bool, helpers: dict, data: DataPool, data_min: int,
+              detail: bool = False, channel: str = "albedo") -> tuple[Emitter, str]:
     em = Emitter(mode, params=params, channel=channel)
+    em.data = data
+    em.data_min = data_min
     em.helpers = helpers
     em.detail = detail
     em.shared_keys = shared
@@ -464,25 +512,92 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     header = _dialect(dialect).header()
     if not isinstance(scene, Node):
         raise ParameterError(f"scene must be an sdfgl node, got {type(scene).__name__} {scene!r}")
+    return run_deep(scene, lambda: _generate(scene, settings, origin, target, header, projection))
+
+
+def _generate(scene: Node, settings: Settings, origin: Sequence[float], target: str, header: str,
+              projection: str) -> ShaderSource:
+    """generate(), within the code-size budget."""
     settings = settings.resolved(scene.exactness)
     if scene.exactness == IMPLICIT and target == "render" and settings.method in DISTANCE_METHODS:
         raise ParameterError(
             f"{scene.label()} is an implicit field, not a distance bound: method {settings.method!r} would step "
             f"through surfaces. Use method='auto' (the default), 'newton', 'forward_newton' or 'reference'.")
     org = np.asarray(origin, dtype=np.float64)
+    from .nodes.grid import GRID_MIN
+    if settings.grid_min is not None:
+        _unions_as_data(scene, settings.grid_min)
+    src = _generate_once(scene, settings, org, target, header, projection)
+    src = dataclasses.replace(src, grid_min=settings.grid_min or GRID_MIN)
+    if src.code_size <= settings.code_budget or not settings.grid or settings.grid_min is not None:
+        return _checked(src)
+    # over the budget: every hard union of two or more instances becomes data, and every
+    # node with more than a few constant rows keeps them in a texture
+    before = _unions_as_data(scene, BUDGET_GRID_MIN)
+    small = _generate_once(scene, settings, org, target, header, projection, data_min=BUDGET_DATA_MIN)
+    if small.code_size >= src.code_size:  # nothing to gain: the scene stays code
+        _restore(scene, before)
+        return _checked(src)
+    return _checked(dataclasses.replace(
+        small, grid_min=BUDGET_GRID_MIN,
+        choice=f"data (scene code of {src.code_size} characters was over the code budget of "
+               f"{settings.code_budget}; as data {small.code_size})"))
+
+
+def _unions_as_data(scene: Node, least: int) -> dict:
+    """Keep every hard union of ``least`` or more instances as data (the twin follows);
+    return what _restore needs to undo it."""
+    from .nodes.booleans import Union
+    from .nodes.traverse import postorder
+    nodes = list(postorder(scene))
+    before = {id(n): (n, n.__dict__.get("_grid_min")) for n in nodes if isinstance(n, Union)}
+    if any([n.as_data(least) for n, _ in before.values()]):
+        _forget_exactness(nodes)
+    return before
+
+
+def _restore(scene: Node, before: dict) -> None:
+    from .nodes.traverse import postorder
+    for n, old in before.values():
+        if n.__dict__.get("_grid_min") != old:
+            n.__dict__.pop("_grid_min", None)
+            if old is not None:
+                n.__dict__["_grid_min"] = old
+            n.__dict__.pop("_grid", None)
+    _forget_exactness(list(postorder(scene)))
+
+
+def _forget_exactness(nodes: list) -> None:
+    for n in nodes:  # exactness may have changed (a grid's cap makes a bound)
+        for k in ("_m_exactness", "_m_lipschitz"):
+            n.__dict__.pop(k, None)
+
+
+def _checked(src: ShaderSource) -> ShaderSource:
+    if src.code_size > MAX_CODE_SIZE:
+        raise ParameterError(f"scene: its generated code has {src.code_size} characters, over the limit of "
+                             f"{MAX_CODE_SIZE} that a GL driver compiles in reasonable time (e.g. a chain of "
+                             f"operations nested 10^5 deep with nothing to fold or keep as data); build big scenes "
+                             f"as unions of instances, or flatten the chain")
+    return src
+
+
+def _generate_once(scene: Node, settings: Settings, org: np.ndarray, target: str, header: str,
+                   projection: str, data_min: int = DATA_MIN) -> ShaderSource:
     params: list[Param] = []
-    shared = shared_subtrees(scene)
+    shared = shared_subtrees(scene, settings.grid)
     grids: dict = {}
     helpers: dict = {}
-    dist, dist_result = _emit_map(scene, "dist", org, params, shared, grids, settings.grid, helpers)
-    color, color_result = (_emit_map(scene, "color", org, params, shared, grids, settings.grid, helpers)
+    tex = DataPool()
+    ems = (org, params, shared, grids, settings.grid, helpers, tex, data_min)
+    dist, dist_result = _emit_map(scene, "dist", *ems)
+    color, color_result = (_emit_map(scene, "color", *ems)
                            if target == "render" or target in EVALUATE_CHANNELS else (None, ""))
-    detail, detail_result = (_emit_map(scene, "dist", org, params, shared, grids, settings.grid, helpers, True)
+    detail, detail_result = (_emit_map(scene, "dist", *ems, True)
                              if target == "render" and scene.has_detail else (None, ""))
     channels = (material_channels(scene) if target == "render" else
                 [ch for ch in material_channels(scene) if EVALUATE_CHANNELS.get(target) == f"map{ch.capitalize()}"])
-    passes = {ch: _emit_map(scene, "color", org, params, shared, grids, settings.grid, helpers, channel=ch)
-              for ch in channels}
+    passes = {ch: _emit_map(scene, "color", *ems, channel=ch) for ch in channels}
     libs = list(dict.fromkeys(dist.libs + (color.libs if color else []) + (detail.libs if detail else [])
                               + [lib for em, _ in passes.values() for lib in em.libs]))
     live = bool(params)
@@ -499,25 +614,26 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     b.add_file("common")
     for name in libs:
         b.add_file(f"lib/{name}")
+    start = len(b.lines)
     for name, code in helpers.items():
         if isinstance(code, str):
             b.add(code, f"(generated helper {name})")
         else:  # (line, owner) pairs: user code whose lines keep their own numbers
             for line, owner in code:
                 b.add(line, owner)
-    # a union kept as data gets its point in its own frame (the origin shift is pending in
-    # em.point() and written out), so its data is not taken relative to the origin
-    data = _grid_code(b, grids, np.zeros(3))
+    data = tex.texture()
     done: set[str] = set()
     _helpers(b, dist, done)
     _function(b, "float map(vec3 p)", dist, dist_result, "{}")
     if target == "evaluate":
+        size = b.size_since(start)
         b.add_file("evaluate_main")
-        return b.build(params, live, data)
+        return _sized(b.build(params, live, data), size, grids)
     if target in ("mesh_grid", "mesh_gradient"):
+        size = b.size_since(start)
         b.add_file("mesh_clip")
         b.add_file(f"{target}_main")
-        return b.build(params, live, data)
+        return _sized(b.build(params, live, data), size, grids)
     assert color is not None
     _helpers(b, color, done)
     _function(b, "vec3 mapColor(vec3 p)", color, color_result, "{}.rgb")
@@ -526,12 +642,14 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
         _function(b, f"vec3 map{ch.capitalize()}(vec3 p)", em, result, "{}.rgb")
     if target in EVALUATE_CHANNELS:
         b.add(f"#define EVAL_CHANNEL {EVALUATE_CHANNELS[target]}", "(codegen)")
+        size = b.size_since(start)
         b.add_file("evaluate_channel_main")
-        return b.build(params, live, data)
+        return _sized(b.build(params, live, data), size, grids)
     if detail is not None:
         _helpers(b, detail, done)
         _function(b, "float mapDetail(vec3 p)", detail, detail_result, "{}")
         b.add("#define DETAIL_NORMALS", "(codegen)")
+    size = b.size_since(start)
     b.add_file("refine")
     marched = not (settings.analytic and analytic_shape(scene) is not None)
     if marched and settings.method in ("newton", "forward_newton"):
@@ -558,7 +676,12 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     if settings.debug:
         b.add_file("debug")
     b.add_file("render_main")
-    return b.build(params, live, data)
+    return _sized(b.build(params, live, data), size, grids)
+
+
+def _sized(src: ShaderSource, size: int, grids: dict) -> ShaderSource:
+    """``src`` with its scene-code size and its count of unions kept as data."""
+    return dataclasses.replace(src, code_size=size, data_unions=len(grids))
 
 
 def compile(scene: Node, **settings: object) -> str:  # noqa: A001 - public API name

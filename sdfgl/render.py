@@ -1,6 +1,7 @@
 """render(): scene + camera + settings -> program -> one draw -> RenderResult."""
 from __future__ import annotations
 
+import dataclasses
 import io
 import math
 import threading
@@ -317,7 +318,7 @@ class Renderer:
         ctx.finish()
         t3 = time.perf_counter()
         res = RenderResult(color=np.ascontiguousarray(targets.read("color")[..., :4 if st.alpha else 3]), source=source,
-                           settings=st, camera=cam)
+                           settings=dataclasses.replace(st, grid_min=source.grid_min), camera=cam)
         if "depth" in st.outputs:
             d = targets.read("depth")[..., 0].copy()
             d[d < 0] = np.inf

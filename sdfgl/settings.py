@@ -69,6 +69,10 @@ class Settings:
     grid: keep big unions of simple primitives as data with a cell grid (False writes
         them out as code, to compare).
     analytic: intersect a lone sphere or plane in closed form instead of marching it.
+    grid_min: the fewest instances a hard union keeps as data (None: automatic, 32, or 8
+        once the scene's code passes code_budget; the result's settings say which).
+    code_budget: characters of generated scene code (map(), mapColor() and their
+        functions) past which unions and big constant tables become data by themselves.
     lights: None (the default rig: key light, back light) or a list of up to 8
         sg.directional_light / sg.point_light; each casts the shadow it names, or the
         ``shadows`` setting's where it names none.
@@ -98,6 +102,8 @@ class Settings:
     debug: Any = None
     grid: bool = True
     analytic: bool = True
+    grid_min: Any = None
+    code_budget: int = 60000
     lights: Any = None
     ambient: Any = None
     background: Any = None
@@ -139,6 +145,12 @@ class Settings:
             object.__setattr__(self, name, float32_setting(name, getattr(self, name)))
         if self.debug not in DEBUG_VIEWS:
             raise ParameterError(f"setting 'debug' must be None, 'steps', 'normal' or 'depth', got {self.debug!r}")
+        for name, low in (("grid_min", 2), ("code_budget", 1000)):
+            val = getattr(self, name)
+            if (val is not None or name == "code_budget") and (isinstance(val, bool) or not isinstance(val, int)
+                                                               or val < low):
+                raise ParameterError(f"setting '{name}' must be an integer >= {low}"
+                                     f"{' or None' if name == 'grid_min' else ''}, got {val!r}")
         if not isinstance(self.outputs, (str, list, tuple)):
             raise ParameterError(f"setting 'outputs' must be a name or a sequence of names from {', '.join(OUTPUTS)}, "
                                  f"got {self.outputs!r}")

@@ -199,7 +199,8 @@ def test_union_kept_as_data_uploads_its_textures(browser, tmp_path):
     scene = sg.union(*parts)
     cam = sg.OrbitCamera(distance=6.5, yaw=30, pitch=25)
     html = save_html(scene, tmp_path / "grid.html", cam, (W, H))
-    assert "ug0Prims" in html.read_text()  # the union is data (a texture and a cell grid), not code
+    text = html.read_text()
+    assert "g0Cell" in text and '"uData"' in text  # the union is data (a cell grid in the data texture), not code
     open_html(browser, html)
     assert differing(canvas(browser), sg.render(scene, cam, (W, H)).color) < MAX_FRACTION
     # key F frames the scene: the view turns to the box centre, keeps its angles, and every

@@ -18,11 +18,12 @@ def test_big_union_is_data_and_matches_the_twin(renderer):
     s, _, ext = scattered(GRID_MIN + 40)
     assert s.grid is not None and s.exactness == sg.BOUND
     src = sg.compile(s)
-    assert "g0Union(" in src and "sdSphere" not in src  # no per-primitive code
+    assert "g0Dist(" in src and src.count("sdSphere(") == 3  # the library function, one loop in map() and one in mapColor()
     pts = np.random.default_rng(1).uniform(-ext - 3, ext + 3, (20000, 3))
     err = np.abs(sg.evaluate(s, pts, renderer=renderer) - s.distance(pts))
     assert err.max() < 1e-5
-    near = np.abs(s.distance(pts)) < 0.5 * s.grid.cell  # below the cap the field is the exact min
+    near = s.distance(pts) < s.grid.cap(pts) - 1e-9  # below the cap the field is the exact min
+    assert near.mean() > 0.05
     plain = np.min([c.distance(pts[near]) for c in s.children], axis=0)
     assert np.allclose(s.distance(pts[near]), plain)
 
@@ -42,9 +43,9 @@ def test_grid_and_code_render_the_same_image(renderer):
 
 def test_shader_size_does_not_grow_with_the_union():
     small, _, _ = scattered(GRID_MIN)
-    large, _, _ = scattered(4 * GRID_MIN)
+    large, _, _ = scattered(16 * GRID_MIN)
     a, b = sg.compile(small), sg.compile(large)
-    assert abs(len(a) - len(b)) < 20  # only the grid's dimensions differ
+    assert abs(len(a) - len(b)) < 80  # only the grid's dimensions and counts in comments differ
     assert len(sg.compile(large, grid=False)) > 5 * len(b)
 
 
@@ -53,6 +54,6 @@ def test_unions_with_unpackable_or_too_few_children_stay_code():
     assert s.grid is None
     smooth = sg.union(*[sg.sphere(0.3).translate((i, 0, 0)) for i in range(GRID_MIN)], k=0.1)
     assert smooth.grid is None
-    mixed = sg.union(*[sg.sphere(0.3).translate((i, 0, 0)) for i in range(GRID_MIN)], sg.octahedron(1))
+    mixed = sg.union(*[sg.sphere(0.3).translate((i, 0, 0)) for i in range(GRID_MIN)], sg.plane())
     assert mixed.grid is not None and len(mixed.grid.children) == GRID_MIN
-    assert "sdOctahedron" in sg.compile(mixed)  # the unpackable child stays code beside the grid
+    assert "sdPlane" in sg.compile(mixed)  # an unbounded child stays code beside the grid

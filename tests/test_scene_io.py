@@ -148,8 +148,8 @@ def test_parameter_ranges_and_expressions_in_documents():
 
 def test_deep_scene_is_written_shallow_and_read_without_recursion():
     s = sg.sphere(1)
-    for _ in range(3000):
-        s = s.translate((0.001, 0, 0))
+    for _ in range(3000):  # non-uniform scales: a chain that does not fold into one node (#12)
+        s = s.scale((1.0, 1.0, 1.0001))
     text = dumps(s)
     depth, deepest = 0, 0
     for ch in text:

@@ -85,8 +85,8 @@ def test_unions_as_data_carry_their_textures():
     spheres = [sg.sphere(0.1).translate((x, y, 0)) for x in np.linspace(-2, 2, 12) for y in np.linspace(-2, 2, 12)]
     spec, _ = build(sg.union(*spheres), size=(64, 48))
     names = {d["name"] for d in spec["data"]}
-    assert {"ug0Prims", "ug0Cells", "ug0List"} <= names
-    prims = next(d for d in spec["data"] if d["name"] == "ug0Prims")
+    assert names == {"uData"}  # every table (cells, lists, instances) in one texture (#12)
+    prims = spec["data"][0]
     import base64
     arr = np.frombuffer(base64.b64decode(prims["b64"]), dtype="<f4")
     assert arr.size == prims["width"] * prims["height"] * 4 and np.isfinite(arr).all()

@@ -5,13 +5,16 @@ the numpy reference cannot drift apart unnoticed (the parity tests hold them equ
 """
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any, ClassVar, Sequence
+import threading
+import weakref
+from typing import TYPE_CHECKING, Any, Callable, ClassVar, Sequence
 
 import numpy as np
 
 from ..errors import ParameterError
 from ..params import Live, Param, owns_checks
 from .record import Recorded
+from .traverse import SHALLOW, cached, depth, postorder, run_deep
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..codegen import Emitter
@@ -32,6 +35,69 @@ def as_points(points: object) -> np.ndarray:
     if p.ndim == 0 or p.shape[-1] != 3:
         raise ParameterError(f"points must have shape (..., 3), got {p.shape}")
     return p
+
+
+def _vec3(x: Any) -> np.ndarray:
+    a = np.array(x, dtype=np.float64)
+    return a if a.shape == (3,) else np.array(np.broadcast_to(a, (3,)))
+
+
+class _Token:
+    """Stands for one structure in the keys of its parents (keys stay flat, hashing O(1))."""
+
+    __slots__ = ("__weakref__",)
+
+
+_TOKENS: "weakref.WeakValueDictionary[tuple, _Token]" = weakref.WeakValueDictionary()
+_TWIN = threading.local()  # the per-call memo of the float64 twin over a DAG
+
+
+def _memo_property(name: str, fget: Callable[["Node"], Any]) -> property:
+    """A node property computed once per node, bottom-up (no recursion, a DAG costs once)."""
+    slot, busy = f"_m_{name}", f"_busy_{name}"
+
+    def get(self: "Node") -> Any:
+        d = self.__dict__
+        if slot in d:
+            return d[slot]
+        if d.get(busy):  # a super() call while this node is being computed
+            return fget(self)
+        if self.live_params():
+            return fget(self)
+        if depth(self) <= SHALLOW or all(slot in c.__dict__ for c in self.children):
+            # shallow: compute directly (children memoise as they are asked, only those needed)
+            d[busy] = True
+            try:
+                d[slot] = getattr(self, name)
+            finally:
+                del d[busy]
+            return d[slot]
+        for n in postorder(self, skip=lambda n: slot in n.__dict__):
+            n.__dict__[busy] = True
+            try:
+                n.__dict__[slot] = getattr(n, name)
+            finally:
+                del n.__dict__[busy]
+        return d[slot]
+    return property(get, doc=fget.__doc__)
+
+
+def _memo_distance(fn: Callable[["Node", np.ndarray], np.ndarray]) -> Callable[["Node", np.ndarray], np.ndarray]:
+    """While Node.distance() evaluates a DAG, a node met again at the same point array
+    returns its result instead of evaluating its subtree again."""
+    def dist(self: "Node", p: np.ndarray) -> np.ndarray:
+        memo = getattr(_TWIN, "memo", None)
+        if memo is None:
+            return fn(self, p)
+        k = (id(self), id(p))
+        hit = memo.get(k)
+        if hit is not None and hit[0] is p:
+            return hit[1]
+        out = fn(self, p)
+        memo[k] = (p, out)  # p is held, so its id stays unique for the call
+        return out
+    dist.__wrapped__ = fn  # type: ignore[attr-defined]
+    return dist
 
 
 class Node(Recorded, register=False):
@@ -57,6 +123,12 @@ class Node(Recorded, register=False):
         super().__init_subclass__(**kwargs)
         if "__init__" in cls.__dict__:  # live-parameter checks made while building belong to the node
             cls.__init__ = owns_checks(cls.__init__)  # type: ignore[method-assign]
+        for name in ("exactness", "lipschitz"):
+            prop = cls.__dict__.get(name)
+            if isinstance(prop, property) and prop.fget is not None:
+                setattr(cls, name, _memo_property(name, prop.fget))
+        if "_distance" in cls.__dict__:
+            cls._distance = _memo_distance(cls.__dict__["_distance"])  # type: ignore[method-assign]
 
     def __init__(self, children: Sequence["Node"] = (), **params: object) -> None:
         for i, c in enumerate(children):
@@ -69,10 +141,19 @@ class Node(Recorded, register=False):
     @property
     def key(self) -> tuple:
         """Structural key: equal keys mean equal fields (used to share code and caches)."""
-        cached = self.__dict__.get("_key")
-        if cached is None:
-            cached = self.__dict__["_key"] = self._make_key()
-        return cached
+        return cached(self, "_key", lambda n: n._make_key())
+
+    @property
+    def token(self) -> _Token:
+        """One object per distinct structure: equal tokens mean equal keys."""
+        key = self.key
+        tok = self.__dict__.get("_token")
+        if tok is None:
+            tok = _TOKENS.get(key)
+            if tok is None:
+                tok = _TOKENS[key] = _Token()
+            self.__dict__["_token"] = tok
+        return tok
 
     def _make_key(self) -> tuple:
         def freeze(v: object) -> object:
@@ -83,8 +164,9 @@ class Node(Recorded, register=False):
             if isinstance(v, (list, tuple)):
                 return tuple(freeze(x) for x in v)
             return v
+        # children by token: the key stays flat however deep the graph (hash and == are cheap)
         return (self.kind, tuple((k, freeze(v)) for k, v in sorted(self.params.items())),
-                tuple(c.key for c in self.children))
+                tuple(c.token for c in self.children))
 
     def label(self) -> str:
         """Short human-readable name used in error messages and shader comments."""
@@ -100,9 +182,39 @@ class Node(Recorded, register=False):
         return f"{self.kind}({args})"
 
     def __repr__(self) -> str:
-        if not self.children:
-            return self.label()
-        return f"{self.label()}[{', '.join(repr(c) for c in self.children)}]"
+        """label[children...]; a subtree object met again prints as ``@N``, its first
+        occurrence as ``@N=...`` (so a DAG prints in the size of its distinct nodes)."""
+        counts: dict[int, int] = {}
+        for n in postorder(self):
+            for c in n.children:
+                counts[id(c)] = counts.get(id(c), 0) + 1
+        names: dict[int, int] = {}
+        out: list[str] = []
+        stack: list[object] = [self]
+        while stack:
+            item = stack.pop()
+            if isinstance(item, str):
+                out.append(item)
+                continue
+            n = item  # type: ignore[assignment]
+            assert isinstance(n, Node)
+            if id(n) in names:
+                out.append(f"@{names[id(n)]}")
+                continue
+            tag = ""
+            if counts.get(id(n), 0) > 1 and n.children:
+                names[id(n)] = len(names) + 1
+                tag = f"@{names[id(n)]}="
+            if not n.children:
+                out.append(tag + n.label())
+                continue
+            out.append(f"{tag}{n.label()}[")
+            stack.append("]")
+            for i, c in enumerate(reversed(n.children)):
+                stack.append(c)
+                if i < len(n.children) - 1:
+                    stack.append(", ")
+        return "".join(out)
 
     def to_dict(self) -> dict:
         """This scene as a JSON-ready document (docs/scene-format.md); ``sg.from_dict`` reads it back."""
@@ -121,25 +233,52 @@ class Node(Recorded, register=False):
         In ``em.mode == "dist"`` the result is a float distance; in ``"color"`` mode it is a
         vec4 (rgb, distance).
         """
-        if self.key in em.shared_keys and self.key not in em._defining:
+        # the same subtree at the same point, met again in one function: its value is reused
+        memo = (id(self), p, em.current() if em.mode == "color" else None)
+        hit = em.results.get(memo)
+        if hit is not None:
+            return hit[1]
+        if self.children and em.shared_keys and self.key in em.shared_keys and self.key not in em._defining:
             # a subtree that occurs more than once in the scene is one GLSL function
             fn = em.function(self)
-            return em.assign("float" if em.mode == "dist" else "vec4", f"{fn}({em.point(p)})")
-        em.enter(self)
-        try:
-            return self._emit(em, p)
-        finally:
-            em.leave()
+            out = em.assign("float" if em.mode == "dist" else "vec4", f"{fn}({em.point(p)})")
+        else:
+            em.enter(self)
+            try:
+                out = self._emit(em, p)
+            finally:
+                em.leave()
+        em.results[memo] = (self, out)  # the node is held, so its id stays unique
+        return out
 
     def _emit(self, em: "Emitter", p: str) -> str:
         raise NotImplementedError
 
     def distance(self, points: object) -> np.ndarray:
         """The float64 twin of the generated map(): field values at (..., 3) points."""
-        return self._distance(as_points(points))
+        p = as_points(points)
+        if not self.is_dag:
+            return run_deep(self, lambda: self._distance(p))
+        _TWIN.memo = {}
+        try:
+            return run_deep(self, lambda: _with_memo(_TWIN.memo, lambda: self._distance(p)))
+        finally:
+            _TWIN.memo = None
 
-    def _distance(self, p: np.ndarray) -> np.ndarray:
-        raise NotImplementedError
+    @property
+    def is_dag(self) -> bool:
+        """True if some node object is reached by more than one path (a shared subtree)."""
+        hit = self.__dict__.get("_dag")
+        if hit is None:
+            seen: set[int] = set()
+            hit = False
+            for n in postorder(self):
+                for c in n.children:
+                    if id(c) in seen:
+                        hit = True
+                    seen.add(id(c))
+            self.__dict__["_dag"] = hit
+        return hit
 
     @property
     def exactness(self) -> str:
@@ -156,11 +295,16 @@ class Node(Recorded, register=False):
         """Conservative axis-aligned box (lo, hi) holding the solid; components may be inf.
 
         With live parameters, the box for their current values; without, it is computed once."""
-        cached = self.__dict__.get("_bounds_cache")
+        hit = self.__dict__.get("_bounds_cache")
+        if hit is None and depth(self) > SHALLOW and not self.live_params():
+            # children first, bottom-up, so deep graphs need no recursion
+            for n in postorder(self, skip=lambda n: "_bounds_cache" in n.__dict__):
+                if n is not self:
+                    n.bounds  # noqa: B018 - fills the cache
+        cached = hit if hit is not None else self.__dict__.get("_bounds_cache")
         if cached is None:
             lo, hi = self._bounds
-            cached = (np.array(np.broadcast_to(np.asarray(lo, dtype=np.float64), (3,))),
-                      np.array(np.broadcast_to(np.asarray(hi, dtype=np.float64), (3,))))
+            cached = (_vec3(lo), _vec3(hi))
             if not self.live_params():
                 self.__dict__["_bounds_cache"] = cached
         return cached[0].copy(), cached[1].copy()
@@ -172,14 +316,15 @@ class Node(Recorded, register=False):
     @property
     def has_detail(self) -> bool:
         """True if some node shades with a more detailed field than it marches (see Displace)."""
-        return any(c.has_detail for c in self.children)
+        return cached(self, "_detail", lambda n: n._detail_here() or any(c.__dict__["_detail"] for c in n.children))
+
+    def _detail_here(self) -> bool:
+        """True if this node itself shades with more detail than it marches."""
+        return False
 
     def live_params(self) -> list["Param"]:
         """The live parameters anywhere in this subtree (the tree is immutable: found once)."""
-        cached = self.__dict__.get("_live_cache")
-        if cached is None:
-            cached = self.__dict__["_live_cache"] = self._find_live_params()
-        return list(cached)
+        return list(cached(self, "_live_cache", Node._find_live_params))
 
     def _find_live_params(self) -> list["Param"]:
         out: list[Param] = []
@@ -187,7 +332,7 @@ class Node(Recorded, register=False):
             if isinstance(v, Live):
                 out += [p for p in v.roots() if p not in out]
         for c in self.children:
-            out += [p for p in c.live_params() if p not in out]
+            out += [p for p in c.__dict__["_live_cache"] if p not in out]
         return out
 
     # -- modelling API (fogleman/sdf style) ---------------------------------------------
@@ -228,23 +373,24 @@ class Node(Recorded, register=False):
         return difference(self, *others, k=k, blend=blend)
 
     def translate(self, offset: Sequence[float]) -> "Node":
-        from .transforms import Translate
-        return Translate(self, offset)
+        """Move by ``offset`` (consecutive rigid moves fold into one translate and one rotate)."""
+        from .transforms import Translate, fold
+        return fold(Translate(self, offset))
 
     def rotate(self, angle: float, axis: Sequence[float] = (0.0, 0.0, 1.0)) -> "Node":
         """Rotate by ``angle`` degrees about ``axis`` (through the origin)."""
-        from .transforms import Rotate
-        return Rotate.axis_angle(self, angle, axis)
+        from .transforms import rotate
+        return rotate(self, angle, axis)
 
     def orient(self, axis: Sequence[float]) -> "Node":
         """Rotate so that the node's Y axis points along ``axis``."""
-        from .transforms import Rotate
-        return Rotate.orient(self, axis)
+        from .transforms import Rotate, fold
+        return fold(Rotate.orient(self, axis))
 
     def scale(self, factor: float | Sequence[float]) -> "Node":
         """Scale uniformly (exactness kept) or per axis (the result is a bound)."""
-        from .transforms import scale
-        return scale(self, factor)
+        from .transforms import fold, scale
+        return fold(scale(self, factor))
 
     def twist(self, rate: float, axis: str = "y") -> "Node":
         """Twist about ``axis`` (x, y or z) by ``rate`` degrees per unit along it (a bound; steps
@@ -339,6 +485,20 @@ class Node(Recorded, register=False):
         from .material import SurfaceMaterial
         return SurfaceMaterial(self, color, specular=specular, roughness=roughness, shininess=shininess,
                                metallic=metallic, emission=emission)
+
+
+_CACHES = ("_m_", "_key", "_token", "_depth", "_bounds_cache", "_live_cache", "_detail", "_dag", "_grid", "_kids",
+           "_seq")
+
+
+def _with_memo(memo: dict, fn: Callable[[], np.ndarray]) -> np.ndarray:
+    """Run ``fn`` with the twin's DAG memo set in this thread (the deep thread has its own)."""
+    old = getattr(_TWIN, "memo", None)
+    _TWIN.memo = memo
+    try:
+        return fn()
+    finally:
+        _TWIN.memo = old
 
 
 class Unary(Node):

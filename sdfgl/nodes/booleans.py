@@ -14,6 +14,7 @@ from ..errors import ParameterError
 from ..params import Live
 from . import validate as v
 from .base import BOUND, EXACT, IMPLICIT, Node
+from .grid import GRID_MIN
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..codegen import Emitter
@@ -64,6 +65,49 @@ class _Boolean(Node):
         params = {"k": kk} if blend == "quadratic" else {"k": kk, "blend": blend}
         super().__init__(children, **params)
         self.k = kk
+
+    # children are kept in a list shared along a chain built by ``s = s | x`` (each step
+    # appends: O(1)); the tuple is made when first read
+    @property  # type: ignore[override]
+    def children(self) -> tuple[Node, ...]:
+        kids = self.__dict__.get("_kids")
+        if kids is None:
+            seq, n = self.__dict__["_seq"]
+            kids = self.__dict__["_kids"] = tuple(seq[:n])
+        return kids
+
+    @children.setter
+    def children(self, value: tuple[Node, ...]) -> None:
+        self.__dict__["_kids"] = tuple(value)
+
+    def _chained(self, right: Node) -> "_Boolean":
+        """This n-ary node with ``right`` appended (the left fold of one more operand)."""
+        seq, n = self.__dict__.get("_seq") or (list(self.children), len(self.children))
+        self.__dict__["_seq"] = (seq, n)
+        if len(seq) != n:  # another chain already grew from this node: branch off a copy
+            seq = seq[:n]
+        seq.append(right)
+        node = type(self).__new__(type(self))
+        from .base import _CACHES
+        node.__dict__.update({k: v for k, v in self.__dict__.items()
+                              if not k.startswith(_CACHES) and k not in ("_kids", "_seq")})
+        node.__dict__["_seq"] = (seq, n + 1)
+        return node
+
+    @property
+    def constructor(self) -> tuple[type, tuple, dict]:
+        """(class, children, k/blend): a node grown by ``s = s | x`` describes itself as the
+        flat n-ary call that builds it (for pickle and scene documents)."""
+        _, _, kwargs = super().constructor
+        return type(self), self.children, kwargs
+
+    def _same_op(self, cls: type, k: object, blend: str) -> bool:
+        if type(self) is not cls or self.blend != blend:
+            return False
+        if isinstance(k, Live) or isinstance(self.k, Live):
+            return k is self.k
+        kk = float(k)
+        return float(self.k) == (0.0 if kk < K_MIN else kk)
 
     @property
     def _hard(self) -> bool:
@@ -121,31 +165,63 @@ class Union(_Boolean):
     def grid(self) -> "Grid | None":
         if "_grid" not in self.__dict__:
             from .grid import build
-            self.__dict__["_grid"] = build(list(self.children)) if self._hard else None
+            self.__dict__["_grid"] = (build(list(self.children), self.__dict__.get("_grid_min"))
+                                      if self._hard else None)
         return self.__dict__["_grid"]
+
+    def as_data(self, min_children: int) -> bool:
+        """Keep this union as data from ``min_children`` instances on (the code-size budget
+        lowers it); True if that changes the node's field (it then has a grid's cap)."""
+        if not self._hard or self.__dict__.get("_grid_min", GRID_MIN) <= min_children:
+            return False
+        had = self.grid
+        self.__dict__["_grid_min"] = min_children
+        for k in ("_grid", "_m_exactness", "_m_lipschitz"):
+            self.__dict__.pop(k, None)
+        return self.grid is not had
 
     def _emit(self, em: "Emitter", p: str) -> str:
         grid = self.grid if em.use_grids else None
         if grid is None:
             return super()._emit(em, p)
-        pt = em.point(p)
-        acc = em.grid_union(grid, pt)
+        acc = em.grid_union(grid, p)
+        inside = {id(g) for g in grid.children}
         for c in self.children:
-            if not any(c is g for g in grid.children):
-                acc = self._combine(em, acc, c.emit(em, pt))
+            if id(c) not in inside:
+                acc = self._combine(em, acc, c.emit(em, p))
         return acc
 
     def _distance(self, p: np.ndarray) -> np.ndarray:
-        d = super()._distance(p)
-        return d if self.grid is None else np.minimum(d, self.grid.cap(p))
+        grid = self.grid
+        if grid is None:
+            return super()._distance(p)
+        d = grid.field(p)  # what the shader computes: the listed instances and the cap
+        inside = {id(g) for g in grid.children}
+        for c in self.children:
+            if id(c) not in inside:
+                d = np.minimum(d, c._distance(p))
+        return d
 
     @property
     def exactness(self) -> str:
         # min() of exact fields is exact outside the solid (a bound inside); smoothing and
         # the grid's cap break it
-        if self._hard and self.grid is None and all(c.exactness == EXACT for c in self.children):
+        grid = self.grid if self._hard else None
+        if grid is not None:  # its instances are bounded, not implicit, 1-Lipschitz (checked when built)
+            inside = {id(g) for g in grid.children}
+            rest = [c for c in self.children if id(c) not in inside]
+            return IMPLICIT if any(c.exactness == IMPLICIT for c in rest) else BOUND
+        if self._hard and all(c.exactness == EXACT for c in self.children):
             return EXACT
         return super().exactness
+
+    @property
+    def lipschitz(self) -> float:
+        grid = self.grid if self._hard else None
+        if grid is None:
+            return super().lipschitz
+        inside = {id(g) for g in grid.children}
+        return max([1.0] + [c.lipschitz for c in self.children if id(c) not in inside])
 
     def _combine(self, em: "Emitter", a: str, b: str) -> str:
         if em.mode == "dist":
@@ -165,8 +241,8 @@ class Union(_Boolean):
 
     @property
     def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
-        lo = np.min([c.bounds[0] for c in self.children], axis=0)
-        hi = np.max([c.bounds[1] for c in self.children], axis=0)
+        boxes = np.array([c.bounds for c in self.children])
+        lo, hi = boxes[:, 0].min(axis=0), boxes[:, 1].max(axis=0)
         grow = float(self.k) * BLEND_REACH[self.blend]  # how far the blend lowers the field
         return lo - grow, hi + grow
 
@@ -279,6 +355,24 @@ def product(a: Node, b: Node) -> Node:
     return Product(a, b)
 
 
+def _build(cls: type, nodes: tuple, k: object, blend: str) -> Node:
+    """The n-ary node: an operand that is the same operator with the same blend is
+    spliced in from the left (``s = s | x`` in a loop stays one flat node, O(1) a step);
+    a hard union or intersection of one node object with itself is that node."""
+    if (len(nodes) == 2 and nodes[0] is nodes[1] and cls is not Difference and isinstance(nodes[0], Node)
+            and not isinstance(k, Live) and float(k) < K_MIN):
+        return nodes[0]
+    first = nodes[0] if nodes else None
+    if (len(nodes) >= 2 and isinstance(first, _Boolean) and first._same_op(cls, k, blend)
+            and isinstance(k, (int, float, Live)) and blend in BLENDS
+            and all(isinstance(n, Node) and n is not first for n in nodes[1:])):
+        out = first
+        for n in nodes[1:]:
+            out = out._chained(n)
+        return out
+    return cls(*nodes, k=k, blend=blend)
+
+
 def union(*nodes: Node, k: float = 0.0, blend: str = "quadratic") -> Node:
     """Union of two or more nodes (``a | b``), optionally blended; 2D shapes give a 2D union.
 
@@ -297,7 +391,7 @@ def union(*nodes: Node, k: float = 0.0, blend: str = "quadratic") -> Node:
     if _all_2d(nodes):
         from .shapes2d_ops import union as union2
         return union2(*nodes, k=k, blend=blend)  # type: ignore[return-value]
-    return Union(*nodes, k=k, blend=blend)
+    return _build(Union, nodes, k, blend)
 
 
 def intersection(*nodes: Node, k: float = 0.0, blend: str = "quadratic") -> Node:
@@ -317,7 +411,7 @@ def intersection(*nodes: Node, k: float = 0.0, blend: str = "quadratic") -> Node
     if _all_2d(nodes):
         from .shapes2d_ops import intersection as intersection2
         return intersection2(*nodes, k=k, blend=blend)  # type: ignore[return-value]
-    return Intersection(*nodes, k=k, blend=blend)
+    return _build(Intersection, nodes, k, blend)
 
 
 def difference(*nodes: Node, k: float = 0.0, blend: str = "quadratic") -> Node:
@@ -337,7 +431,7 @@ def difference(*nodes: Node, k: float = 0.0, blend: str = "quadratic") -> Node:
     if _all_2d(nodes):
         from .shapes2d_ops import difference as difference2
         return difference2(*nodes, k=k, blend=blend)  # type: ignore[return-value]
-    return Difference(*nodes, k=k, blend=blend)
+    return _build(Difference, nodes, k, blend)
 
 
 def _all_2d(nodes: tuple) -> bool:

@@ -1,72 +1,58 @@
-"""Big unions of simple primitives as data: a primitive texture and a uniform grid.
+"""Big unions as data: instances of a few types, listed per type in the cells of a uniform grid.
 
-A hard union of at least GRID_MIN (128) children that are spheres, (rounded) boxes, tori or
-cylinders under translations, rotations, uniform scales and colours is not written out
-as code: its primitives are packed into a texture, and a uniform grid lists per cell the
-primitives within one cell size of it (shaders/grid_union.glsl). The shader then costs
-what is near a point, and compiling costs the same for 64 primitives as for 10 000.
+A hard union of at least GRID_MIN children is not written out as code when its children
+are instances: any bounded node (a primitive or a small subtree, up to SUBTREE_MAX
+distinct nodes) under rigid moves, a uniform scale and a colour. Children are grouped
+into *types*:
 
-The field is min(listed primitives, cap), where every unlisted primitive is at least
-``cap`` away; the float64 twin computes min(all primitives, cap) with the same cap,
-which is the same number (see Grid.cap).
+- a primitive class whose parameters the shader can read from data (sphere radius, box
+  size, capsule ends, ...): one type for all its instances, parameters per instance;
+- any other node (a subtree, or a primitive whose code needs fixed values): one type per
+  distinct structure, one GLSL function shared by all its instances (so 1000 moved copies
+  of a subtree are one function and 1000 transforms).
+
+Each grid cell lists, per type, the instances whose bounds come within MARGIN (half a
+cell) of it, with the instance's data (inverse transform, parameters, colour) inline in the list,
+so the shader runs one tight loop per type over what is near a point: no type branches
+run masked, and a list entry costs one to four texel fetches (shaders/grid_union.glsl
+finds the cell). The field is min(listed, cap), where every unlisted instance is at least
+``cap`` away; the float64 twin computes min(all children, cap) with the same cap.
 """
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from ..errors import SdfglError
 from ..params import Live
-from .base import Node, Primitive
-from .primitives import Box, Cylinder, RoundedBox, Sphere, Torus
+from .base import IMPLICIT, Node, Primitive
+from .traverse import postorder
 
-GRID_MIN = 128      # fewer children than this are written out as code (measured crossover: 64..256)
-LIST_WIDTH = 1024   # texels per row of the cell and list textures
+if TYPE_CHECKING:  # pragma: no cover
+    from ..codegen import Emitter
+
+GRID_MIN = 32       # fewer children than this are written out as code (see the benchmark)
+SUBTREE_MAX = 64    # distinct nodes of a subtree that may become an instance type
+LIST_WIDTH = 1024   # texels per row of the cell and list textures (a power of two)
 MAX_DIMS = 64       # cells per axis at most
-
-SPHERE, BOX, TORUS, CYLINDER = 0, 1, 2, 3
-
-
-@dataclass
-class Packed:
-    """One primitive: world = t + s * R @ local; ``size`` and ``rounding`` per type."""
-
-    type: int
-    scale: float
-    t: np.ndarray
-    r: np.ndarray
-    size: np.ndarray
-    rounding: float
-    color: tuple[float, float, float] | None
-
-
-def _shape(prim: Primitive) -> tuple[int, np.ndarray, float, np.ndarray] | None:
-    """(type, size, rounding, centre offset) of a packable primitive, else None."""
-    if any(isinstance(v, Live) for v in prim.params.values()):
-        return None
-    if isinstance(prim, Sphere):
-        return SPHERE, np.array([prim.r, 0.0, 0.0]), 0.0, np.asarray(prim.c, dtype=float)
-    if isinstance(prim, RoundedBox):
-        return BOX, np.asarray(prim.half, dtype=float), float(prim.r), np.zeros(3)
-    if isinstance(prim, Box):
-        return BOX, np.asarray(prim.half, dtype=float), 0.0, np.zeros(3)
-    if isinstance(prim, Torus):
-        return TORUS, np.array([prim.r1, prim.r2, 0.0]), 0.0, np.zeros(3)
-    if isinstance(prim, Cylinder):
-        return CYLINDER, np.array([prim.r, prim.h, 0.0]), 0.0, np.zeros(3)
-    return None
+MAX_TYPES = 16      # more distinct types than this stay code
+# chosen on the growth scene (1024 spheres; see the closing note of issue 12)
+CELL_FACTOR = 0.5  # cell edge / (volume per instance)^(1/3)
+MARGIN = 0.5       # in cells: how near an instance's bounds must come to a cell to be listed
 
 
 def unwrap(node: Node) -> tuple[Node, np.ndarray, np.ndarray, float, tuple[float, float, float] | None] | None:
     """Peel rigid transforms, uniform scales and colours off ``node``: (inner node, t, R, s,
     colour) with world = t + s * R @ local; None if a live parameter is in the way."""
     from .transforms import Material, Rotate, Scale, Translate
-    t, r, s, color = np.zeros(3), np.eye(3), 1.0, None
+    t, r, s, color = _ZERO, _EYE, 1.0, None  # r stays _EYE (the object) when nothing rotates
     while isinstance(node, (Material, Translate, Rotate, Scale)):
         if any(isinstance(v, Live) for v in node.params.values()):
             return None
         if isinstance(node, Translate):
-            t = t + s * (r @ node.offset)
+            t = t + (node.offset if r is _EYE and s == 1.0 else s * (r @ node.offset))
         elif isinstance(node, Rotate):
             r = r @ node.m
         elif isinstance(node, Scale):
@@ -79,47 +65,147 @@ def unwrap(node: Node) -> tuple[Node, np.ndarray, np.ndarray, float, tuple[float
     return node, t, r, s, color
 
 
+_ZERO, _EYE = np.zeros(3), np.eye(3)
+_ZERO.flags.writeable = False
+_EYE.flags.writeable = False
+
+
+@dataclass
+class Packed:
+    """A sphere under rigid moves: world centre ``t`` and radius ``scale * size[0]`` (the
+    closed-form intersection of a lone sphere uses it)."""
+
+    type: int
+    scale: float
+    t: np.ndarray
+    size: np.ndarray
+
+
 def pack(node: Node) -> Packed | None:
-    """The primitive behind a chain of rigid transforms, uniform scales and colours, or None."""
+    """The sphere behind a chain of rigid transforms, uniform scales and colours, or None."""
+    from .primitives import Sphere
     peeled = unwrap(node)
-    if peeled is None or not isinstance(peeled[0], Primitive):
+    if peeled is None or not isinstance(peeled[0], Sphere) or peeled[0].live_params():
         return None
-    prim, t, r, s, color = peeled
-    shape = _shape(prim)
-    if shape is None:
-        return None
-    kind, size, rounding, centre = shape
-    return Packed(kind, s, t + s * (r @ centre), r, size, rounding, color)
+    sph, t, r, s, _ = peeled
+    return Packed(0, s, t + s * (r @ np.asarray(sph.c, dtype=float)), np.array([float(sph.r), 0.0, 0.0]))
+
+
+# -- parameters read from data --------------------------------------------------------
+class _SlotRead(Exception):
+    """A node's code used a parameter's value in Python: that parameter cannot be data."""
+
+
+class Slot(Live):
+    """A parameter of a primitive type read from an instance's texels in the shader."""
+
+    def __init__(self, expr: str, dims: int) -> None:
+        super().__init__("slot")
+        self.expr, self._dims = expr, dims
+
+    @property
+    def value(self) -> Any:
+        raise _SlotRead()
+
+    @property
+    def dims(self) -> int:
+        return self._dims
+
+    def roots(self) -> list:
+        return []
+
+    def glsl(self, em: "Emitter") -> str:
+        return self.expr
+
+
+def _slot_values(prim: Primitive) -> list[tuple[str, np.ndarray]]:
+    """The numeric attributes of a primitive that its code may read from data."""
+    out = []
+    for name, val in prim.__dict__.items():
+        if name in ("params", "children") or name.startswith("_"):
+            continue
+        if name == "c" and type(prim).__name__ == "Sphere":
+            continue  # folded into the translation (see build)
+        if isinstance(val, (float, np.floating)) and not isinstance(val, bool):
+            out.append((name, np.array([float(val)])))
+        elif isinstance(val, np.ndarray) and val.dtype.kind == "f" and val.ndim == 1 and 2 <= val.size <= 4:
+            out.append((name, val.astype(np.float64)))
+    return out
+
+
+def _component(base: int, i: int) -> str:
+    """GLSL for float ``i`` of a record read into texels d0, d1, ... starting at float ``base``."""
+    k = base + i
+    return f"d{k // 4}.{'xyzw'[k % 4]}"
+
+
+def _slot_expr(base: int, n: int) -> str:
+    parts = [_component(base, i) for i in range(n)]
+    return parts[0] if n == 1 else f"vec{n}({', '.join(parts)})"
+
+
+# -- types and instances --------------------------------------------------------------
+class _Type:
+    """Instances that share one piece of code."""
+
+    def __init__(self, key: tuple, inner: Node, slots: list[str] | None, color_in_code: tuple | None) -> None:
+        self.key, self.inner = key, inner
+        self.slots = slots                  # attribute names read from data (primitive types)
+        self.color_in_code = color_in_code  # the subtree's default colour when it has colours of its own
+        self.members: list[int] = []        # indices into Grid.children
+        self.affine = False                 # rotated or scaled members: a 3x4 inverse transform
+        self.scaled = False
+
+    def layout(self, slot_sizes: list[int]) -> tuple[int, int, int, int]:
+        """(float offset of the scale, of the slots, of the colour, texels per record)."""
+        n = 12 if self.affine else 3
+        scale_at = n
+        n += 1 if self.scaled else 0
+        slots_at = n
+        n += sum(slot_sizes)
+        color_at = n
+        n += 0 if self.color_in_code is not None else 3
+        return scale_at, slots_at, color_at, -(-n // 4)
+
+
+def _has_color(node: Node) -> bool:
+    from .transforms import Material
+    return any(isinstance(n, Material) for n in postorder(node))
+
+
+def _small(node: Node) -> bool:
+    count = 0
+    for _ in postorder(node):
+        count += 1
+        if count > SUBTREE_MAX:
+            return False
+    return True
 
 
 class Grid:
-    """The packed primitives of one union and the cell lists over their bounds."""
+    """The instances of one union, their types and the cell lists over their bounds."""
 
-    def __init__(self, children: list[Node], packed: list[Packed], single_cell: bool = False) -> None:
-        """``single_cell`` makes one cell list every primitive: a plain data-driven loop
+    def __init__(self, children: list[Node], peeled: list[tuple], types: list[_Type], single_cell: bool = False) -> None:
+        """``single_cell`` makes one cell list every instance: a plain data-driven loop
         (the uber-shader the benchmark compares against)."""
-        self.children, self.packed = children, packed
-        los, his = zip(*(c.bounds for c in children))
-        lo, hi = np.min(los, axis=0), np.max(his, axis=0)
+        self.children, self.types = children, types
+        self.peeled = peeled  # (inner, t, R, s, colour) per child
+        boxes = np.array([_bounds_of(c) for c in children])
+        los, his = boxes[:, 0], boxes[:, 1]
+        lo, hi = los.min(axis=0), his.max(axis=0)
         extent = np.maximum(hi - lo, 1e-9)
-        cell = 0.5 * float(np.prod(extent) / len(children)) ** (1 / 3)  # ~8 cells a primitive
+        cell = CELL_FACTOR * float(np.prod(extent) / len(children)) ** (1 / 3)
         cell = float(extent.max()) * 1.001 if single_cell else max(cell, float(extent.max()) / MAX_DIMS)
         self.dims = np.minimum(np.ceil(extent / cell).astype(int), MAX_DIMS)
-        self.cell = cell
-        self.lo = lo
-        margin = cell
-        lists: list[list[int]] = [[] for _ in range(int(np.prod(self.dims)))]
-        for i, (clo, chi) in enumerate(zip(los, his)):
-            a = np.clip(np.floor((clo - margin - lo) / cell).astype(int), 0, self.dims - 1)
-            b = np.clip(np.floor((chi + margin - lo) / cell).astype(int), 0, self.dims - 1)
-            for z in range(a[2], b[2] + 1):
-                for y in range(a[1], b[1] + 1):
-                    for x in range(a[0], b[0] + 1):
-                        lists[(z * self.dims[1] + y) * self.dims[0] + x].append(i)
-        self.lists = lists
+        self.cell, self.lo = cell, lo
+        self.margin = MARGIN * cell
+        self.centre = lo + 0.5 * self.dims * cell  # data and code are relative to it (float32 precision)
+        self._los, self._his = los, his
+        self._textures: dict[tuple, dict[str, np.ndarray]] = {}
 
+    # -- the twin's cap (the same number the shader computes) --------------------------
     def cap(self, p: np.ndarray) -> np.ndarray:
-        """The distance below which every unlisted primitive lies, at (..., 3) points."""
+        """The distance below which every unlisted instance lies, at (..., 3) points."""
         rel = (p - self.lo) / self.cell
         cell = np.clip(np.floor(rel), 0, self.dims - 1)
         cell_lo = self.lo + cell * self.cell
@@ -127,34 +213,316 @@ class Grid:
         half = 0.5 * self.dims * self.cell
         k = np.abs(p - (self.lo + half)) - half
         box = np.sqrt(np.sum(np.maximum(k, 0.0) ** 2, axis=-1)) + np.minimum(k.max(axis=-1), 0.0)
-        return np.maximum(self.cell - np.sqrt(np.sum(outside ** 2, axis=-1)), box)
+        return np.maximum(self.margin - np.sqrt(np.sum(outside ** 2, axis=-1)), box)
 
-    def textures(self, origin: np.ndarray, default_color: tuple[float, float, float]) -> dict[str, np.ndarray]:
-        """float32 RGBA arrays (rows, width, 4) for the Prims, Cells and List samplers."""
-        prims = np.zeros((len(self.packed), 5, 4), dtype=np.float32)
-        for i, q in enumerate(self.packed):
-            t = q.t - origin
-            prims[i, 0] = (q.type, q.scale, t[0], t[1])
-            prims[i, 1] = (t[2], *q.size)
-            prims[i, 2] = (*q.r[:, 0], q.rounding)
-            prims[i, 3] = (*q.r[:, 1], 0.0)
-            prims[i, 4] = (*(q.color or default_color), 0.0)
-        counts = np.array([len(x) for x in self.lists])
-        firsts = np.concatenate([[0], np.cumsum(counts)[:-1]])
-        cells = np.zeros((-(-len(self.lists) // LIST_WIDTH) * LIST_WIDTH, 4), dtype=np.float32)
-        cells[:len(self.lists), 0] = firsts
-        cells[:len(self.lists), 1] = counts
-        flat = np.concatenate([np.array(x, dtype=np.float32) for x in self.lists if x] or [np.zeros(0, np.float32)])
-        lst = np.zeros((max(1, -(-len(flat) // LIST_WIDTH)) * LIST_WIDTH, 4), dtype=np.float32)
-        lst[:len(flat), 0] = flat
-        return {"Prims": prims, "Cells": cells.reshape(-1, LIST_WIDTH, 4), "List": lst.reshape(-1, LIST_WIDTH, 4)}
+    def field(self, p: np.ndarray) -> np.ndarray:
+        """The float64 twin of the shader's loop: min over the instances listed in each
+        point's cell, and the cap (for exact instances, min(all, cap))."""
+        flat = p.reshape(-1, 3)
+        cell = np.clip(np.floor((flat - self.lo) / self.cell), 0, self.dims - 1).astype(np.int64)
+        d = self.cap(flat)
+        a, b = self._ranges()
+        for i, c in enumerate(self.children):
+            m = np.all((cell >= a[i]) & (cell <= b[i]), axis=1)
+            if m.any():
+                d[m] = np.minimum(d[m], c._distance(flat[m]))
+        return d.reshape(p.shape[:-1])
+
+    def _ranges(self) -> tuple[np.ndarray, np.ndarray]:
+        """Per instance, the first and last cell (per axis) whose list holds it."""
+        a = np.clip(np.floor((self._los - self.margin - self.lo) / self.cell).astype(np.int64), 0, self.dims - 1)
+        b = np.clip(np.floor((self._his + self.margin - self.lo) / self.cell).astype(np.int64), 0, self.dims - 1)
+        return a, b
+
+    # -- data ------------------------------------------------------------------------
+    def _entries(self) -> tuple[np.ndarray, np.ndarray]:
+        """(cell index, child index) of every list entry, sorted by cell."""
+        a, b = self._ranges()
+        n = b - a + 1
+        counts = n.prod(axis=1)
+        child = np.repeat(np.arange(len(self.children)), counts)
+        start = np.concatenate([[0], np.cumsum(counts)[:-1]])
+        local = np.arange(counts.sum()) - np.repeat(start, counts)
+        nx, ny = np.repeat(n[:, 0], counts), np.repeat(n[:, 1], counts)
+        x = np.repeat(a[:, 0], counts) + local % nx
+        y = np.repeat(a[:, 1], counts) + (local // nx) % ny
+        z = np.repeat(a[:, 2], counts) + local // (nx * ny)
+        cells = (z * self.dims[1] + y) * self.dims[0] + x
+        order = np.argsort(cells, kind="stable")
+        return cells[order], child[order]
+
+    def records(self, t: _Type, default_color: tuple[float, float, float]) -> np.ndarray:
+        """float32 (members, texels, 4): each member's inverse transform, parameters, colour."""
+        sizes = [len(v) for _, v in _slot_values(t.inner)] if t.slots is not None else []
+        scale_at, slots_at, color_at, texels = t.layout(sizes)
+        out = np.zeros((len(t.members), texels * 4), dtype=np.float64)
+        peeled = [self.peeled[i] for i in t.members]
+        tr = np.array([u[1] for u in peeled]) - self.centre
+        s = np.array([u[3] for u in peeled], dtype=np.float64)
+        if t.affine:
+            a = np.array([u[2] for u in peeled]).transpose(0, 2, 1) / s[:, None, None]
+            b = -np.einsum("nij,nj->ni", a, tr)
+            out[:, 0:12] = np.concatenate([a, b[:, :, None]], axis=2).reshape(-1, 12)
+        else:
+            out[:, 0:3] = tr
+        if t.scaled:
+            out[:, scale_at] = s
+        if t.slots is not None:
+            pos = slots_at
+            for name, size in zip(t.slots, sizes):
+                out[:, pos:pos + size] = np.array([np.ravel(u[0].__dict__[name]) for u in peeled], dtype=np.float64)
+                pos += size
+        if t.color_in_code is None:
+            out[:, color_at:color_at + 3] = [u[4] if u[4] is not None else default_color for u in peeled]
+        return out.astype(np.float32).reshape(len(t.members), texels, 4)
+
+    def textures(self, default_color: tuple[float, float, float]) -> dict[str, np.ndarray]:
+        """float32 RGBA arrays (rows, LIST_WIDTH, 4): per cell and type (first texel, count)
+        pairs, and the list records."""
+        key = tuple(default_color)
+        if key in self._textures:
+            return self._textures[key]
+        cells, child = self._entries()
+        type_of = np.zeros(len(self.children), dtype=np.int64)
+        local = np.zeros(len(self.children), dtype=np.int64)
+        for ti, t in enumerate(self.types):
+            type_of[t.members] = ti
+            local[t.members] = np.arange(len(t.members))
+        etype = type_of[child]
+        order = np.lexsort((etype, cells))  # by cell, then type
+        cells, child, etype = cells[order], child[order], etype[order]
+        recs = [self.records(t, default_color) for t in self.types]
+        size = np.array([r.shape[1] for r in recs])
+        width = size[etype]
+        offset = np.concatenate([[0], np.cumsum(width)[:-1]])
+        total = int(width.sum())
+        lst = np.zeros((max(1, -(-total // LIST_WIDTH)) * LIST_WIDTH, 4), dtype=np.float32)
+        if total >= 2 ** 24:
+            raise SdfglError(f"union: {total} list texels exceed the float32 index limit of 2^24; "
+                             "use fewer or larger instances")
+        for ti, r in enumerate(recs):
+            sel = np.nonzero(etype == ti)[0]
+            rows = offset[sel][:, None] + np.arange(r.shape[1])[None, :]
+            lst[rows.ravel()] = r[local[child[sel]]].reshape(-1, 4)
+        ntypes = len(self.types)
+        per_cell = -(-ntypes // 2)
+        ncell = int(np.prod(self.dims))
+        table = np.zeros((ncell, per_cell * 2, 2), dtype=np.float64)
+        flat = cells * ntypes + etype
+        counts = np.bincount(flat, minlength=ncell * ntypes)
+        firsts = np.zeros(ncell * ntypes, dtype=np.int64)
+        firsts[flat[::-1]] = offset[::-1]  # the first entry of each (cell, type) group
+        table[:, :ntypes, 0] = firsts.reshape(ncell, ntypes)
+        table[:, :ntypes, 1] = counts.reshape(ncell, ntypes)
+        cell_tex = np.zeros((-(-ncell * per_cell // LIST_WIDTH) * LIST_WIDTH, 4), dtype=np.float32)
+        cell_tex[:ncell * per_cell] = table.reshape(ncell * per_cell, 4)
+        out = {"Cells": cell_tex.reshape(-1, LIST_WIDTH, 4), "List": lst.reshape(-1, LIST_WIDTH, 4)}
+        self._textures[key] = out
+        return out
+
+    # -- code ------------------------------------------------------------------------
+    def emit(self, em: "Emitter", p: str) -> str:
+        """Call this grid's union function at point ``p``: (rgb, d) in colour mode, else d."""
+        from .. import shaderlib
+        gid = em.grid_name(self)
+        channel = "Color" if em.channel == "albedo" else em.channel.capitalize()
+        fn = f"{gid}{channel if em.mode == 'color' else ('Detail' if em.detail else 'Dist')}"
+        key = ("grid", gid, em.mode, em.channel, em.detail)
+        if key not in em.functions:
+            default = em.grids[id(self)][2]
+            tex = self.textures(default)
+            em.require("data_table")
+            cells, lists = em.data.add(tex["Cells"]), em.data.add(tex["List"])
+            head = shaderlib.read("grid_union").replace("GRIDID", gid)
+            defs = (f"#define {gid}_LO vec3({', '.join(em.num(x) for x in self.lo - self.centre)})\n"
+                    f"#define {gid}_CELL {em.num(self.cell)}\n"
+                    f"#define {gid}_MARGIN {em.num(self.margin)}\n"
+                    f"#define {gid}_DIMS ivec3({', '.join(str(int(x)) for x in self.dims)})\n"
+                    f"#define {gid}_PER_CELL {-(-len(self.types) // 2)}\n"
+                    f"#define {gid}_CELLS {cells}\n#define {gid}_LIST {lists}")
+            em.helper(f"{gid}_grid", defs + "\n" + head)
+            color = em.mode == "color"
+            owner = f"union of {len(self.children)} instances ({gid})"
+            body = [(f"    vec4 s{j} = dataFetch({gid}_CELLS + cell + {j});", owner)
+                    for j in range(-(-len(self.types) // 2))]
+            for ti, t in enumerate(self.types):
+                body += self._loop(em, t, ti, color, owner)
+            rtype = "vec4" if color else "float"
+            best = "vec4(0.0, 0.0, 0.0, cap)" if color else "cap"
+            lines = [(f"{rtype} {fn}(vec3 p) {{", owner),
+                     ("    float cap;", owner),
+                     (f"    int cell = {gid}Cell(p, cap) * {gid}_PER_CELL;", owner),
+                     (f"    {rtype} best = {best};", owner),
+                     *body,
+                     ("    return best;", owner), ("}", owner)]
+            em.functions[key] = (fn, lines)
+        pt = em.point(em.shift(p, -self.centre))
+        return em.assign("vec4" if em.mode == "color" else "float", f"{fn}({pt})")
+
+    def _loop(self, em: "Emitter", t: _Type, ti: int, color: bool, owner: str) -> list[tuple[str, str]]:
+        """The loop over the (cell, type ti) list: fetch, transform, evaluate, keep the min."""
+        from ..codegen import Emitter
+        sizes = [len(v) for _, v in _slot_values(t.inner)] if t.slots is not None else []
+        scale_at, slots_at, color_at, texels = t.layout(sizes)
+        need = texels if color else -(-(color_at if t.color_in_code is None else texels * 4) // 4)
+        need = max(need, 1)
+        gid = em.grid_name(self)
+        span = f"s{ti // 2}"
+        lines = [f"    {{  // type {ti}: {t.inner.label()[:60]} x {len(t.members)}"]
+        first, count = (f"{span}.x", f"{span}.y") if ti % 2 == 0 else (f"{span}.z", f"{span}.w")
+        lines.append(f"    int first = int({first});")
+        lines.append(f"    int count = int({count});")
+        lines.append("    for (int k = 0; k < count; k++) {")
+        lines.append(f"        int e = {gid}_LIST + first + k * {texels};")
+        for j in range(need):
+            lines.append(f"        vec4 d{j} = dataFetch(e + {j});")
+        if t.affine:
+            lines.append("        vec3 q = vec3(dot(d0.xyz, p) + d0.w, dot(d1.xyz, p) + d1.w, dot(d2.xyz, p) + d2.w);")
+        else:
+            lines.append("        vec3 q = p - d0.xyz;")
+        out = [(line, owner) for line in lines]
+        # the type's field at q
+        if t.slots is not None:
+            template = _template(t.inner, t.slots, slots_at)
+            sub = Emitter("dist", parent=em)
+            sub._count = 0
+            d = template._emit(sub, "q")
+            out += [("    " + code, owner) for code, _ in sub.lines]
+            result_color = None
+        elif color and t.color_in_code is not None:
+            own = em.grids[id(self)][2] if t.color_in_code == ("default",) else t.color_in_code
+            with em.colored({"albedo": own}):
+                name = em.function(t.inner)
+            out.append((f"        vec4 r = {name}(q);", owner))
+            d, result_color = "r.w", "r.rgb"
+        else:
+            mode = em.mode
+            em.mode = "dist"
+            try:
+                name = em.function(t.inner)
+            finally:
+                em.mode = mode
+            out.append((f"        float dd = {name}(q);", owner))
+            d, result_color = "dd", None
+        if t.scaled:
+            d = f"({d}) * {_component(scale_at, 0)}"
+        if color:
+            rgb = result_color or (_slot_expr(color_at, 3) if em.channel == "albedo" else em.vec(em.current()))
+            out.append((f"        float dist = {d};", owner))
+            out.append((f"        if (dist < best.w) best = vec4({rgb}, dist);", owner))
+        else:
+            out.append((f"        best = min(best, {d});", owner))
+        out += [("    }", owner), ("    }", owner)]
+        return out
 
 
-def build(children: list[Node]) -> Grid | None:
-    """A grid for a union's children if enough of them pack (those that do not stay code)."""
-    finite = [c for c in children if np.all(np.isfinite(c.bounds[0])) and np.all(np.isfinite(c.bounds[1]))]
-    packed = [(c, pack(c)) for c in finite]
-    packed = [(c, q) for c, q in packed if q is not None]
-    if len(packed) < GRID_MIN:
+def _template(prim: Node, slots: list[str], at: int) -> Node:
+    """A copy of ``prim`` whose slot attributes are read from the record's texels."""
+    tpl = type(prim).__new__(type(prim))
+    tpl.__dict__.update(prim.__dict__)
+    pos = at
+    for name, val in _slot_values(prim):
+        if name in slots:
+            tpl.__dict__[name] = Slot(_slot_expr(pos, len(val)), len(val))
+            pos += len(val)
+    return tpl
+
+
+def _bounds_of(node: Node) -> tuple[np.ndarray, np.ndarray]:
+    """node.bounds without the defensive copies (read only)."""
+    hit = node.__dict__.get("_bounds_cache")
+    return hit if hit is not None else node.bounds
+
+
+def _centred(sph: Node) -> Node:
+    """A copy of a sphere with its centre at the origin."""
+    out = type(sph).__new__(type(sph))
+    out.__dict__.update(sph.__dict__)
+    out.c = np.zeros(3)
+    out.params = {**sph.params, "center": out.c}
+    return out
+
+
+def _primitive_slots(prim: Primitive) -> list[str] | None:
+    """The attributes of ``prim`` the shader can read from data, or None if its code needs
+    a fixed value (then each distinct primitive is its own type)."""
+    from ..codegen import Emitter
+    names = [name for name, _ in _slot_values(prim)]
+    try:
+        _template(prim, names, 0)._emit(Emitter("dist"), "q")
+    except _SlotRead:
         return None
-    return Grid([c for c, _ in packed], [q for _, q in packed])
+    except Exception:  # noqa: BLE001 - any other failure: keep the values as code
+        return None
+    return names
+
+
+def build(children: list[Node], min_children: int | None = None, single_cell: bool = False) -> Grid | None:
+    """A grid for a union's children if at least ``min_children`` (default GRID_MIN) of
+    them are instances (those that are not stay code beside it)."""
+    least = GRID_MIN if min_children is None else min_children
+    if len(children) < least:
+        return None
+    types: dict[tuple, _Type] = {}
+    slot_cache: dict[type, list[str] | None] = {}
+    attrs: dict[type, Any] = {}  # attribute names of the first instance of each class
+    lipschitz_ok: dict[type, bool] = {}
+    kept: list[Node] = []
+    peeled: list[tuple] = []
+    from .primitives import Sphere
+    for c in children:
+        lo, hi = _bounds_of(c)
+        if not (np.isfinite(lo).all() and np.isfinite(hi).all()):
+            continue
+        u = unwrap(c)
+        if u is None:
+            continue
+        inner = u[0]
+        if isinstance(inner, Sphere) and not inner.live_params() and np.any(inner.c):
+            # the centre joins the translation: a sphere is one texel (centre, radius)
+            u = (_centred(inner), u[1] + u[3] * (u[2] @ inner.c), u[2], u[3], u[4])
+            inner = u[0]
+        if isinstance(inner, Primitive):
+            if any(isinstance(v, Live) for v in inner.params.values()):
+                continue
+        elif inner.live_params() or inner.exactness == IMPLICIT or inner.lipschitz > 1.0:
+            continue
+        if isinstance(inner, Primitive):
+            cls = type(inner)
+            if cls not in slot_cache:
+                slot_cache[cls] = _primitive_slots(inner)
+                if inner.lipschitz > 1.0 or inner.exactness == IMPLICIT:
+                    lipschitz_ok[cls] = False
+            if not lipschitz_ok.get(cls, True):
+                continue
+            slots = slot_cache[cls]
+            if slots is not None and inner.__dict__.keys() != attrs.setdefault(cls, inner.__dict__.keys()) \
+                    and [n for n, _ in _slot_values(inner)] != slots:
+                slots = None
+            key = ("prim", cls) if slots is not None else ("node", inner.key)
+            color_in_code = None
+        else:
+            if not _small(inner):
+                continue
+            slots = None
+            color_in_code = (u[4] or ("default",)) if _has_color(inner) else None
+            key = ("node", inner.key, color_in_code)
+        t = types.get(key)
+        if t is None:
+            if len(types) >= MAX_TYPES:
+                continue
+            t = types[key] = _Type(key, inner, slots, color_in_code)
+        t.members.append(len(kept))
+        _, tr, r, s, _ = u
+        if s != 1.0:
+            t.scaled = t.affine = True
+        if r is not _EYE and not np.array_equal(r, _EYE):
+            t.affine = True
+        kept.append(c)
+        peeled.append(u)
+    if len(kept) < least:
+        return None
+    return Grid(kept, peeled, list(types.values()), single_cell)
+
+
+__all__ = ["GRID_MIN", "Grid", "build", "pack", "unwrap"]

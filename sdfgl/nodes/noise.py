@@ -49,9 +49,8 @@ class Displace(Unary):
     def exactness(self) -> str:
         return BOUND
 
-    @property
-    def has_detail(self) -> bool:
-        return self.m != self.n or super().has_detail
+    def _detail_here(self) -> bool:
+        return self.m != self.n
 
     def _emit(self, em: "Emitter", p: str) -> str:
         em.require("noise3")

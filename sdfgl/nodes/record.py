@@ -60,8 +60,15 @@ class Recorded:
         return type(self), args, kwargs
 
     def __reduce__(self) -> tuple:
-        cls, args, kwargs = self.constructor
-        return (_rebuild, (cls, args, kwargs))
+        """Pickle the graph as a flat table of constructor calls, children first: no
+        recursion however deep the graph (a 10^5-deep chain pickles), shared nodes stay shared."""
+        order = _postorder(self)
+        index = {id(n): i for i, n in enumerate(order)}
+        table = []
+        for n in order:
+            cls, args, kwargs = n.constructor
+            table.append((cls, _to_refs(args, index), _to_refs(kwargs, index)))
+        return (_rebuild_table, (table,))
 
 
 def registry() -> dict[str, type]:
@@ -76,8 +83,78 @@ def registry() -> dict[str, type]:
     return REGISTRY
 
 
-def _rebuild(cls: type, args: tuple, kwargs: dict) -> Any:
-    return cls(*args, **kwargs)
+class _Ref:
+    """A reference to an earlier entry of a pickled constructor table."""
+
+    __slots__ = ("index",)
+
+    def __init__(self, index: int) -> None:
+        self.index = index
+
+    def __reduce__(self) -> tuple:
+        return (_Ref, (self.index,))
+
+
+def _nested(value: Any) -> list["Recorded"]:
+    """The recorded objects inside a constructor argument (in lists, tuples and dicts)."""
+    out, stack = [], [value]
+    while stack:
+        v = stack.pop()
+        if isinstance(v, Recorded):
+            out.append(v)
+        elif isinstance(v, (list, tuple)):
+            stack.extend(v)
+        elif isinstance(v, dict):
+            stack.extend(v.values())
+    return out
+
+
+def _postorder(root: "Recorded") -> list["Recorded"]:
+    """Every recorded object reachable through constructor arguments, each after those it
+    was built from (iterative)."""
+    order: list[Recorded] = []
+    seen = {id(root)}
+    stack: list[tuple[Recorded, bool]] = [(root, False)]
+    while stack:
+        node, expanded = stack.pop()
+        if expanded:
+            order.append(node)
+            continue
+        stack.append((node, True))
+        _, args, kwargs = node.constructor
+        for child in _nested((args, kwargs)):
+            if id(child) not in seen:
+                seen.add(id(child))
+                stack.append((child, False))
+    return order
+
+
+def _to_refs(value: Any, index: dict[int, int]) -> Any:
+    if isinstance(value, Recorded):
+        return _Ref(index[id(value)])
+    if isinstance(value, (list, tuple)) and _nested(value):
+        return type(value)(_to_refs(v, index) for v in value) if type(value) in (list, tuple) else value
+    if isinstance(value, dict) and _nested(value):
+        return {k: _to_refs(v, index) for k, v in value.items()}
+    return value
+
+
+def _from_refs(value: Any, made: list) -> Any:
+    if isinstance(value, _Ref):
+        return made[value.index]
+    if type(value) in (list, tuple):
+        return type(value)(_from_refs(v, made) for v in value)
+    if isinstance(value, dict):
+        return {k: _from_refs(v, made) for k, v in value.items()}
+    return value
+
+
+def _rebuild_table(table: list[tuple[type, tuple, dict]]) -> Any:
+    """Inverse of Recorded.__reduce__: each constructor called in table order."""
+    made: list[Any] = []
+    for cls, args, kwargs in table:
+        made.append(cls(*_from_refs(args, made), **_from_refs(kwargs, made)))
+    return made[-1]
 
 
 def _reduce_param(p: Any) -> tuple:

@@ -7,10 +7,11 @@ import numpy as np
 
 from ..errors import ParameterError
 from . import validate as v
-from .base import EXACT, Node
+from .base import BOUND, EXACT, Node
 from .record import Recorded
 
 if TYPE_CHECKING:  # pragma: no cover
+    from .polygrid import PolygonGrid
     from ..codegen import Emitter
 
 
@@ -177,11 +178,37 @@ class Polygon(Shape2D):
     def expr(self, em: "Emitter", q: str) -> str:
         from .. import shaderlib
         n = len(self.v)
+        grid = self.grid
+        if grid is not None:  # many vertices: edges listed per cell of a 2D grid
+            em.require("sd_polygon_grid")
+            cells, edges = em.table(grid.cells), em.table(grid.edges)
+            return f"sdPolygonGrid({q}, {grid.defines(em, 'g', cells, edges)})"
+        if n >= em.data_min:  # vertices as data: a loop over a texture, not an unrolled array
+            em.require("sd_polygon_data")
+            return f"sdPolygonData({q}, {em.table(self.v)}, {n})"
         em.helper(f"sdPolygon{n}", shaderlib.read("lib/sd_polygon").replace("POLYN", str(n)))
         verts = ", ".join(em.vec(p) for p in self.v)
         return f"sdPolygon{n}({q}, vec2[{n}]({verts}))"
 
+    @property
+    def exactness(self) -> str:  # type: ignore[override]
+        """Exact, or a bound where the edge grid's cap limits the distance far from the edges."""
+        return BOUND if self.grid is not None else EXACT
+
+    @property
+    def grid(self) -> "PolygonGrid | None":
+        """The edge grid of a polygon with at least GRID_VERTICES vertices, else None."""
+        from .polygrid import GRID_VERTICES, PolygonGrid
+        if "_grid" not in self.__dict__:
+            self.__dict__["_grid"] = PolygonGrid(self.v) if len(self.v) >= GRID_VERTICES else None
+        return self.__dict__["_grid"]
+
     def distance2(self, q: np.ndarray) -> np.ndarray:
+        d = self._exact2(q)
+        grid = self.grid
+        return d if grid is None else np.sign(d) * np.minimum(np.abs(d), grid.cap(q))
+
+    def _exact2(self, q: np.ndarray) -> np.ndarray:
         v = self.v
         d = np.sum((q - v[0]) ** 2, axis=-1)
         s = np.ones(q.shape[:-1])

@@ -72,6 +72,15 @@ def vector(node: str, name: str, value: object, n: int = 3, *, positive: bool = 
         return value
     if isinstance(value, (Real, np.floating, np.integer)) and not isinstance(value, bool):
         value = [value] * n
+    if isinstance(value, (tuple, list, np.ndarray)) and len(value) == n:
+        try:  # fast path: n plain finite numbers (everything else takes the checks below)
+            fast = np.array(value, dtype=np.float64)
+        except (TypeError, ValueError):
+            fast = None
+        if (fast is not None and fast.shape == (n,) and np.isfinite(fast).all() and not (positive and fast.min() <= 0)
+                and not (nonzero and not fast.any())
+                and all(type(x) in (int, float) or isinstance(x, (np.floating, np.integer)) for x in value)):
+            return fast
     if isinstance(value, (str, bytes)) or not isinstance(value, (Sequence, np.ndarray)):
         raise ParameterError(f"{node}: parameter '{name}' must be {n} numbers, got {type(value).__name__} {value!r}")
     items = list(value)

@@ -1,0 +1,166 @@
+"""Benchmarks of big scenes: growth with the number of objects, mixed primitive types,
+instanced subtrees, 10^5-deep chains, shared subtrees (DAGs) and big polygons.
+
+Each row says what was built and how long building, compiling (link and first frame)
+and drawing took, beside the steps per ray; frame times are medians of interleaved draws
+(see sdfgl.bench). ``scenes`` are also what the tests and the closing figures use.
+"""
+from __future__ import annotations
+
+import math
+import time
+from typing import Callable
+
+import numpy as np
+
+from .camera import Camera, OrbitCamera
+from .nodes import booleans, primitives, shapes2d
+from .nodes.base import Node
+
+NO_SHADING = {"shadows": False, "ao": False}
+
+
+def growth(n: int, seed: int = 0) -> tuple[Node, Camera]:
+    """The growth scene kind: n spheres of radius 0.15 scattered in a 12 x 2 x 12 box."""
+    rng = np.random.default_rng(seed)
+    pts = rng.uniform((-6, -1, -6), (6, 1, 6), (n, 3))
+    scene = booleans.union(*[primitives.sphere(0.15).translate(p) for p in pts]) if n > 1 else \
+        primitives.sphere(0.15).translate(pts[0])
+    return scene, OrbitCamera(target=(0, 0, 0), distance=14, yaw=30, pitch=35, fov=50)
+
+
+def _random_rotation(rng: np.random.Generator) -> tuple[float, tuple[float, float, float]]:
+    axis = rng.normal(size=3)
+    return float(rng.uniform(0, 360)), tuple(axis / np.linalg.norm(axis))
+
+
+def mixed(n: int, seed: int = 0) -> tuple[Node, Camera]:
+    """n capsules, cones, tori, boxes and spheres, each rotated, in a cube growing with n."""
+    rng = np.random.default_rng(seed)
+    ext = 1.2 * n ** (1 / 3)
+    kinds: list[Callable[[], Node]] = [
+        lambda: primitives.capsule((0, -0.3, 0), (0, 0.3, 0), float(rng.uniform(0.1, 0.2))),
+        lambda: primitives.cone(float(rng.uniform(0.4, 0.7)), float(rng.uniform(0.2, 0.35)), 0.05),
+        lambda: primitives.torus(float(rng.uniform(0.2, 0.35)), 0.08),
+        lambda: primitives.box(tuple(rng.uniform(0.2, 0.5, 3))),
+        lambda: primitives.sphere(float(rng.uniform(0.15, 0.3))),
+    ]
+    parts = []
+    for i in range(n):
+        angle, axis = _random_rotation(rng)
+        parts.append(kinds[i % 5]().rotate(angle, axis).translate(tuple(rng.uniform(-ext, ext, 3))))
+    return booleans.union(*parts), OrbitCamera(distance=3.2 * ext, yaw=30, pitch=25)
+
+
+def twenty_nodes() -> Node:
+    """A 20-node subtree: a little robot of primitives, booleans and moves."""
+    p = primitives
+    body = p.rounded_box((0.4, 0.5, 0.3), 0.05)
+    head = p.sphere(0.18).translate((0, 0.38, 0))
+    eyes = booleans.union(p.sphere(0.04).translate((-0.07, 0.42, 0.15)), p.sphere(0.04).translate((0.07, 0.42, 0.15)))
+    arms = p.capsule((-0.3, 0.15, 0), (0.3, 0.15, 0), 0.05)
+    legs = booleans.union(p.cylinder(0.06, 0.3).translate((-0.1, -0.35, 0)),
+                          p.cylinder(0.06, 0.3).translate((0.1, -0.35, 0)))
+    return booleans.difference(booleans.union(body, head, arms, legs), eyes).color(0.8, 0.5, 0.2)
+
+
+def instances(n: int, seed: int = 0, subtree: Node | None = None) -> tuple[Node, Camera]:
+    """n translated copies of one subtree (the 20-node robot) in a cube growing with n."""
+    rng = np.random.default_rng(seed)
+    ext = 1.0 * n ** (1 / 3)
+    sub = subtree if subtree is not None else twenty_nodes()
+    parts = [sub.translate(tuple(rng.uniform(-ext, ext, 3))) for _ in range(n)]
+    return booleans.union(*parts), OrbitCamera(distance=3.2 * ext, yaw=30, pitch=25)
+
+
+def spheres_like(n: int, seed: int = 0) -> tuple[Node, Camera]:
+    """n spheres where instances(n) puts its copies (the frame-time yardstick)."""
+    return instances(n, seed, primitives.sphere(0.35))
+
+
+def chain(kind: str, n: int) -> tuple[Node, Camera]:
+    """A chain of n operations as a loop writes it: ``s = s | x``, ``s = s.translate(...)``."""
+    s: Node = primitives.sphere(0.5)
+    if kind == "union":
+        for i in range(n):
+            s = s | primitives.sphere(0.02).translate((math.cos(i * 0.01) * 2, (i / n) * 2 - 1, math.sin(i * 0.01) * 2))
+    elif kind == "translate":
+        for _ in range(n):
+            s = s.translate((1e-5, 0, 0))
+    elif kind == "rotate":
+        s = primitives.box((1, 0.5, 0.25))
+        for _ in range(n):
+            s = s.rotate(0.01, (0, 1, 0))
+    elif kind == "mixed":  # union, then move: nothing to fold, the graph is n deep
+        for i in range(n):
+            s = (s | primitives.sphere(0.02).translate((0, 1, 0))).translate((1e-5, 0, 0))
+    else:
+        raise ValueError(kind)
+    return s, OrbitCamera(distance=6, yaw=30, pitch=20)
+
+
+def dag(levels: int) -> tuple[Node, Camera]:
+    """One node object used as both operands of a smooth union, ``levels`` deep (2^levels paths)."""
+    s: Node = primitives.sphere(0.5).union(primitives.box(0.6).translate((0.5, 0, 0)))
+    for _ in range(levels):
+        s = booleans.union(s, s, k=0.01)
+    return s, OrbitCamera(distance=4, yaw=30, pitch=20)
+
+
+def polygon(n: int) -> tuple[Node, Camera]:
+    """An extruded star polygon of n vertices."""
+    a = np.linspace(0, 2 * np.pi, n, endpoint=False)
+    r = 1 + 0.3 * np.cos(12 * a)
+    pts = np.stack([r * np.cos(a), r * np.sin(a)], axis=1)
+    return shapes2d.extrude(shapes2d.polygon(pts), 0.5), OrbitCamera(distance=4, yaw=30, pitch=40)
+
+
+def _timed(fn: Callable[[], object]) -> tuple[object, float]:
+    t0 = time.perf_counter()
+    out = fn()
+    return out, time.perf_counter() - t0
+
+
+def run_big(quick: bool, size: tuple[int, int] = (320, 240)) -> str:
+    """Every big-scene row at ``size`` (--quick: smaller scenes); return the markdown section."""
+    from .bench import FrameTimer, Progress, Variant, time_interleaved
+    from .render import Renderer
+    renderer = Renderer()
+    timer = FrameTimer(renderer, size)
+    frames, warmup = (3, 1) if quick else (5, 2)
+    rows = ["| scene | objects | build s | link ms | first frame ms | frame ms (median) | ratio | steps/px | "
+            "code chars | how |", "|---|---|---|---|---|---|---|---|---|---|"]
+
+    def measure(group: list[tuple[str, int, Callable[[], tuple[Node, Camera]]]], base: int = 0) -> None:
+        vs = []
+        for name, n, make in group:
+            (scene, cam), build = _timed(make)  # type: ignore[misc]
+            vs.append(Variant(name, str(n), dict(NO_SHADING), scene, cam, result={"build_s": build}))
+        time_interleaved(timer, vs, frames, warmup, Progress(0, False))
+        ref = vs[base].result["frame_ms_median"]
+        for v in vs:
+            res = renderer.render(v.node, v.camera, size, outputs=("color", "steps"), **v.settings)
+            r = v.result
+            src = r["_prog"][2]
+            rows.append(f"| {v.scene} | {v.label} | {r['build_s']:.2f} | {1000 * r['compile_s']:.0f} | "
+                        f"{1000 * r['first_frame_s']:.0f} | {r['frame_ms_median']:.1f} | "
+                        f"{r['frame_ms_median'] / ref:.2f} | {float(res.steps.mean()):.2f} | {src.code_size} | "
+                        f"{src.choice}; {src.data_unions} union(s) as data, grid_min {src.grid_min} |")
+
+    sizes = (16, 128) if quick else (16, 256, 1024)
+    measure([("growth: spheres r 0.15 in 12x2x12", n, lambda n=n: growth(n)) for n in sizes])
+    n_inst = 64 if quick else 1000
+    measure([(f"{n_inst} spheres (yardstick)", n_inst, lambda: spheres_like(n_inst)),
+             (f"{n_inst} moved copies of a 20-node subtree", n_inst, lambda: instances(n_inst))])
+    n_mixed = 100 if quick else 5000
+    measure([("mixed rotated capsules, cones, tori, boxes, spheres", n_mixed, lambda: mixed(n_mixed))])
+    depth = 2000 if quick else 10 ** 5
+    measure([(f"chain of {depth} {kind}s", depth, lambda kind=kind: chain(kind, depth))
+             for kind in ("union", "translate", "rotate")])
+    measure([("one node as both operands, 30 levels (2^30 paths)", 30, lambda: dag(30))])
+    measure([(f"extruded polygon of {n} vertices", n, lambda n=n: polygon(n)) for n in ((500,) if quick else (2000, 10000))])
+    return (f"Size {size[0]}x{size[1]}, shadows and AO off, frames interleaved within each group; 'build' is the Python "
+            "that makes the scene, 'link' generating the source plus the driver's compile and link, 'first "
+            "frame' adds llvmpipe's code generation; 'ratio' is to the group's first row; 'how' is the "
+            "code/data choice in the shader source (grid_min: the fewest instances a union kept as data had "
+            "to have).\n\n" + "\n".join(rows))

@@ -1,0 +1,98 @@
+"""Graph walks without recursion: scenes may be chains of 10^5 nodes or DAGs of 2^30 paths.
+
+Every walk visits each distinct node object once (a shared subtree costs once), and
+deep evaluations (the float64 twin, code generation) run on a thread with a large stack
+when the graph is deeper than Python's default recursion allows.
+"""
+from __future__ import annotations
+
+import sys
+import threading
+from typing import TYPE_CHECKING, Any, Callable, Iterator, TypeVar
+
+if TYPE_CHECKING:  # pragma: no cover
+    from .base import Node
+
+T = TypeVar("T")
+
+SHALLOW = 400            # deeper graphs are evaluated on a big-stack thread
+MAX_DEPTH = 1_000_000    # nesting deeper than this is refused with a message
+_STACK_BYTES = 1 << 30   # per level: a few Python frames of a few hundred bytes each
+
+
+def postorder(root: "Node", skip: Callable[["Node"], bool] = lambda n: False) -> Iterator["Node"]:
+    """Each distinct node under ``root`` once, children before parents; the subtree of a
+    node for which ``skip`` is true is not entered (nor is the node yielded)."""
+    seen: set[int] = set()
+    if skip(root):
+        return
+    stack: list[tuple["Node", int]] = [(root, 0)]
+    seen.add(id(root))
+    while stack:
+        node, i = stack[-1]
+        kids = node.children
+        if i < len(kids):
+            stack[-1] = (node, i + 1)
+            c = kids[i]
+            if id(c) not in seen and not skip(c):
+                seen.add(id(c))
+                stack.append((c, 0))
+            continue
+        stack.pop()
+        yield node
+
+
+def cached(node: "Node", name: str, compute: Callable[["Node"], T]) -> T:
+    """``node.__dict__[name]``, computed bottom-up over the subtree by ``compute`` (which
+    may read its children's cached values) without recursion."""
+    d = node.__dict__
+    hit = d.get(name, _MISSING)
+    if hit is not _MISSING:
+        return hit  # type: ignore[return-value]
+    pending = [c for c in node.children if name not in c.__dict__]
+    if all(name in g.__dict__ for c in pending for g in c.children):  # the common cases: no walk
+        for c in pending:
+            c.__dict__[name] = compute(c)
+        value = d[name] = compute(node)
+        return value
+    for n in postorder(node, skip=lambda n: name in n.__dict__):
+        n.__dict__[name] = compute(n)
+    return node.__dict__[name]
+
+
+_MISSING = object()
+
+
+def depth(node: "Node") -> int:
+    """The number of nodes on the longest path from ``node`` to a leaf."""
+    return cached(node, "_depth", lambda n: 1 + max((c.__dict__["_depth"] for c in n.children), default=0))
+
+
+def run_deep(node: "Node", fn: Callable[[], T]) -> T:
+    """Call ``fn`` (which recurses over ``node``'s graph) with room for the graph's depth."""
+    d = depth(node)
+    if d <= SHALLOW or threading.current_thread().name == "sdfgl-deep":
+        return fn()
+    if d > MAX_DEPTH:
+        from ..errors import ParameterError
+        raise ParameterError(f"scene: nesting depth {d} exceeds the limit of {MAX_DEPTH} nodes")
+    out: dict[str, Any] = {}
+
+    def work() -> None:
+        try:
+            out["value"] = fn()
+        except BaseException as exc:  # re-raised in the caller's thread
+            out["error"] = exc
+    old_limit, old_stack = sys.getrecursionlimit(), threading.stack_size()
+    sys.setrecursionlimit(max(old_limit, 20 * d + 1000))
+    try:
+        threading.stack_size(_STACK_BYTES)
+        t = threading.Thread(target=work, name="sdfgl-deep")
+        threading.stack_size(old_stack)
+        t.start()
+        t.join()
+    finally:
+        sys.setrecursionlimit(old_limit)
+    if "error" in out:
+        raise out["error"]
+    return out["value"]

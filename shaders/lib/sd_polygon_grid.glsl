@@ -1,0 +1,40 @@
+// A polygon with many vertices as data (sdfgl/nodes/polygrid.py): the edges near a point
+// are listed in its cell of a 2D grid. Data texels from `cells`, one per cell:
+// (first entry, count, centre inside, -); from `edges`, one per entry: (from.xy, to.xy).
+// The sign is the cell centre's, flipped by each listed edge the segment centre -> p
+// crosses; the magnitude is min(listed edges, cap), a bound exact below the cap.
+// requires: data_table
+float sdPolygonGrid(vec2 p, vec2 lo, float cell, ivec2 dims, int cells, int edges) {
+    ivec2 c = clamp(ivec2(floor((p - lo) / cell)), ivec2(0), dims - 1);
+    vec2 cellLo = lo + vec2(c) * cell;
+    vec2 outside = max(max(cellLo - p, p - (cellLo + cell)), 0.0);
+    vec2 halfExt = 0.5 * vec2(dims) * cell;
+    vec2 k = abs(p - (lo + halfExt)) - halfExt;
+    float boxDist = length(max(k, 0.0)) + min(max(k.x, k.y), 0.0);
+    float cap = max(cell - length(outside), boxDist);
+    vec4 span = dataFetch(cells + c.y * dims.x + c.x);
+    vec2 centre = cellLo + 0.5 * cell;
+    float s = (boxDist > 0.0 || span.z < 0.5) ? 1.0 : -1.0;
+    bool inGrid = boxDist <= 0.0;
+    float d = cap * cap;
+    int first = int(span.x);
+    int count = int(span.y);
+    for (int i = 0; i < count; i++) {
+        vec4 e = dataFetch(edges + first + i);
+        vec2 a = e.xy;
+        vec2 b = e.zw;
+        vec2 ab = b - a;
+        vec2 w = p - a;
+        vec2 h = w - ab * clamp(dot(w, ab) / dot(ab, ab), 0.0, 1.0);
+        d = min(d, dot(h, h));
+        if (inGrid) {  // does the segment centre -> p cross this edge?
+            vec2 cp = p - centre;
+            float o1 = cp.x * (a.y - centre.y) - cp.y * (a.x - centre.x);
+            float o2 = cp.x * (b.y - centre.y) - cp.y * (b.x - centre.x);
+            float o3 = ab.x * (centre.y - a.y) - ab.y * (centre.x - a.x);
+            float o4 = ab.x * w.y - ab.y * w.x;
+            if ((o1 > 0.0) != (o2 > 0.0) && (o3 > 0.0) != (o4 > 0.0)) s = -s;
+        }
+    }
+    return s * min(sqrt(d), cap);
+}

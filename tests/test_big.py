@@ -1,0 +1,140 @@
+"""Big scenes: deep chains, shared subtrees, instances of any type, polygons and the code budget.
+
+Sizes are kept small enough for CI; the full-size figures are in `sdfgl bench` (bench_big).
+"""
+import pickle
+import sys
+
+import numpy as np
+import pytest
+
+import sdfgl as sg
+from .conftest import all_primitives
+from sdfgl import bench_big
+from sdfgl.nodes.grid import GRID_MIN
+
+DEEP = 3 * sys.getrecursionlimit()  # deeper than any recursive walk could go
+
+
+def _parity(scene, renderer, pts):
+    err = np.abs(sg.evaluate(scene, pts, renderer=renderer) - scene.distance(pts))
+    return float(err.max())
+
+
+def test_chains_of_one_operator_stay_flat():
+    s = sg.sphere(0.1)
+    for i in range(DEEP):
+        s = s | sg.sphere(0.01).translate((i * 1e-3, 0, 0))
+    assert isinstance(s, sg.nodes.booleans.Union) and len(s.children) == DEEP + 1
+    t = sg.box(1)
+    for _ in range(DEEP):
+        t = t.translate((1e-3, 0, 0)).rotate(0.1, (0, 1, 0)).scale(1.0001)
+    assert repr(t).count("[") == 3  # translate(rotate(scale(box)))
+    np.testing.assert_allclose(t.distance([[0.3, 0.2, 0.1]]), _unfolded(DEEP).distance([[0.3, 0.2, 0.1]]),
+                               rtol=1e-9)
+
+
+def _unfolded(n):
+    """The same moves as test_chains_of_one_operator_stay_flat, applied to the point."""
+    from sdfgl.nodes.transforms import Rotate, Scale, Translate
+    s = sg.box(1)
+    for _ in range(n):
+        s = Scale(Rotate.axis_angle(Translate(s, (1e-3, 0, 0)), 0.1, (0, 1, 0)), 1.0001)
+    return s
+
+
+def test_a_deep_graph_that_cannot_be_flattened_works_everywhere(renderer):
+    s = sg.sphere(0.5)
+    for _ in range(DEEP):
+        s = sg.difference(s.translate((0, 1e-5, 0)) | sg.sphere(0.02).translate((0.6, 0, 0)), sg.box(0.01))
+    assert s.bounds[0][1] < 0 and s.exactness == sg.BOUND
+    assert len(repr(s)) > DEEP
+    assert pickle.loads(pickle.dumps(s)).key == s.key
+    d = s.distance([[0.0, 0.2, 0.0], [3.0, 0.0, 0.0]])
+    assert d[0] < 0 < d[1]
+    src = sg.compile(s, code_budget=10 ** 8)  # straight-line code, generated without recursion limits
+    assert src.count("opSmin") == 0 and src.count("max(") > DEEP
+
+
+def test_code_past_the_hard_limit_is_refused_with_a_message(monkeypatch):
+    from sdfgl import codegen
+    monkeypatch.setattr(codegen, "MAX_CODE_SIZE", 100)
+    with pytest.raises(sg.ParameterError, match="over the limit of 100"):
+        sg.compile(sg.sphere(1) | sg.box(1))
+
+
+def test_a_dag_of_2_to_the_30_paths_costs_its_distinct_nodes(renderer):
+    s, cam = bench_big.dag(30)
+    assert s.is_dag and len(repr(s)) < 2000 and "@" in repr(s)
+    pts = np.random.default_rng(0).uniform(-1.5, 1.5, (500, 3))
+    assert _parity(s, renderer, pts) < 1e-5
+    res = renderer.render(s, cam, (48, 36), shadows=False, ao=False, outputs=("color", "depth"))
+    assert np.isfinite(res.depth).any()
+    copy = pickle.loads(pickle.dumps(s))
+    assert copy.is_dag and copy.key == s.key  # sharing survives pickling
+
+
+def test_instances_of_every_primitive_type_are_data_with_parity(renderer):
+    rng = np.random.default_rng(2)
+    prims = [p for name, p in all_primitives().items() if name != "plane"]
+    parts = []
+    for i in range(4 * len(prims)):
+        axis = rng.normal(size=3)
+        parts.append(prims[i % len(prims)].scale(float(rng.uniform(0.2, 0.4))).rotate(float(rng.uniform(0, 360)), axis)
+                     .translate(tuple(rng.uniform(-3, 3, 3))))
+    s = sg.union(*parts)
+    assert s.grid is not None and len(s.grid.children) == len(parts)
+    assert {t.key[0] for t in s.grid.types} == {"prim"} and len(s.grid.types) == len(prims)
+    pts = np.random.default_rng(3).uniform(-4, 4, (4000, 3))
+    assert _parity(s, renderer, pts) < 1e-5
+    src = sg.compile(s)
+    assert "sdSphere(q" in src and "mat3(" not in src.split("float map(")[0].split("g0Dist")[1]
+
+
+def test_moved_copies_of_a_subtree_are_one_function_and_data(renderer):
+    s, cam = bench_big.instances(GRID_MIN + 8)
+    grid = s.grid
+    assert grid is not None and len(grid.types) == 1 and grid.types[0].slots is None
+    src = sg.compile(s)
+    assert src.count("sdRoundBox(") == 2  # the library function and the one subtree function
+    pts = np.random.default_rng(4).uniform(-4, 4, (3000, 3))
+    assert _parity(s, renderer, pts) < 1e-5
+    rot = sg.union(*[bench_big.twenty_nodes().rotate(17 * i, (0, 1, 1)).translate((i % 6, i // 6, 0))
+                     for i in range(GRID_MIN)])
+    assert rot.grid.types[0].affine and _parity(rot, renderer, pts) < 1e-5
+
+
+def test_grid_union_images_match_code(renderer):
+    s, cam = bench_big.mixed(60, seed=1)
+    a = renderer.render(s, cam, (64, 48), outputs=("color", "depth"), shadows="soft", ao=True)
+    b = renderer.render(s, cam, (64, 48), outputs=("color", "depth"), shadows="soft", ao=True, grid=False)
+    hit = np.isfinite(a.depth)
+    assert hit.sum() > 100 and (hit != np.isfinite(b.depth)).sum() <= 0.03 * hit.sum()
+    assert np.mean(np.abs(a.color.astype(int) - b.color.astype(int)) > 12) < 0.03
+
+
+def test_big_polygons_are_data(renderer):
+    small, _ = bench_big.polygon(20)
+    big, cam = bench_big.polygon(500)
+    assert "vec2[500]" not in sg.compile(big) and "sdPolygonGrid" in sg.compile(big)
+    assert "vec2[20]" in sg.compile(small) and big.exactness == sg.BOUND and small.exactness == sg.EXACT
+    pts = np.random.default_rng(5).uniform(-1.5, 1.5, (3000, 3))
+    assert _parity(big, renderer, pts) < 1e-5
+    res = renderer.render(big, cam, (32, 24), shadows=False, ao=False, outputs=("color", "depth"))
+    assert np.isfinite(res.depth).any()
+
+
+def test_over_the_code_budget_unions_become_data(renderer):
+    rng = np.random.default_rng(6)
+    groups = [sg.union(*[sg.sphere(0.1).translate(rng.uniform(-1, 1, 3)) for _ in range(20)]).rotate(20 * i, (0, 1, 0))
+              for i in range(6)]
+    s = sg.union(*groups)
+    code = renderer.render(s, size=(32, 24), shadows=False, ao=False, code_budget=10 ** 7)
+    assert code.source.choice == "code" and code.settings.grid_min == GRID_MIN
+    data = renderer.render(s, size=(32, 24), shadows=False, ao=False, code_budget=1000)
+    assert data.source.choice.startswith("data") and data.settings.grid_min == 8
+    assert data.source.code_size < code.source.code_size
+    pts = rng.uniform(-2, 2, (2000, 3))
+    assert _parity(s, renderer, pts) < 1e-5
+    with pytest.raises(sg.ParameterError, match="code_budget"):
+        sg.compile(s, code_budget=10)
