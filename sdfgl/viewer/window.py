@@ -20,14 +20,14 @@ import moderngl
 import numpy as np
 from PIL import Image, ImageDraw, ImageFont
 
-from . import shaderlib
-from .camera import Camera, OrbitCamera
-from .codegen import generate
-from .errors import ContextError, SdfglError
-from .nodes.base import IMPLICIT, Node
-from .render import Renderer, camera_uniforms, scene_uniforms, shader_origin
-from .scenefile import load_scene_file
-from .settings import DISTANCE_METHODS, Settings
+from .. import shaderlib
+from ..camera import Camera, OrbitCamera
+from ..codegen import generate
+from ..errors import ContextError, SdfglError
+from ..nodes.base import IMPLICIT, Node
+from ..render import Renderer, camera_uniforms, scene_uniforms, shader_origin
+from ..scenefile import load_scene_file
+from ..settings import DISTANCE_METHODS, Settings
 
 KEYS_HELP = """\
 mouse   left drag: orbit   right/middle drag: pan   wheel: zoom to target
