@@ -67,6 +67,7 @@ class Emitter:
         self.grids: dict[int, tuple[str, Any, tuple[float, float, float]]] = parent.grids if parent else {}
         self.use_grids = parent.use_grids if parent else True
         self._defining: set = set(parent._defining) if parent else set()
+        self.highlight: Node | None = parent.highlight if parent else None  # the "select" debug view's subtree
 
     # -- bookkeeping -------------------------------------------------------------------
     def enter(self, node: Node) -> None:
@@ -117,6 +118,12 @@ class Emitter:
         if id(grid) not in self.grids:
             self.grids[id(grid)] = (f"g{len(self.grids)}", grid, self._colors[-1])
         return self.grids[id(grid)][0]
+
+    def mark(self, node: Node, result: str) -> str:
+        """Record the distance of the highlighted subtree in the global gSel (map() only); return ``result``."""
+        if node is self.highlight and self.mode == "dist" and not self.detail:
+            self.lines.append((f"    gSel = min(gSel, abs({result}));", self.owner))
+        return result
 
     # -- literals ----------------------------------------------------------------------
     def num(self, x: float | Live) -> str:
@@ -356,8 +363,10 @@ def _grid_code(b: "_Builder", grids: dict, origin: np.ndarray) -> list[tuple[str
 
 
 def _emit_map(scene: Node, mode: str, origin: np.ndarray, params: list[Param], shared: set,
-              grids: dict, use_grids: bool, helpers: dict, detail: bool = False) -> tuple[Emitter, str]:
+              grids: dict, use_grids: bool, helpers: dict, detail: bool = False,
+              highlight: Node | None = None) -> tuple[Emitter, str]:
     em = Emitter(mode, params=params)
+    em.highlight = highlight
     em.helpers = helpers
     em.detail = detail
     em.shared_keys = shared
@@ -368,13 +377,14 @@ def _emit_map(scene: Node, mode: str, origin: np.ndarray, params: list[Param], s
 
 
 def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.0, 0.0),
-             target: str = "render", dialect: str = "desktop") -> ShaderSource:
+             target: str = "render", dialect: str = "desktop", highlight: Node | None = None) -> ShaderSource:
     """Build the fragment shader for ``scene``.
 
     ``origin`` (float64) is the world point that the shader's coordinates are relative
     to; ``target`` is ``"render"`` (the image) or ``"evaluate"`` (map() at given points);
     ``dialect`` is ``"desktop"`` (GLSL 3.30) or ``"webgl2"`` (GLSL ES 3.00): the same
-    code under another header (see :mod:`sdfgl.gl.dialect`).
+    code under another header (see :mod:`sdfgl.gl.dialect`). ``highlight`` is the subtree the
+    "select" debug view tints.
     """
     header = _dialect(dialect).header()
     if not isinstance(scene, Node):
@@ -387,12 +397,16 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
         if settings.ao:
             raise ParameterError(f"{scene.label()} is an implicit field: ambient occlusion needs distances; "
                                  f"pass ao=False")
+    if (settings.debug == "select") != (highlight is not None and target == "render"):
+        raise ParameterError("debug view 'select' needs a highlighted subtree (generate(..., highlight=node)), "
+                             "and a highlight needs debug='select'")
     org = np.asarray(origin, dtype=np.float64)
     params: list[Param] = []
     shared = shared_subtrees(scene)
     grids: dict = {}
     helpers: dict = {}
-    dist, dist_result = _emit_map(scene, "dist", org, params, shared, grids, settings.grid, helpers)
+    dist, dist_result = _emit_map(scene, "dist", org, params, shared, grids, settings.grid, helpers,
+                                  highlight=highlight if target == "render" else None)
     color, color_result = (_emit_map(scene, "color", org, params, shared, grids, settings.grid, helpers)
                            if target == "render" else (None, ""))
     detail, detail_result = (_emit_map(scene, "dist", org, params, shared, grids, settings.grid, helpers, True)
@@ -415,6 +429,8 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     for name, code in helpers.items():
         b.add(code, f"(generated helper {name})")
     data = _grid_code(b, grids, org)
+    if highlight is not None and target == "render":
+        b.add("float gSel = 1e30;  // distance of the highlighted subtree at the last map() call", "(debug select)")
     done: set[str] = set()
     _helpers(b, dist, done)
     _function(b, "float map(vec3 p)", dist, dist_result, "{}")

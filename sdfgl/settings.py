@@ -13,7 +13,7 @@ METHODS = ("sphere", "relaxed", "enhanced", "newton", "forward_newton", "referen
 DISTANCE_METHODS = ("sphere", "relaxed", "enhanced")
 DEFAULT_OMEGA = {"relaxed": 1.6, "enhanced": 0.9}
 HIT_MODES = ("cone", "relative", "absolute")
-DEBUG_VIEWS = (None, "steps", "normal", "depth")
+DEBUG_VIEWS = (None, "steps", "normal", "depth", "select")
 
 
 @dataclass(frozen=True)
@@ -39,7 +39,8 @@ class Settings:
     max_dist: far limit along a ray where the scene is unbounded.
     outputs: which images the draw writes (color always).
     debug: None, or a debug view shown instead of the shaded image: "steps" (heat map of
-        map() calls), "normal" or "depth".
+        map() calls), "normal", "depth" or "select" (grey, tinted where the subtree given to
+        generate() as ``highlight`` is the nearest surface; the viewer's scene tree uses it).
     grid: keep big unions of simple primitives as data with a cell grid (False writes
         them out as code, to compare).
     analytic: intersect a lone sphere or plane in closed form instead of marching it.
@@ -104,7 +105,8 @@ class Settings:
                 raise ParameterError(f"setting '{name}' must be a positive finite number, got {val!r}")
             object.__setattr__(self, name, float(val))
         if self.debug not in DEBUG_VIEWS:
-            raise ParameterError(f"setting 'debug' must be None, 'steps', 'normal' or 'depth', got {self.debug!r}")
+            raise ParameterError(f"setting 'debug' must be None, 'steps', 'normal', 'depth' or 'select', "
+                                 f"got {self.debug!r}")
         outs = (self.outputs,) if isinstance(self.outputs, str) else tuple(self.outputs)
         bad = [o for o in outs if o not in OUTPUTS]
         if bad:

@@ -96,10 +96,10 @@ class Node:
         if self.key in em.shared_keys and self.key not in em._defining:
             # a subtree that occurs more than once in the scene is one GLSL function
             fn = em.function(self)
-            return em.assign("float" if em.mode == "dist" else "vec4", f"{fn}({em.point(p)})")
+            return em.mark(self, em.assign("float" if em.mode == "dist" else "vec4", f"{fn}({em.point(p)})"))
         em.enter(self)
         try:
-            return self._emit(em, p)
+            return em.mark(self, self._emit(em, p))
         finally:
             em.leave()
 

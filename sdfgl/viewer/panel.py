@@ -26,7 +26,7 @@ if TYPE_CHECKING:  # pragma: no cover
 
 WIDTH = 300              # panel width in pixels
 MIN_WINDOW_WIDTH = 800   # narrower windows open with the panel hidden
-DEBUG_NAMES = ("off", "steps", "normal", "depth")
+DEBUG_NAMES = ("off", "steps", "normal", "depth", "select")
 INSTALL_HINT = "the panel needs the optional extra: pip install 'sdfgl[panel]' (imgui-bundle, PyOpenGL)"
 
 
@@ -258,9 +258,11 @@ class Panel:
         if change:
             v.apply_settings(change)
 
-    def _tree(self, node: Node) -> None:
+    def _tree(self, node: Node, depth: int = 0) -> None:
         imgui = self.imgui
         flags = imgui.TreeNodeFlags_.open_on_arrow | imgui.TreeNodeFlags_.span_avail_width
+        if depth < 2:
+            flags |= imgui.TreeNodeFlags_.default_open
         if not node.children:
             flags |= imgui.TreeNodeFlags_.leaf
         if node is self.selected:
@@ -272,7 +274,7 @@ class Panel:
             self.select(None if node is self.selected else node)
         if opened:
             for child in node.children:
-                self._tree(child)
+                self._tree(child, depth + 1)
             imgui.tree_pop()
 
     def select(self, node: Node | None) -> None:

@@ -128,6 +128,8 @@ class Viewer:
         self._overlay_x = 10
         self._shown: tuple[Node, RawProgram, Any, np.ndarray] | None = None  # scene, program, source, origin
         self._token = 0
+        self._highlight: tuple[Node, Node] | None = None  # (scene, subtree) tinted by the "select" debug view
+        self._debug_before: Any = None
         self._pending: tuple[Node, dict[str, Any], str, tuple] | None = None  # what the newest compile is for
         self._open_window()
         self._request(self.scene, self.state.settings, "open")
@@ -303,6 +305,18 @@ class Viewer:
         self.state.param_edits += 1
         self._mark()
 
+    def select_node(self, node: Node | None) -> None:
+        """Tint where ``node``'s subtree is the nearest surface (the "select" debug view); None ends it."""
+        scene = self._pending[0] if self._pending else self.scene
+        if node is not None:
+            if self.wanted_settings.get("debug") != "select":
+                self._debug_before = self.wanted_settings.get("debug")
+            self._highlight = (scene, node)
+            self._apply({"debug": "select"})
+        else:
+            self._highlight = None
+            self._apply({"debug": self._debug_before})
+
     def apply_settings(self, change: dict[str, Any]) -> None:
         """Change render settings (compiled in the background)."""
         self._apply(change)
@@ -323,9 +337,12 @@ class Viewer:
         """Compile (in the worker) the program for ``scene`` and ``settings``; it replaces the shown one when ready."""
         origin = shader_origin(scene, self.camera.eye)
         st = Settings.build(**settings)
+        hl = None
+        if st.debug == "select":  # the scene tree's selection (else the whole scene) is tinted
+            hl = self._highlight[1] if self._highlight and self._highlight[0] is scene else scene
         self._token += 1
         self._pending = (scene, dict(settings), why, tuple(origin.tolist()))
-        self.compiler.submit(Job(self._token, lambda: generate(scene, st, origin), (scene, dict(settings), why, origin)))
+        self.compiler.submit(Job(self._token, lambda: generate(scene, st, origin, highlight=hl), (scene, dict(settings), why, origin)))
         self.state.compiling = True
         self._overlay_text = None
         self._dirty = True
@@ -442,7 +459,9 @@ class Viewer:
         if self.panel is not None:
             self.panel.draw()
             self.state.panel = {"visible": self.panel.visible, "rects": self.panel.rects, "message": self.panel.message,
-                                "selected": self.panel.selected.label() if self.panel.selected else None}
+                                "selected": self.panel.selected.label() if self.panel.selected else None,
+                                "params": {(q.name or f"p{i}"): np.asarray(q.value).tolist()
+                                           for i, q in enumerate(self.live_params())}}
         glfw.swap_buffers(self.window)
         self.state.present_log.append((time.time(), self.camera.yaw, self.state.compiling))
         del self.state.present_log[:-400]
