@@ -94,11 +94,11 @@ def cmd_view(a: argparse.Namespace) -> int:
     if a.scene is None or a.demo:
         from .demo import demo_camera, demo_scene
         v = Viewer(demo_scene(), demo_camera(), size=a.size, target_ms=a.target_ms, adaptive=not a.no_adaptive,
-                   max_samples=a.max_samples, state_file=a.state_file, screenshot_dir=a.screenshot_dir,
+                   max_samples=a.max_samples, state_file=a.state_file, screenshot_dir=a.screenshot_dir, panel=a.panel,
                    **{**settings, "ground": True})
     else:
         v = Viewer(path=a.scene, size=a.size, target_ms=a.target_ms, adaptive=not a.no_adaptive,
-                   max_samples=a.max_samples, state_file=a.state_file, screenshot_dir=a.screenshot_dir,
+                   max_samples=a.max_samples, state_file=a.state_file, screenshot_dir=a.screenshot_dir, panel=a.panel,
                    **_overrides(a))
     v.run()
     return 0
@@ -144,6 +144,8 @@ def build_parser() -> argparse.ArgumentParser:
     v.add_argument("--max-samples", type=int, default=16, help="jittered samples accumulated when idle (16)")
     v.add_argument("--screenshot-dir", default=".", help="where P saves screenshots (default: here)")
     v.add_argument("--state-file", help="keep a JSON file with the view's state up to date (for scripts)")
+    v.add_argument("--panel", action=argparse.BooleanOptionalAction, default=None,
+                   help="open with the side panel shown / hidden (default: shown if the window is >= 800 wide)")
     _add_settings(v)
     v.set_defaults(func=cmd_view)
 

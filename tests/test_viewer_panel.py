@@ -136,3 +136,16 @@ def test_select_view_needs_a_highlight_and_values_print_as_python():
     ns = {"sg": sg}
     exec(text, ns)  # the printed values are valid Python that rebuilds the params
     assert ns["radius"].value == 0.5 and ns["radius"].range == (0.1, 2.0)
+
+
+def test_panel_key_hint_and_help(viewer):
+    drv, _ = viewer
+    s0 = still(drv)
+    assert s0["panel"]["visible"] and s0["overlay"] == "H: help"
+    drv.key("n")
+    s1 = drv.wait_for(lambda s: not s["panel"]["visible"], what="the panel to hide")
+    assert s1["overlay"] == ""  # the hint goes with the first key
+    drv.key("h")
+    drv.wait_for(lambda s: "anti-aliasing" in s["overlay"], what="the help overlay")
+    drv.key("n")
+    drv.wait_for(lambda s: s["panel"]["visible"], what="the panel to show again")

@@ -84,6 +84,7 @@ class ViewState:
     frame_log: list[tuple[bool, float, float]] = field(default_factory=list)  # (moving, ms, scale)
     compiling: bool = False
     param_edits: int = 0
+    overlay: str = ""  # the text drawn over the image (help, hint, status, error)
     panel: dict[str, Any] = field(default_factory=dict)
     compile_log: list[dict[str, float]] = field(default_factory=list)  # worker timings of each new program
     present_log: list[tuple[float, float, bool]] = field(default_factory=list)  # (wall time, yaw, compiling)
@@ -487,6 +488,7 @@ class Viewer:
                 self._targets["overlay"].release()
             self._targets["overlay"] = self.ctx.texture(self.fb_size, 4, img.tobytes(), dtype="f1")
             self._overlay_text = text
+            self.state.overlay = text
         return self._targets["overlay"]
 
     def _title(self, ms: float) -> None:
