@@ -149,3 +149,9 @@ def test_panel_key_hint_and_help(viewer):
     drv.wait_for(lambda s: "anti-aliasing" in s["overlay"], what="the help overlay")
     drv.key("n")
     drv.wait_for(lambda s: s["panel"]["visible"], what="the panel to show again")
+
+
+def test_without_the_gui_library_the_panel_says_what_to_install(monkeypatch):
+    from sdfgl.viewer import panel
+    monkeypatch.setitem(sys.modules, "imgui_bundle", None)
+    assert "pip install 'sdfgl[panel]'" in panel.available()

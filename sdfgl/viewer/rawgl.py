@@ -13,6 +13,8 @@ from typing import Any
 
 import glfw
 
+from ..errors import ContextError
+
 VERTEX_SHADER, FRAGMENT_SHADER = 0x8B31, 0x8B30
 COMPILE_STATUS, LINK_STATUS, INFO_LOG_LENGTH = 0x8B81, 0x8B82, 0x8B84
 ACTIVE_UNIFORMS = 0x8B86
@@ -66,7 +68,8 @@ class GL:
         for name, (restype, *argtypes) in _SIGNATURES.items():
             addr = glfw.get_proc_address(name)
             if not addr:
-                raise RuntimeError(f"the OpenGL driver lacks {name}")
+                raise ContextError(f"the OpenGL driver lacks {name} (the viewer's background compiles need "
+                                   f"OpenGL 4.1 or ARB_separate_shader_objects)")
             setattr(self, name, ctypes.CFUNCTYPE(restype, *argtypes)(addr))
 
     def _log(self, getter: Any, logger: Any, obj: int) -> str:
