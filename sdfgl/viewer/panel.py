@@ -10,15 +10,13 @@ A render setting goes through the window's asynchronous compile.
 """
 from __future__ import annotations
 
-import json
-import sys
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from ..errors import ParameterError, SdfglError
 from ..nodes.base import Node
-from ..params import Live, Param
+from ..params import Param
 from ..settings import METHODS, SHADOWS
 
 if TYPE_CHECKING:  # pragma: no cover
