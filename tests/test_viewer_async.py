@@ -62,6 +62,10 @@ def test_window_answers_input_during_a_slow_compile(display, tmp_path):
     try:
         s0 = drv.wait_for(lambda s: s["samples"] >= 1 and not s["compiling"], timeout=180, what="the first image")
         assert s0["compiles"] == 1 and s0["error"] == ""
+        # orbit once first: llvmpipe builds the shown program's code for the moving (low-resolution)
+        # target at its first such draw, on the window's thread; that is not the compile measured here
+        drv.drag(1, 32, 24, 6, 0, steps=3)
+        drv.wait_for(lambda s: not s["moving"] and s["samples"] >= 1, timeout=180, what="a still image")
         drv.key("s")  # shadows: a new 256-primitive program, compiled by the worker
         drv.wait_for(lambda s: s["compiling"], what="the compile to start")
         sends = []
@@ -84,11 +88,17 @@ def test_window_answers_input_during_a_slow_compile(display, tmp_path):
         lat = latencies(during, log)
         frames = [w for (w, _, c) in log if c]
         gaps = [b - a for a, b in zip(frames, frames[1:])]
+        end = st["compile_log"][-1]["wall_end"]
+        after = [w for (w, _, _) in log if w >= end]
+        # the new program's first frame: llvmpipe builds its machine code then, on the window's thread
+        first_frame = (after[0] - max([w for (w, _, _) in log if w < end] or [end])) if after else None
         figures = {"compile_s": compile_s, "inputs_during_compile": len(during), "answered": len(lat),
                    "latency_median_ms": 1000 * statistics.median(lat) if lat else None,
                    "latency_max_ms": 1000 * max(lat) if lat else None,
                    "frames_during_compile": len(frames),
-                   "frame_gap_max_ms": 1000 * max(gaps) if gaps else None, "worker": st["compile_log"][-1]}
+                   "frame_gap_max_ms": 1000 * max(gaps) if gaps else None,
+                   "gap_at_new_program_ms": 1000 * first_frame if first_frame is not None else None,
+                   "worker": st["compile_log"][-1]}
         print("async compile figures:", json.dumps(figures))
         w = st["compile_log"][-1]
         t0 = w["wall_start"]

@@ -1,12 +1,15 @@
-"""Compiles off the window's loop: codegen, link and driver warm-up in a worker thread.
+"""Compiles off the window's loop: codegen and link in a worker thread.
 
 The worker owns a hidden glfw window whose context shares objects with the viewer's.
 moderngl cannot be used there: it keeps Python's interpreter lock through the driver's
 compile (so the window's loop would stop all the same) and refuses a program made by
 another moderngl context. So the worker links with plain GL calls through ctypes
-(which release the lock), then draws the new program once into 1x1 targets of the
-formats the viewer draws to, so Mesa's llvmpipe builds its machine code there and not
-at the window's first frame. The window draws the program as a :class:`RawProgram`.
+(which release the lock); the window draws the program as a :class:`RawProgram`.
+
+Not covered: Mesa's llvmpipe builds a program's machine code at its first draw in each
+context (a warm-up draw in the worker's context was measured not to carry over), so
+that part still runs on the window's thread, at the first frame of a new program and
+of each target format. Drawing the scene in the worker's context is the next step.
 """
 from __future__ import annotations
 
@@ -87,7 +90,7 @@ class Result:
     source: ShaderSource | None = None
     error: str = ""
     compiled: bool = False   # a new program was linked (not found in the cache)
-    seconds: float = 0.0     # codegen + link + warm-up in the worker
+    seconds: float = 0.0     # codegen + link in the worker
     timings: dict[str, float] = field(default_factory=dict)
 
 
@@ -166,8 +169,6 @@ class CompileWorker:
     def _run(self) -> None:
         glfw.make_context_current(self._hidden)
         gl = rawgl.GL()
-        targets = [(gl.target(rawgl.RGBA8, rawgl.UNSIGNED_BYTE), False), (gl.target(rawgl.RGBA32F, rawgl.FLOAT), True)]
-        vao = gl.vertex_array()
         while True:
             job = self._jobs.get()
             if job is not None:
@@ -175,14 +176,14 @@ class CompileWorker:
                 job = self._newest(job)
             if job is None:
                 break
-            result = self._compile(gl, job, targets, vao)
+            result = self._compile(gl, job)
             with self._lock:
                 self._results.append(result)
             self._busy = False
             glfw.post_empty_event()  # wake the window's wait_events
         glfw.make_context_current(None)
 
-    def _compile(self, gl: rawgl.GL, job: Job, targets: list[tuple[int, bool]], vao: int) -> Result:
+    def _compile(self, gl: rawgl.GL, job: Job) -> Result:
         t0 = time.perf_counter()
         res = Result(job.token, job.meta)
         try:
@@ -206,27 +207,13 @@ class CompileWorker:
         except rawgl.GLError as exc:
             res.error = explain_compile_error(source, str(exc))
             return res
-        t2 = time.perf_counter()
         uniforms = gl.uniforms(glo)
-        for fbo, blend in targets:  # build the driver's code for both targets now, not at the first frame
-            gl.glBindFramebuffer(rawgl.FRAMEBUFFER, fbo)
-            gl.glViewport(0, 0, 1, 1)
-            if blend:
-                gl.glEnable(rawgl.BLEND)
-                gl.glBlendFunc(rawgl.ONE, rawgl.ONE)
-            if "uResolution" in uniforms:
-                gl.set_uniform(glo, *uniforms["uResolution"], (1.0, 1.0))
-            gl.glUseProgram(glo)
-            gl.glBindVertexArray(vao)
-            gl.glDrawArrays(rawgl.TRIANGLES, 0, 3)
-            if blend:
-                gl.glDisable(rawgl.BLEND)
-        gl.glFinish()  # the objects are complete before the main thread sees them
-        t3 = time.perf_counter()
+        gl.glFinish()  # the program is complete before the main thread sees it
+        t2 = time.perf_counter()
         res.program = RawProgram(self.gl, glo, uniforms, self.ctx)
         res.compiled = True
-        res.seconds = t3 - t0
-        res.timings = {"codegen_s": t1 - t0, "link_s": t2 - t1, "warmup_s": t3 - t2,
-                       "wall_end": time.time(), "wall_start": time.time() - (t3 - t0)}
+        res.seconds = t2 - t0
+        res.timings = {"codegen_s": t1 - t0, "link_s": t2 - t1,
+                       "wall_end": time.time(), "wall_start": time.time() - (t2 - t0)}
         return res
 

@@ -19,8 +19,7 @@ VERTEX_SHADER, FRAGMENT_SHADER = 0x8B31, 0x8B30
 COMPILE_STATUS, LINK_STATUS, INFO_LOG_LENGTH = 0x8B81, 0x8B82, 0x8B84
 ACTIVE_UNIFORMS = 0x8B86
 FLOAT, FLOAT_VEC2, FLOAT_VEC3, FLOAT_VEC4, INT, SAMPLER_2D = 0x1406, 0x8B50, 0x8B51, 0x8B52, 0x1404, 0x8B5E
-TEXTURE_2D, FRAMEBUFFER, COLOR_ATTACHMENT0, BLEND, ONE = 0x0DE1, 0x8D40, 0x8CE0, 0x0BE2, 1
-RGBA, RGBA8, RGBA32F, UNSIGNED_BYTE, TRIANGLES = 0x1908, 0x8058, 0x8814, 0x1401, 0x0004
+TRIANGLES = 0x0004
 
 _SIGNATURES: dict[str, tuple[Any, ...]] = {
     "glCreateShader": (c_uint, c_uint),
@@ -47,16 +46,6 @@ _SIGNATURES: dict[str, tuple[Any, ...]] = {
     "glGenVertexArrays": (None, c_int, POINTER(c_uint)),
     "glBindVertexArray": (None, c_uint),
     "glDrawArrays": (None, c_uint, c_int, c_int),
-    "glGenTextures": (None, c_int, POINTER(c_uint)),
-    "glBindTexture": (None, c_uint, c_uint),
-    "glTexImage2D": (None, c_uint, c_int, c_int, c_int, c_int, c_int, c_uint, c_uint, ctypes.c_void_p),
-    "glGenFramebuffers": (None, c_int, POINTER(c_uint)),
-    "glBindFramebuffer": (None, c_uint, c_uint),
-    "glFramebufferTexture2D": (None, c_uint, c_uint, c_uint, c_uint, c_int),
-    "glViewport": (None, c_int, c_int, c_int, c_int),
-    "glEnable": (None, c_uint),
-    "glDisable": (None, c_uint),
-    "glBlendFunc": (None, c_uint, c_uint),
     "glFinish": (None,),
 }
 
@@ -139,17 +128,6 @@ class GL:
             if setter is None:
                 raise GLError(f"uniform type 0x{typ:x} is not supported by the viewer")
             setter(prog, location, *(float(x) for x in value))
-
-    def target(self, internal: int, fmt: int) -> int:
-        """A 1x1 framebuffer with one colour texture of ``internal`` format (for driver warm-up)."""
-        tex, fbo = c_uint(0), c_uint(0)
-        self.glGenTextures(1, byref(tex))
-        self.glBindTexture(TEXTURE_2D, tex.value)
-        self.glTexImage2D(TEXTURE_2D, 0, internal, 1, 1, 0, RGBA, fmt, None)
-        self.glGenFramebuffers(1, byref(fbo))
-        self.glBindFramebuffer(FRAMEBUFFER, fbo.value)
-        self.glFramebufferTexture2D(FRAMEBUFFER, COLOR_ATTACHMENT0, TEXTURE_2D, tex.value, 0)
-        return fbo.value
 
     def vertex_array(self) -> int:
         """An empty vertex array object (core profile draws need one bound)."""

@@ -423,6 +423,9 @@ class Viewer:
             self._dirty = False
             return
         if moving:
+            if self.adaptive and not st.moving and st.last_frame_ms > self.target_ms:
+                # the first moving frame: start from what the last full-resolution frame cost
+                st.scale = float(max(0.1, min(st.scale, math.sqrt(self.target_ms / st.last_frame_ms))))
             scale = st.scale if self.adaptive else 1.0
             tex, fbo, size = self._low_target(scale)
             ms = self._draw_scene(fbo, size, (0.0, 0.0), blend=False)
