@@ -33,6 +33,6 @@ python3 -m venv .venv
 if [ "$with_tests" = 1 ]; then
     .venv/bin/pip install -q --disable-pip-version-check -e ".[test]"
 else
-    .venv/bin/pip install -q --disable-pip-version-check .
+    .venv/bin/pip install -q --disable-pip-version-check ".[implicit,plots]"
 fi
 echo "install.sh: sdfgl installed in $(pwd)/.venv"

@@ -1,6 +1,7 @@
-"""Render every scene in demos/gallery/ and tile them into docs/gallery.png.
+"""Render every scene in demos/gallery/ and tile them into one contact sheet.
 
-    python demos/make_gallery.py [--size 240x160]
+    python demos/make_gallery.py [--size 240x160] [--out gallery.png]
+    python demos/make_gallery.py --update-docs      # replace the tracked docs/gallery.png
 """
 import argparse
 import time
@@ -17,8 +18,11 @@ ROOT = Path(__file__).resolve().parents[1]
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("--size", default="240x160")
-    p.add_argument("--out", type=Path, default=ROOT / "docs" / "gallery.png")
+    p.add_argument("--out", type=Path, default=Path("gallery.png"), help="where to write (default ./gallery.png)")
+    p.add_argument("--update-docs", action="store_true", help="write docs/gallery.png (a tracked file) instead")
     a = p.parse_args()
+    if a.update_docs:
+        a.out = ROOT / "docs" / "gallery.png"
     w, h = (int(x) for x in a.size.split("x"))
     paths = sorted((ROOT / "demos" / "gallery").glob("*.py"))
     cols = 4

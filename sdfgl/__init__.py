@@ -8,24 +8,70 @@ import numpy as _np
 
 from .camera import Camera, OrbitCamera
 from .codegen import compile
-from .errors import ContextError, ParameterError, SceneFileError, SdfglError, ShaderCompileError
+from .errors import (ContextError, ParameterError, SceneDocumentError, SceneFileError, SdfglError,
+                     ShaderCompileError)
+from .look import directional_light, point_light
 from .evaluate import evaluate
+from .gl.cache import CacheBudget, cache_budget
+from . import mesh  # the package is callable: sg.mesh(scene, step=0.01)
+from .mesh import Mesh
 from .nodes import (BOUND, EXACT, IMPLICIT, Node, bend, box, box_frame, capsule, circle, displace, elongate, extrude,
                     displace_expr, implicit, noise, parametric,
                     mirror, polygon, rectangle, repeat_polar, revolve, rounded, shell, sierpinski, symmetric, tree, cone, cylinder, difference, ellipsoid,
                     hex_prism, intersection, octahedron, plane, product, repeat, rounded_box, sphere, torus, twist,
-                    union)
-from .params import Param, param
+                    union, Shape2D, arc, capsule2, ellipse, regular_polygon, star, triangle, slice,
+                    bezier_tube, capped_torus, dodecahedron, gyroid, icosahedron, pyramid, slab, tetrahedron, tube,
+                    morph, taper, glsl)
+from .evaluate import evaluate
+from .params import Param, param, time
+from .functions import (abs, clamp, cos, exp, floor, fract, log, max, min, mix, mod, pow, radians, sign, sin,
+                        smoothstep, sqrt, step, tan)
+from .animate import animate, camera_path, keyframes, turntable
 from .render import RenderResult, Renderer, render
+from .version import __version__
+
+# Imported on first use, so that `import sdfgl` stays fast: name -> module. A heavy new
+# public name adds one line here (a name must differ from its module's, or importing the
+# module would replace it).
+_LAZY = {
+    "save_scene": "scene_io", "load_scene": "scene_io", "from_dict": "scene_io",
+}
+
+
+def __getattr__(name: str) -> object:
+    module = _LAZY.get(name)
+    if module is None:
+        raise AttributeError(f"module 'sdfgl' has no attribute {name!r}")
+    import importlib
+    value = getattr(importlib.import_module(f".{module}", __name__), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_LAZY))
 
 
 def show(scene: Node, camera: Camera | None = None, size: tuple[int, int] = (960, 540), *,
          window: bool | None = None, **settings: object) -> object:
-    """Open an interactive window on ``scene`` (needs a display); returns when it is closed.
+    """Open an interactive window on ``scene``; returns when it is closed.
 
     In a Jupyter kernel a window would block the kernel, so ``show`` returns the notebook
-    widget instead (``sg.widget``; it displays as the cell's result); ``window=True``
-    opens the window anyway.
+    widget instead (:func:`widget`; it displays as the cell's result).
+
+    Args:
+        scene: the scene node.
+        camera: the starting camera (default: one framing the scene).
+        size: window size (width, height) in pixels.
+        window: True opens the window even in a kernel; False returns the widget; None
+            (default) picks by where the code runs.
+        settings: render settings, as for :func:`render`.
+
+    The window needs a display (glfw). Mouse: orbit, pan, zoom; keys toggle AA, shadows,
+    AO, method, ground and debug views (``sdfgl view --help`` lists them).
+
+    Example:
+        >>> sg.show(sg.sphere(1) | sg.box(1.5))  # doctest: +SKIP
     """
     from .web.notebook import in_kernel
     if window is None:
@@ -38,37 +84,134 @@ def show(scene: Node, camera: Camera | None = None, size: tuple[int, int] = (960
 
 
 def widget(scene: Node, camera: Camera | None = None, size: tuple[int, int] = (640, 400), **settings: object):
-    """An interactive Jupyter view of ``scene``, synced with Python (see :func:`sdfgl.web.widget.widget`);
-    needs the ``web`` extra (anywidget)."""
+    """An interactive Jupyter view of ``scene``, synced with Python (see :func:`sdfgl.web.widget.widget`).
+
+    Orbit, pan and zoom with the mouse, toggle AA, shadows, AO and debug views with keys,
+    and move a slider per ``sg.param`` (spanning its ``range``). ``w.camera`` is the current
+    view; setting it, or a parameter's ``.value``, updates the view. Needs the ``web``
+    extra (anywidget).
+
+    Args:
+        scene: the scene node.
+        camera: the starting camera (default: one framing the scene).
+        size: view size (width, height) in pixels.
+        settings: render settings, as for :func:`render` (``aa``, ``shadows``, ``ao`` and
+            ``debug`` are the toggles' starting states).
+
+    Example:
+        >>> r = sg.param(1.0, "r", range=(0.5, 1.5))
+        >>> w = sg.widget(sg.sphere(r), size=(320, 200))  # doctest: +SKIP
+        >>> w  # doctest: +SKIP
+    """
     from .web.widget import widget as _widget
     return _widget(scene, camera, size, **settings)
 
 
 def save_html(scene: Node, path: str, camera: Camera | None = None, size: tuple[int, int] = (800, 500),
               **settings: object):
-    """Write a one-file interactive WebGL2 view of ``scene`` (see :func:`sdfgl.web.html.save_html`)."""
+    """Write a one-file interactive WebGL2 view of ``scene`` (see :func:`sdfgl.web.html.save_html`).
+
+    The page needs no network and no Python: it draws the same generated shader in GLSL
+    ES 3.00, with the mouse, keys and sliders of :func:`widget`.
+
+    Args:
+        scene: the scene node.
+        path: the HTML file to write.
+        camera: the starting camera (default: one framing the scene).
+        size: view size (width, height) in pixels.
+        settings: render settings, as for :func:`render`; ``title=`` sets the page title.
+
+    Returns the path written.
+
+    Example:
+        >>> import pathlib, tempfile
+        >>> out = pathlib.Path(tempfile.mkdtemp()) / "ball.html"
+        >>> sg.save_html(sg.sphere(1), out, size=(200, 120)).stat().st_size > 10_000
+        True
+    """
     from .web.html import save_html as _save_html
     return _save_html(scene, path, camera, size, **settings)
 
 
 def set_preview(enabled: bool = True, size: tuple[int, int] | None = None) -> None:
-    """Turn the inline notebook preview of nodes on or off (see :func:`sdfgl.web.notebook.set_preview`)."""
+    """Turn the inline notebook preview of nodes on or off (see :func:`sdfgl.web.notebook.set_preview`).
+
+    A node shown as a notebook cell's result is a small render (``_repr_png_``);
+    ``SDFGL_PREVIEW=0`` in the environment starts with it off.
+
+    Args:
+        enabled: True shows nodes as images, False as text.
+        size: the preview's (width, height) in pixels, 16..2048 (None keeps it).
+
+    Example:
+        >>> sg.set_preview(False)
+        >>> sg.sphere(1)._repr_png_() is None
+        True
+        >>> sg.set_preview(True, size=(256, 160))
+    """
     from .web.notebook import set_preview as _set_preview
     _set_preview(enabled, size)
+
+
+def render_pbr(scene: Node, camera: Camera | None = None, size: tuple[int, int] = (640, 480), spp: int = 64,
+               **options: object):  # -> sdfgl.pbr.PBRImage
+    """Path-trace ``scene`` through Mitsuba 3 (extra ``sdfgl[pbr]``); see :func:`sdfgl.pbr.render_pbr`.
+
+    Args:
+        scene: the node to render; its field is sampled by the generated map() into
+            Mitsuba ``sdfgrid`` tiles (any exactness class works: only the sign matters).
+        camera: an sdfgl camera (default: the framing ``render()`` uses); perspective or
+            orthographic.
+        size: (width, height) in pixels.
+        spp: samples per pixel.
+        options: ``resolution``, ``quality``, ``bounds``, ``material``, ``sky``, ``sun``,
+            ``ground``, ``max_depth``, ``extra``, ``seed``, ``variant``, ``progress``.
+
+    Example:
+        >>> img = sg.render_pbr(sg.sphere(1), size=(16, 12), spp=1)
+        >>> img.alpha.shape, img.settings["geometry"]
+        ((12, 16), 'sdfgrid')
+    """
+    from .pbr import render_pbr as _render_pbr
+    return _render_pbr(scene, camera, size, spp, **options)  # type: ignore[arg-type]
+
+
+def to_mitsuba(scene: Node, camera: Camera | None = None, **options: object) -> dict:
+    """The Mitsuba 3 scene dictionary of ``scene`` (``mi.load_dict`` it, extend it by hand);
+    see :func:`sdfgl.pbr.to_mitsuba`.
+
+    Args:
+        scene: the node to convert.
+        camera: an sdfgl camera (default: the framing ``render()`` uses).
+        options: as :func:`render_pbr` (``size``, ``spp``, ``material``, ...).
+
+    Example:
+        >>> d = sg.to_mitsuba(sg.sphere(1), size=(8, 8), spp=1)
+        >>> d["sdf_0"]["type"], d["sdf_bsdf"]["type"]
+        ('sdfgrid', 'diffuse')
+    """
+    from .pbr import to_mitsuba as _to_mitsuba
+    return _to_mitsuba(scene, camera, **options)  # type: ignore[arg-type]
 
 
 X = _np.array([1.0, 0.0, 0.0])
 Y = _np.array([0.0, 1.0, 0.0])
 Z = _np.array([0.0, 0.0, 1.0])
 
-__version__ = "0.1.0"
-
 __all__ = [
-    "Camera", "OrbitCamera", "compile", "render", "show", "widget", "save_html", "set_preview", "param", "Param", "Renderer", "RenderResult", "Node",
+    "Camera", "OrbitCamera", "compile", "directional_light", "point_light", "render", "show", "widget", "save_html",
+    "set_preview", "param", "Param", "Renderer", "RenderResult", "Node",
     "sphere", "box", "rounded_box", "plane", "torus", "capsule", "cylinder", "cone", "ellipsoid",
     "octahedron", "hex_prism", "box_frame", "product", "twist", "bend", "repeat", "evaluate", "union",
     "circle", "rectangle", "polygon", "extrude", "revolve", "mirror", "symmetric", "repeat_polar", "elongate",
     "rounded", "shell", "sierpinski", "tree", "displace", "noise", "implicit", "parametric", "displace_expr", "intersection", "difference", "X", "Y", "Z",
     "EXACT", "BOUND", "IMPLICIT", "SdfglError", "ParameterError", "ShaderCompileError", "ContextError",
-    "SceneFileError",
+    "render_pbr", "to_mitsuba",
+    "SceneFileError", "SceneDocumentError", "save_scene", "load_scene", "from_dict",
+    "Shape2D", "arc", "capsule2", "ellipse", "regular_polygon", "star", "triangle", "slice",
+    "bezier_tube", "capped_torus", "dodecahedron", "gyroid", "icosahedron", "pyramid", "slab", "tetrahedron", "tube",
+    "morph", "taper", "glsl",
+    "time", "keyframes", "turntable", "camera_path", "animate", "sin", "cos", "tan", "abs", "sqrt", "exp", "log",
+    "sign", "floor", "fract", "radians", "min", "max", "pow", "mod", "step", "clamp", "mix", "smoothstep",
+    "mesh", "Mesh", "cache_budget", "CacheBudget",
 ]

@@ -21,9 +21,11 @@ from typing import Callable, Sequence
 import moderngl
 import numpy as np
 
+from .errors import SdfglError
 from . import hardcases
 from .camera import Camera
 from .codegen import ShaderSource, generate, max_steps_of, scene_frame
+from .gl.cache import CacheBudget
 from .gl.context import describe
 from .nodes.base import IMPLICIT, Node
 from .reference import Reference, compare, trace
@@ -70,14 +72,17 @@ class FrameTimer:
 
     def __init__(self, renderer: Renderer, size: tuple[int, int]) -> None:
         self.r, self.size = renderer, size
-        self.fbo = renderer.ctx.simple_framebuffer(size)
+        self.fbo = renderer.run(lambda: renderer.ctx.simple_framebuffer(size))
 
     def prepare(self, v: Variant) -> tuple[float, float]:
         """Compile v's program; return (link seconds, first-frame seconds)."""
+        return self.r.run(self._prepare, v)
+
+    def _prepare(self, v: Variant) -> tuple[float, float]:
         st = Settings.build(**v.settings)
         origin = shader_origin(v.node, v.camera.eye)
         t0 = time.perf_counter()
-        source = generate(v.node, st, origin)
+        source = generate(v.node, st, origin, projection=v.camera.projection)
         if v.source is not None:
             source = v.source(source)
         prog = self.r.programs.get(source)
@@ -87,6 +92,10 @@ class FrameTimer:
         return t1 - t0, first
 
     def draw(self, v: Variant) -> float:
+        """Draw v once on the GL thread; return the seconds the draw took."""
+        return self.r.run(self._draw, v)
+
+    def _draw(self, v: Variant) -> float:
         prog, origin, source = v.result["_prog"]
         camera_uniforms(prog, v.camera, self.size, origin)
         scene_uniforms(prog, source, v.node, origin)
@@ -208,7 +217,22 @@ def feature_variants() -> list[Variant]:
     toggles += [(f"aa{n}", {"aa": n}) for n in (2, 3, 4)]
     toggles += [("shadows hard", {"shadows": "hard"}), ("shadows soft", {"shadows": "soft"}), ("ao", {"ao": True}),
                 ("all (aa2, soft, ao)", {"aa": 2, "shadows": "soft", "ao": True})]
-    return [Variant("demo", name, {**base, **t}, node, cam) for name, t in toggles]
+    out = [Variant("demo", name, {**base, **t}, node, cam) for name, t in toggles]
+    return out + look_variants(node, cam, base)
+
+
+def look_variants(node: Node, cam: Camera, base: dict) -> list[Variant]:
+    """The look's features on the demo scene: lights, materials, transparency, fog."""
+    from .look import directional_light, point_light
+    four = [directional_light((0.5, 0.7, 0.4), "#fff0dd", shadow="soft"), directional_light((-1, 0.5, -0.5), "#99aaff"),
+            point_light((0, 3, 2), "orange", 2.0, range=3.0, shadow="hard"), directional_light((0, -1, 0), "#403020")]
+    metal = node.material(metallic=0.6, roughness=0.3, emission=(0.02, 0.01, 0.0))
+    rows = [("1 light, soft shadow", node, {"lights": [directional_light(shadow="soft")]}),
+            ("4 lights (soft, hard, 2 unshadowed)", node, {"lights": four}),
+            ("materials (metallic, roughness, emission)", metal, {}),
+            ("alpha (transparent background)", node, {"alpha": True}),
+            ("fog", node, {"fog": 10.0})]
+    return [Variant("demo", name, {**base, **t}, n, cam) for name, n, t in rows]
 
 
 # -- reports -------------------------------------------------------------------------------
@@ -286,7 +310,10 @@ def feature_table(variants: Sequence[Variant]) -> str:
 
 def pareto_plot(variants: Sequence[Variant], path: Path) -> None:
     """Frame time against depth error, one panel per scene; the Pareto front is joined."""
-    import matplotlib
+    try:
+        import matplotlib
+    except ImportError:
+        raise SdfglError("the benchmark's plot needs matplotlib: pip install 'sdfgl[plots]'") from None
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     scenes = list(dict.fromkeys(v.scene for v in variants))
@@ -317,6 +344,12 @@ def pareto_plot(variants: Sequence[Variant], path: Path) -> None:
     plt.close(fig)
 
 
+def _json_value(o: object) -> object:
+    """JSON for what json does not know: numpy numbers, and lights (dataclasses) in settings."""
+    from dataclasses import asdict, is_dataclass
+    return asdict(o) if is_dataclass(o) and not isinstance(o, type) else float(o)  # type: ignore[arg-type]
+
+
 def run(quick: bool, size: tuple[int, int] | None, out: Path, progress: bool = True,
         scenes: Sequence[str] | None = None) -> dict:
     """Run the benchmark, write bench.json, bench.md and pareto.png into ``out``; return the data.
@@ -329,7 +362,7 @@ def run(quick: bool, size: tuple[int, int] | None, out: Path, progress: bool = T
     names = list(scenes) if scenes else (list(SEED_SCENES) + ([] if quick else list(MORE_SCENES)))
     variants = build_variants(names, full=not quick)
     features = feature_variants()
-    renderer = Renderer()
+    renderer = Renderer(budget=CacheBudget(programs=None))  # timings hold every variant's program
     total = len(variants) * 2 + (warmup + frames) * 2 + len(features) + len(names)
     bar = Progress(total, progress)
 
@@ -349,6 +382,8 @@ def run(quick: bool, size: tuple[int, int] | None, out: Path, progress: bool = T
     from .bench_model import run_model
     model = run_model((160, 120) if quick else (320, 240), min(frames, 5), warmup,
                       (16, 64, 256) if quick else (16, 64, 256, 1024), progress)
+    from .mesh.bench import run_mesh
+    mesh_md, mesh_data = run_mesh(2 ** 18 if quick else 2 ** 22, 1 if quick else 3, None if quick else 1024)
 
     out.mkdir(parents=True, exist_ok=True)
     md = "\n\n".join([
@@ -359,14 +394,16 @@ def run(quick: bool, size: tuple[int, int] | None, out: Path, progress: bool = T
         "## Seed thesis tables beside ours\n\n" + seed_table(variants),
         "## Cost of each feature #define\n\n" + feature_table(features),
         "## Model only what a scene needs\n\n" + model,
+        "## Mesh export against fogleman/sdf and DistForge\n\n" + mesh_md,
     ])
     (out / "bench.md").write_text(md + "\n")
     data = {"size": size, "frames": frames, "warmup": warmup, "gl": describe(renderer.ctx),
             "variants": [{"scene": v.scene, "label": v.label, "settings": v.settings,
                           **{k: val for k, val in v.result.items() if not k.startswith("_")}} for v in variants],
             "features": [{"label": v.label, "settings": v.settings,
-                          **{k: val for k, val in v.result.items() if not k.startswith("_")}} for v in features]}
-    (out / "bench.json").write_text(json.dumps(data, indent=1, default=float))
+                          **{k: val for k, val in v.result.items() if not k.startswith("_")}} for v in features],
+            "mesh": mesh_data}
+    (out / "bench.json").write_text(json.dumps(data, indent=1, default=_json_value))
     pareto_plot(variants, out / "pareto.png")
     print(md)
     print(f"\nwrote {out / 'bench.md'}, {out / 'bench.json'}, {out / 'pareto.png'}")

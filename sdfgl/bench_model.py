@@ -12,6 +12,7 @@ from . import shaderlib
 from .bench import FrameTimer, Progress, Variant, time_interleaved
 from .camera import Camera, OrbitCamera
 from .codegen import ShaderSource
+from .gl.cache import CacheBudget
 from .demo import demo_camera, demo_scene
 from .nodes import box, cylinder, plane, rounded_box, sphere, torus, union
 from .nodes.base import Node
@@ -105,7 +106,7 @@ def variants(sizes: Sequence[int]) -> list[tuple[str, list[Variant]]]:
 
 def run_model(size: tuple[int, int], frames: int, warmup: int, sizes: Sequence[int], progress: bool) -> str:
     """Run every group (interleaved within a group); return the markdown section."""
-    renderer = Renderer()
+    renderer = Renderer(budget=CacheBudget(programs=None))  # timings hold every variant's program
     timer = FrameTimer(renderer, size)
     groups = variants(sizes)
     bar = Progress(sum(len(g) + warmup + frames for _, g in groups), progress)

@@ -19,14 +19,23 @@ from .errors import ParameterError
 from .gl.dialect import dialect as _dialect
 from .nodes.base import IMPLICIT, Node
 from .params import Live, Param
+from .look.lights import DEFAULT_LIGHTS
+from .look.shading import background_code, shade_function, shadow_code, shadow_kinds
 from .settings import DEFAULT_OMEGA, DISTANCE_METHODS, Settings
 
 DEFAULT_COLOR = (0.7, 0.68, 0.64)
+# what a surface is made of where no node says otherwise (today's look: sdfgl.look)
+DEFAULT_SURFACE = {"albedo": DEFAULT_COLOR, "specular": 0.25, "shininess": 48.0, "metallic": 0.0,
+                   "emission": (0.0, 0.0, 0.0)}
+# colour-mode passes: the vec3 each carries beside the distance
+CHANNELS = {"albedo": ("albedo",), "surface": ("specular", "shininess", "metallic"), "emission": ("emission",)}
+# evaluate targets: the material channel function each runs at given points (with map())
+EVALUATE_CHANNELS = {"evaluate_color": "mapColor", "evaluate_surface": "mapSurface", "evaluate_emission": "mapEmission"}
 FLOAT32_MAX = float(np.finfo(np.float32).max)
 # Stand-in for an infinite bound inside GLSL: finite in float32, so no inf*0 arises.
 GLSL_FAR = 1e30
 # methods that share a loop file, told apart by a #define
-MARCH_FILES = {"enhanced": "relaxed", "forward_newton": "newton"}
+MARCH_FILES = {"sphere": "relaxed", "enhanced": "relaxed", "forward_newton": "newton"}
 
 
 def glsl_float(x: float) -> str:
@@ -46,18 +55,21 @@ class Emitter:
     the point itself. This keeps scenes far from the origin exact to float32 rounding.
     """
 
-    def __init__(self, mode: str, default_color: Sequence[float] = DEFAULT_COLOR,
-                 parent: "Emitter | None" = None, params: list[Param] | None = None) -> None:
-        if mode not in ("dist", "color"):
+    def __init__(self, mode: str, parent: "Emitter | None" = None, params: list[Param] | None = None,
+                 channel: str = "albedo") -> None:
+        if mode not in ("dist", "color") or channel not in CHANNELS:
             raise ValueError(mode)
         self.mode = mode
+        # in colour mode, which vec3 of the surface travels with the distance (see CHANNELS)
+        self.channel = parent.channel if parent else channel
         self.lines: list[tuple[str, str]] = []  # (code, owner path)
         # library files and helper functions are shared with the emitter of map() itself
         self.libs: list[str] = parent.libs if parent else []
         self.functions: dict[tuple, tuple[str, list[tuple[str, str]]]] = parent.functions if parent else {}
         self.params: list[Param] = parent.params if parent else (params if params is not None else [])
         self._path: list[str] = list(parent._path) if parent else []
-        self._colors: list[tuple[float, float, float]] = [tuple(default_color)]  # type: ignore[list-item]
+        # the materials (dicts of the fields they set) of the nodes around the current one
+        self._colors: list[dict[str, Any]] = list(parent._colors) if parent else [DEFAULT_SURFACE]
         self._count = 0
         self._shifts: dict[str, tuple[str, np.ndarray]] = {}
         self._materialized: dict[str, str] = {}
@@ -97,26 +109,28 @@ class Emitter:
 
     def function(self, node: Node) -> str:
         """Name of a GLSL function computing ``node`` at its argument (emitted once per subtree)."""
-        key = (node.key, self.mode, self._colors[-1], self.detail)
+        key = (node.key, self.mode, self.channel, self.current(), self.detail)
         if key not in self.functions:
-            sub = Emitter(self.mode, self._colors[-1], parent=self)
+            sub = Emitter(self.mode, parent=self)
             sub._defining.add(node.key)
             result = node.emit(sub, "p")
-            name = f"{'n' if self.detail else self.mode[0]}{len(self.functions)}_{node.kind}"
+            prefix = "n" if self.detail else ("d" if self.mode == "dist" else self.channel[0])
+            name = f"{prefix}{len(self.functions)}_{node.kind}"
             rtype = "float" if self.mode == "dist" else "vec4"
             lines = [(f"{rtype} {name}(vec3 p) {{", self.owner), *sub.lines,
                      (f"    return {result};", self.owner), ("}", self.owner)]
             self.functions[key] = (name, lines)
         return self.functions[key][0]
 
-    def helper(self, name: str, code: str) -> None:
-        """Include a generated helper function (e.g. a polygon of N vertices) once."""
+    def helper(self, name: str, code: str | list[tuple[str, str]]) -> None:
+        """Include a generated helper function (e.g. a polygon of N vertices) once; ``code``
+        may be (line, owner) pairs, so compile errors name the owner of each line."""
         self.helpers.setdefault(name, code)
 
     def grid_name(self, grid: Any) -> str:
         """The GLSL prefix of a union kept as data (its textures are the ShaderSource's data)."""
         if id(grid) not in self.grids:
-            self.grids[id(grid)] = (f"g{len(self.grids)}", grid, self._colors[-1])
+            self.grids[id(grid)] = (f"g{len(self.grids)}", grid, self.field("albedo"))
         return self.grids[id(grid)][0]
 
     def mark(self, node: Node, result: str) -> str:
@@ -124,6 +138,16 @@ class Emitter:
         if node is self.highlight and self.mode == "dist" and not self.detail:
             self.lines.append((f"    gSel = min(gSel, abs({result}));", self.owner))
         return result
+
+    def grid_union(self, grid: Any, pt: str) -> str:
+        """The union kept as data at point ``pt``: its distance, or (vec3, distance) in colour
+        mode. Packed primitives carry colours only, so other channels are the current ones."""
+        acc = self.assign("vec4", f"{self.grid_name(grid)}Union({pt})")
+        if self.mode == "dist":
+            return self.assign("float", f"{acc}.w")
+        if self.channel == "albedo":
+            return acc
+        return self.assign("vec4", f"vec4({self.vec(self.current())}, {acc}.w)")
 
     # -- literals ----------------------------------------------------------------------
     def num(self, x: float | Live) -> str:
@@ -168,20 +192,33 @@ class Emitter:
             self._materialized[p] = base if not off.any() else self.assign("vec3", f"{base} + {self.vec(off)}")
         return self._materialized[p]
 
-    # -- colour ------------------------------------------------------------------------
+    # -- colour and material -----------------------------------------------------------
     @contextlib.contextmanager
-    def colored(self, rgb: tuple[float, float, float]) -> Iterator[None]:
-        self._colors.append(rgb)
+    def colored(self, fields: dict[str, Any]) -> Iterator[None]:
+        """Inside, the material fields in ``fields`` apply where no inner node sets them."""
+        self._colors.append(fields)
         try:
             yield
         finally:
             self._colors.pop()
 
+    def field(self, name: str) -> Any:
+        """The value of material field ``name`` here (the innermost node that sets it wins)."""
+        for f in reversed(self._colors):
+            if name in f:
+                return f[name]
+        raise KeyError(name)
+
+    def current(self) -> Any:
+        """The vec3 of this pass's channel here: a colour, or (specular, shininess, metallic)."""
+        names = CHANNELS[self.channel]
+        return self.field(names[0]) if len(names) == 1 else tuple(self.field(n) for n in names)
+
     def with_color(self, d: str) -> str:
-        """In colour mode pair distance ``d`` with the current colour; else return ``d``."""
+        """In colour mode pair distance ``d`` with the current channel value; else return ``d``."""
         if self.mode == "dist":
             return d
-        return self.assign("vec4", f"vec4({self.vec(self._colors[-1])}, {d})")
+        return self.assign("vec4", f"vec4({self.vec(self.current())}, {d})")
 
     def scale_distance(self, r: str, factor: str) -> str:
         """Multiply a result's distance by ``factor`` (keeping its colour)."""
@@ -251,6 +288,12 @@ def scene_frame(scene: Node) -> tuple[np.ndarray, np.ndarray, float]:
     return np.where(np.isfinite(lo), lo, -GLSL_FAR), np.where(np.isfinite(hi), hi, GLSL_FAR), scale
 
 
+def unbounded(scene: Node) -> bool:
+    """True where the scene box is infinite on some side: only then does max_dist limit a ray."""
+    lo, hi = scene.bounds
+    return not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi)))
+
+
 def analytic_shape(scene: Node) -> tuple[str, np.ndarray] | None:
     """("sphere", (centre, radius)) or ("plane", (normal, offset)) in world space when the
     scene is one sphere or plane under rigid transforms, uniform scales and colours."""
@@ -274,7 +317,8 @@ def max_steps_of(settings: Settings, scale: float, lo: np.ndarray, hi: np.ndarra
     """The loop limit the shader gets: max_steps, or enough fixed steps for "reference"."""
     if settings.method != "reference":
         return settings.max_steps
-    diag = float(np.linalg.norm(np.minimum(hi - lo, settings.max_dist)))
+    ext = hi - lo
+    diag = float(np.linalg.norm(np.where(ext >= GLSL_FAR, settings.max_dist, ext)))
     return max(settings.max_steps, int(diag / ref_step(settings, scale)) + 2)
 
 
@@ -286,7 +330,7 @@ def ref_step(settings: Settings, scale: float) -> float:
 BOUNDS_PAD = 1e-3  # the ray clip box grows by this share of the scene size
 
 
-def _defines(scene: Node, settings: Settings, origin: np.ndarray, live: bool) -> list[str]:
+def _defines(scene: Node, settings: Settings, origin: np.ndarray, live: bool, projection: str) -> list[str]:
     lo, hi, scale = scene_frame(scene)
     pad = BOUNDS_PAD * scale
     bounds = (["#define BOUNDS_LO uBoundsLo", "#define BOUNDS_HI uBoundsHi"] if live else [
@@ -297,7 +341,7 @@ def _defines(scene: Node, settings: Settings, origin: np.ndarray, live: bool) ->
         f"#define MAX_STEPS {max_steps_of(settings, scale, lo, hi)}",
         f"#define HIT_{settings.hit.upper()}",
         f"#define HIT_SCALE {glsl_float(settings.hit_scale)}",
-        f"#define MAX_DIST {glsl_float(settings.max_dist)}",
+        f"#define MAX_DIST {glsl_float(settings.max_dist if unbounded(scene) else GLSL_FAR)}",
         "#define SCENE_SCALE uSceneScale" if live else f"#define SCENE_SCALE {glsl_float(scale)}",
         *bounds,
     ]
@@ -319,11 +363,21 @@ def _defines(scene: Node, settings: Settings, origin: np.ndarray, live: bool) ->
         d += ["#define SHADOWS", f"#define SHADOWS_{settings.shadows.upper()}"]
     if settings.ao:
         d.append("#define AO")
+    if scene.exactness == IMPLICIT:
+        d.append("#define IMPLICIT_FIELD")
     if settings.ground:
         ground_y = lo[1] if lo[1] > -GLSL_FAR else 0.0
         d += ["#define GROUND", "#define GROUND_Y uGroundY" if live else f"#define GROUND_Y {glsl_float(ground_y - origin[1])}"]
     if settings.debug:
         d += ["#define DEBUG_VIEW", f"#define DEBUG_{settings.debug.upper()}"]
+    d += [f"#define DEFAULT_SPECULAR {glsl_float(DEFAULT_SURFACE['specular'])}",
+          f"#define DEFAULT_SHININESS {glsl_float(DEFAULT_SURFACE['shininess'])}"]
+    if projection == "orthographic":
+        d.append("#define ORTHOGRAPHIC")
+    if settings.alpha:
+        d.append("#define ALPHA")
+    if settings.fog is not None:
+        d.append(f"#define FOG_DISTANCE {glsl_float(settings.fog)}")
     aux = [o for o in settings.outputs if o != "color"]
     if aux:
         d.append("#define AUX_OUTPUTS")
@@ -347,6 +401,31 @@ def shared_subtrees(scene: Node) -> set:
     return {k for k, c in counts.items() if c > 1}
 
 
+def material_channels(scene: Node) -> list[str]:
+    """The colour passes the scene needs besides albedo: "surface" where some node sets
+    specular, shininess or metallic, "emission" where some node sets an emission."""
+    from .nodes.transforms import Material
+    names: set[str] = set()
+    stack, seen = [scene], set()
+    while stack:
+        n = stack.pop()
+        if id(n) in seen:
+            continue
+        seen.add(id(n))
+        if isinstance(n, Material):
+            names.update(n.fields)
+        stack.extend(n.children)
+    return [ch for ch in ("surface", "emission") if any(f in names for f in CHANNELS[ch])]
+
+
+def _surface_function(channels: Sequence[str]) -> str:
+    """GLSL of ``Surface sceneSurface(vec3 p)``: the material at a hit."""
+    spec = "sf.x, sf.y, sf.z" if "surface" in channels else "DEFAULT_SPECULAR, DEFAULT_SHININESS, 0.0"
+    emis = "mapEmission(p)" if "emission" in channels else "vec3(0.0)"
+    head = "    vec3 sf = mapSurface(p);\n" if "surface" in channels else ""
+    return f"Surface sceneSurface(vec3 p) {{\n{head}    return Surface(mapColor(p), {spec}, {emis});\n}}"
+
+
 def _grid_code(b: "_Builder", grids: dict, origin: np.ndarray) -> list[tuple[str, np.ndarray]]:
     """The code of each union kept as data, and its textures."""
     from .nodes.grid import LIST_WIDTH
@@ -364,8 +443,8 @@ def _grid_code(b: "_Builder", grids: dict, origin: np.ndarray) -> list[tuple[str
 
 def _emit_map(scene: Node, mode: str, origin: np.ndarray, params: list[Param], shared: set,
               grids: dict, use_grids: bool, helpers: dict, detail: bool = False,
-              highlight: Node | None = None) -> tuple[Emitter, str]:
-    em = Emitter(mode, params=params)
+              channel: str = "albedo", highlight: Node | None = None) -> tuple[Emitter, str]:
+    em = Emitter(mode, params=params, channel=channel)
     em.highlight = highlight
     em.helpers = helpers
     em.detail = detail
@@ -377,26 +456,29 @@ def _emit_map(scene: Node, mode: str, origin: np.ndarray, params: list[Param], s
 
 
 def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.0, 0.0),
-             target: str = "render", dialect: str = "desktop", highlight: Node | None = None) -> ShaderSource:
+             target: str = "render", dialect: str = "desktop", projection: str = "perspective",
+             highlight: Node | None = None) -> ShaderSource:
     """Build the fragment shader for ``scene``.
 
     ``origin`` (float64) is the world point that the shader's coordinates are relative
-    to; ``target`` is ``"render"`` (the image) or ``"evaluate"`` (map() at given points);
+    to; ``target`` is ``"render"`` (the image), ``"evaluate"`` (map() at given points),
+    ``"evaluate_color"`` / ``"evaluate_surface"`` / ``"evaluate_emission"`` (a material
+    channel and map() at given points: see EVALUATE_CHANNELS; mesh colours and path-traced
+    materials use them), or one of the mesh exporter's samplers (sdfgl.mesh: same map(), other main()s):
+    ``"mesh_grid"`` (a lattice of blocks), ``"mesh_gradient"`` (value and gradient at points);
     ``dialect`` is ``"desktop"`` (GLSL 3.30) or ``"webgl2"`` (GLSL ES 3.00): the same
-    code under another header (see :mod:`sdfgl.gl.dialect`). ``highlight`` is the subtree the
-    "select" debug view tints.
+    code under another header (see :mod:`sdfgl.gl.dialect`); ``projection`` is the
+    camera's ("perspective" or "orthographic": it shapes the rays). ``highlight`` is the
+    subtree the "select" debug view tints.
     """
     header = _dialect(dialect).header()
     if not isinstance(scene, Node):
         raise ParameterError(f"scene must be an sdfgl node, got {type(scene).__name__} {scene!r}")
-    if scene.exactness == IMPLICIT and target == "render":
-        if settings.method in DISTANCE_METHODS:
-            raise ParameterError(
-                f"{scene.label()} is an implicit field, not a distance bound: method {settings.method!r} would step "
-                f"through surfaces. Use method='newton', 'forward_newton' or 'reference'.")
-        if settings.ao:
-            raise ParameterError(f"{scene.label()} is an implicit field: ambient occlusion needs distances; "
-                                 f"pass ao=False")
+    settings = settings.resolved(scene.exactness)
+    if scene.exactness == IMPLICIT and target == "render" and settings.method in DISTANCE_METHODS:
+        raise ParameterError(
+            f"{scene.label()} is an implicit field, not a distance bound: method {settings.method!r} would step "
+            f"through surfaces. Use method='auto' (the default), 'newton', 'forward_newton' or 'reference'.")
     if (settings.debug == "select") != (highlight is not None and target == "render"):
         raise ParameterError("debug view 'select' needs a highlighted subtree (generate(..., highlight=node)), "
                              "and a highlight needs debug='select'")
@@ -408,16 +490,21 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     dist, dist_result = _emit_map(scene, "dist", org, params, shared, grids, settings.grid, helpers,
                                   highlight=highlight if target == "render" else None)
     color, color_result = (_emit_map(scene, "color", org, params, shared, grids, settings.grid, helpers)
-                           if target == "render" else (None, ""))
+                           if target == "render" or target in EVALUATE_CHANNELS else (None, ""))
     detail, detail_result = (_emit_map(scene, "dist", org, params, shared, grids, settings.grid, helpers, True)
                              if target == "render" and scene.has_detail else (None, ""))
-    libs = list(dict.fromkeys(dist.libs + (color.libs if color else []) + (detail.libs if detail else [])))
+    channels = (material_channels(scene) if target == "render" else
+                [ch for ch in material_channels(scene) if EVALUATE_CHANNELS.get(target) == f"map{ch.capitalize()}"])
+    passes = {ch: _emit_map(scene, "color", org, params, shared, grids, settings.grid, helpers, channel=ch)
+              for ch in channels}
+    libs = list(dict.fromkeys(dist.libs + (color.libs if color else []) + (detail.libs if detail else [])
+                              + [lib for em, _ in passes.values() for lib in em.libs]))
     live = bool(params)
 
     b = _Builder()
     b.add(header, "(codegen)")
     b.add(f"// sdfgl scene: {scene.label()}  [{scene.exactness}, L={scene.lipschitz:g}]", "(codegen)")
-    b.add("\n".join(_defines(scene, settings, org, live)), "(settings)")
+    b.add("\n".join(_defines(scene, settings, org, live, projection)), "(settings)")
     for i, prm in enumerate(params):
         b.add(f"uniform {'vec3' if prm.dims == 3 else 'float'} uP{i};  // param {prm.label}", "(live parameters)")
     if live:
@@ -427,8 +514,14 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     for name in libs:
         b.add_file(f"lib/{name}")
     for name, code in helpers.items():
-        b.add(code, f"(generated helper {name})")
-    data = _grid_code(b, grids, org)
+        if isinstance(code, str):
+            b.add(code, f"(generated helper {name})")
+        else:  # (line, owner) pairs: user code whose lines keep their own numbers
+            for line, owner in code:
+                b.add(line, owner)
+    # a union kept as data gets its point in its own frame (the origin shift is pending in
+    # em.point() and written out), so its data is not taken relative to the origin
+    data = _grid_code(b, grids, np.zeros(3))
     if highlight is not None and target == "render":
         b.add("float gSel = 1e30;  // distance of the highlighted subtree at the last map() call", "(debug select)")
     done: set[str] = set()
@@ -437,17 +530,26 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     if target == "evaluate":
         b.add_file("evaluate_main")
         return b.build(params, live, data)
+    if target in ("mesh_grid", "mesh_gradient"):
+        b.add_file("mesh_clip")
+        b.add_file(f"{target}_main")
+        return b.build(params, live, data)
     assert color is not None
     _helpers(b, color, done)
     _function(b, "vec3 mapColor(vec3 p)", color, color_result, "{}.rgb")
+    for ch, (em, result) in passes.items():
+        _helpers(b, em, done)
+        _function(b, f"vec3 map{ch.capitalize()}(vec3 p)", em, result, "{}.rgb")
+    if target in EVALUATE_CHANNELS:
+        b.add(f"#define EVAL_CHANNEL {EVALUATE_CHANNELS[target]}", "(codegen)")
+        b.add_file("evaluate_channel_main")
+        return b.build(params, live, data)
     if detail is not None:
         _helpers(b, detail, done)
         _function(b, "float mapDetail(vec3 p)", detail, detail_result, "{}")
         b.add("#define DETAIL_NORMALS", "(codegen)")
     b.add_file("refine")
     marched = not (settings.analytic and analytic_shape(scene) is not None)
-    if marched and settings.method in ("newton", "forward_newton", "reference"):
-        b.add_file("bracket")
     if marched and settings.method in ("newton", "forward_newton"):
         b.add_file("ray_derivative")
     if settings.analytic and analytic_shape(scene) is not None:
@@ -455,11 +557,17 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     else:
         b.add_file(f"march_{MARCH_FILES.get(settings.method, settings.method)}")
     b.add_file("normal")
-    if settings.shadows:
-        b.add_file("shadow_march" if scene.exactness == IMPLICIT else f"shadow_{settings.shadows}")
+    implicit = scene.exactness == IMPLICIT
+    rig = settings.lights if settings.lights is not None else DEFAULT_LIGHTS
+    for code, owner in shadow_code(shadow_kinds(rig, settings.shadows, implicit)):
+        b.add(code, owner)
     if settings.ao:
         b.add_file("ao")
     b.add_file("shade")
+    b.add(_surface_function(channels), "(codegen: material)")
+    b.add(*background_code(settings.background, glsl_float))
+    b.add(shade_function(settings.lights, settings.ambient, settings.shadows, implicit, glsl_float,
+                         metals="surface" in channels), "(look: lights)")
     if settings.ground:
         b.add_file("ground")
     b.add_file("render_main_head")
@@ -470,5 +578,20 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
 
 
 def compile(scene: Node, **settings: object) -> str:  # noqa: A001 - public API name
-    """The complete GLSL fragment shader that ``render(scene, **settings)`` runs."""
+    """The complete GLSL fragment shader that ``render(scene, **settings)`` runs.
+
+    Args:
+        scene: the scene node.
+        settings: the render settings that shape the code (see :class:`sdfgl.settings.Settings`:
+            ``aa``, ``shadows``, ``ao``, ``ground``, ``method``, ``max_steps``, ``hit``,
+            ``debug``, ...). A feature that is off is absent from the source.
+
+    Returns the source text (GLSL 330 core); the same scene and settings give the same text
+    byte for byte (programs are cached by it).
+
+    Example:
+        >>> src = sg.compile(sg.sphere(1) & sg.box(1.5), aa=2)
+        >>> src.startswith("#version 330 core") and "float map(vec3 p)" in src
+        True
+    """
     return generate(scene, Settings.build(**settings)).text

@@ -19,3 +19,7 @@ class ContextError(SdfglError):
 
 class SceneFileError(SdfglError):
     """A scene file could not be loaded or does not define a scene."""
+
+
+class SceneDocumentError(SceneFileError, ValueError):
+    """A JSON scene document is malformed; the message starts with the JSON path at fault."""

@@ -1,59 +1,122 @@
-"""evaluate(): the generated GLSL map() run on the GPU at arbitrary points."""
+"""evaluate(): the generated GLSL map() (and material channels) run on the GPU at arbitrary
+points, in batches."""
 from __future__ import annotations
 
 import numpy as np
 
-from .codegen import generate
+from .codegen import EVALUATE_CHANNELS, ShaderSource, generate, material_channels
 from .errors import ParameterError
 from .nodes.base import Node, as_points
 from .render import Renderer, default_renderer, scene_uniforms
 from .settings import Settings
 
-_ROW = 1024  # points per texture row
+ROW = 1024            # points per texture row
+BATCH_ROWS = 1024     # rows per draw: 1 M points (16 MB of input texture) a batch
+F32_MAX = float(np.finfo(np.float32).max)
 
 
 def evaluate(scene: Node, points: object, origin: object = (0.0, 0.0, 0.0),
              renderer: Renderer | None = None) -> np.ndarray:
-    """Float32 values of the scene's generated map() at (..., 3) points.
+    """Float32 values of the scene's generated map() at (..., 3) points, computed on the GPU.
 
-    ``origin`` is subtracted from the points in float64 and folded into the shader (as
-    render() does for far-away cameras), so points far from the world origin keep
-    float32 precision relative to it.
+    Args:
+        scene: the scene node.
+        points: array-like of shape (..., 3), scene units; any number of points (they
+            are evaluated in batches of ``ROW * BATCH_ROWS``, 1 M, each well inside the GL
+            texture limits).
+        origin: subtracted from the points in float64 and folded into the shader (as
+            render() does for far-away cameras), so points far from the world origin keep
+            float32 precision relative to it.
+        renderer: the GL context to use (default: the process-wide headless one).
+
+    Returns a float32 array of shape (...). It matches ``scene.distance(points)`` (the
+    float64 twin) to float32 rounding. Safe to call from any thread.
+
+    Example:
+        >>> float(sg.evaluate(sg.sphere(1), [(0, 2, 0)])[0])
+        1.0
     """
+    return _run(scene, points, origin, renderer, "evaluate", 1, "evaluate")
+
+
+def evaluate_channel(scene: Node, points: object, channel: str = "color", origin: object = (0.0, 0.0, 0.0),
+                     renderer: Renderer | None = None) -> np.ndarray:
+    """Float32 (..., 4) array: a material channel of the generated shader and map() at points.
+
+    ``channel`` "color": mapColor(), the linear albedo the renderer shades with; "surface":
+    mapSurface(), (specular, shininess, metallic) where nodes set them; "emission":
+    mapEmission(). Away from the surface a channel is that of the nearest part of the
+    scene, as the generated function picks it. A scene without the surface or emission
+    channel (no node sets it) has no such function: ask ``codegen.material_channels``.
+    """
+    target = f"evaluate_{channel}"
+    if target not in EVALUATE_CHANNELS:
+        raise ParameterError(f"evaluate_channel: 'channel' must be one of color, surface, emission, got {channel!r}")
+    if channel != "color" and isinstance(scene, Node) and channel not in material_channels(scene):
+        raise ParameterError(f"evaluate_channel: no node of {scene.label()} sets the {channel} channel")
+    return _run(scene, points, origin, renderer, target, 4, "evaluate_channel")
+
+
+def _run(scene: Node, points: object, origin: object, renderer: Renderer | None, target: str, comps: int,
+         caller: str) -> np.ndarray:
     if not isinstance(scene, Node):
-        raise ParameterError(f"evaluate: 'scene' must be an sdfgl node, got {type(scene).__name__}")
+        raise ParameterError(f"{caller}: 'scene' must be an sdfgl node, got {type(scene).__name__}")
     p = as_points(points)
-    shape = p.shape[:-1]
+    shape = p.shape[:-1] + ((comps,) if comps > 1 else ())
     flat = p.reshape(-1, 3)
     if flat.shape[0] == 0:
         return np.zeros(shape, dtype=np.float32)
-    if not np.all(np.isfinite(flat)):
-        raise ParameterError("evaluate: points must be finite")
     org = np.asarray(origin, dtype=np.float64)
+    if org.shape != (3,) or not np.all(np.isfinite(org)):
+        raise ParameterError(f"{caller}: 'origin' must be 3 finite numbers, got {origin!r}")
     r = renderer or default_renderer()
+    source = generate(scene, Settings(shadows=False, ao=False), org, target=target)
+    return r.run(_evaluate_gl, r, scene, source, org, flat, comps, caller).reshape(shape)
+
+
+def _batch(flat: np.ndarray, org: np.ndarray, out: np.ndarray, caller: str) -> None:
+    """Points relative to ``org`` as float32 into out[:, :3], refusing what float32 cannot hold."""
+    local = flat - org
+    if not np.all(np.isfinite(local)):
+        raise ParameterError(f"{caller}: points must be finite")
+    big = float(np.abs(local).max())
+    if big > F32_MAX:
+        raise ParameterError(f"{caller}: points minus 'origin' must fit in float32 (|x| <= {F32_MAX:.3g}); "
+                             f"one is {big:.3g} away")
+    out[:, :3] = local
+
+
+def _evaluate_gl(r: Renderer, scene: Node, source: ShaderSource, org: np.ndarray, flat: np.ndarray, comps: int,
+                 caller: str) -> np.ndarray:
+    """Draw the target over the points batch by batch (on the renderer's GL thread)."""
     ctx = r.ctx
-    source = generate(scene, Settings(shadows=False, ao=False), org, target="evaluate")
-    prog = r.programs.get(source)
-    scene_uniforms(prog, source, scene, org)
+    prog, vao = r.programs.entry(source)
+    scene_uniforms(prog, source, scene, org, r.data)
     n = flat.shape[0]
-    w = min(n, _ROW)
-    h = -(-n // w)
-    data = np.zeros((h * w, 4), dtype=np.float32)
-    data[:n, :3] = flat - org
-    tex = ctx.texture((w, h), 4, data.tobytes(), dtype="f4")
+    w = min(n, ROW)
+    h = min(-(-n // w), BATCH_ROWS)
+    per_batch = w * h
+    tex = ctx.texture((w, h), 4, dtype="f4")
     tex.filter = (ctx.NEAREST, ctx.NEAREST)
-    out = ctx.texture((w, h), 1, dtype="f4")
+    out = ctx.texture((w, h), comps, dtype="f4")
     fbo = ctx.framebuffer(color_attachments=[out])
+    vals = np.empty((n, comps), dtype=np.float32)
+    data = np.zeros((per_batch, 4), dtype=np.float32)
     try:
         tex.use(0)
         if "uPoints" in prog:
             prog["uPoints"].value = 0
         fbo.use()
         ctx.viewport = (0, 0, w, h)
-        r.vao(prog).render(vertices=3)
-        vals = np.frombuffer(out.read(), dtype=np.float32)[:n].copy()
+        for start in range(0, n, per_batch):
+            m = min(per_batch, n - start)
+            _batch(flat[start:start + m], org, data[:m], caller)
+            data[m:, :3] = 0.0
+            tex.write(data)
+            vao.render(vertices=3)
+            vals[start:start + m] = np.frombuffer(out.read(), dtype=np.float32).reshape(-1, comps)[:m]
     finally:
         fbo.release()
         out.release()
         tex.release()
-    return vals.reshape(shape)
+    return vals if comps > 1 else vals[:, 0]

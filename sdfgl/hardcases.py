@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING, Callable
 import numpy as np
 
 from .camera import Camera, OrbitCamera
-from .nodes import box, box_frame, difference, plane, product, rounded_box, sphere, union
+from .nodes import box, box_frame, difference, plane, product, rounded_box, sphere, torus, union
 from .nodes.base import Node
 from .reference import ErrorReport
 
@@ -21,28 +21,37 @@ if TYPE_CHECKING:  # pragma: no cover
 
 @dataclass(frozen=True)
 class Expect:
-    """Bounds a render must meet against the reference (fractions are of all pixels)."""
+    """Bounds a render must meet against the reference (fractions as named)."""
 
-    mismatch_frac: float = 0.04     # silhouette mismatch / pixels (near misses count as hits)
+    false_frac: float = 0.002       # false hits / reference hits (rays that miss every surface)
     lost_frac: float = 0.001        # reference hits the render missed / pixels
-    outlier_frac: float = 0.01      # depth outliers (> 2 footprints apart) / pixels
-    depth_px_median: float = 0.02   # median |t - t*| in pixel footprints
+    outlier_frac: float = 0.01      # depth outliers (> 2 footprints apart: another surface) / pixels
+    depth_px_median: float = 0.02   # |t - t*| in pixel footprints, where both hit the same surface
+    depth_px_p99: float = 0.25
+    surface_px_max: float = 0.5     # every hit within this many footprints of a sign change of the twin
     normal_deg_median: float = 0.1
+    normal_deg_p99: float = 1.0
     min_hits: int = 1               # the case must actually show geometry
+    max_hits: int | None = None     # for scenes that must show nothing
 
     def violations(self, e: ErrorReport) -> list[str]:
         """Human-readable list of the bounds ``e`` breaks (empty when it passes)."""
         out = []
-        checks = [("silhouette mismatch share", e.silhouette_mismatch / e.pixels, self.mismatch_frac),
+        checks = [("false-hit share", e.false_hits / max(e.hits, 1), self.false_frac),
                   ("lost-hit share", e.lost_hits / e.pixels, self.lost_frac),
                   ("depth-outlier share", e.depth_outliers / e.pixels, self.outlier_frac),
                   ("depth median (px)", e.depth_px_median, self.depth_px_median),
-                  ("normal median (deg)", e.normal_deg_median, self.normal_deg_median)]
+                  ("depth p99 (px)", e.depth_px_p99, self.depth_px_p99),
+                  ("hit-to-surface max (px)", e.surface_px_max, self.surface_px_max),
+                  ("normal median (deg)", e.normal_deg_median, self.normal_deg_median),
+                  ("normal p99 (deg)", e.normal_deg_p99, self.normal_deg_p99)]
         out += [f"{name} {val:.4g} > {lim:.4g}" for name, val, lim in checks if val > lim]
         if e.nan_count:
             out.append(f"{e.nan_count} NaN/Inf values")
         if e.hits < self.min_hits:
             out.append(f"only {e.hits} reference hits (< {self.min_hits})")
+        if self.max_hits is not None and e.false_hits + e.hits > self.max_hits:
+            out.append(f"{e.false_hits + e.hits} hits where at most {self.max_hits} belong")
         return out
 
 
@@ -54,6 +63,7 @@ class HardCase:
     settings: dict = field(default_factory=dict)
     expect: Expect = Expect()
     max_dist: float = 1000.0
+    failing: str = ""               # a known failure, said plainly: the case stays in the suite
 
 
 def _grazing_sphere() -> tuple[Node, Camera]:
@@ -141,6 +151,80 @@ def _normal_jumps() -> tuple[Node, Camera]:
     return s, Camera.look_at((0, 0, 4), (0, 0, 0), fov=50)
 
 
+def _grazing_face(deg: float) -> Callable[[], tuple[Node, Camera]]:
+    # the top face of a long slab, every ray meeting it at deg/2 to 3 deg/2 degrees
+    def build() -> tuple[Node, Camera]:
+        slab = box((4.0, 1.0, 100.0)).translate((0, -0.5, -40))
+        return slab, Camera.look_at((0, 10 * np.tan(np.radians(deg)), 10), (0, 0, 0), fov=deg)
+    return build
+
+
+def _small_beside_big(ratio: float) -> Callable[[], tuple[Node, Camera]]:
+    def build() -> tuple[Node, Camera]:
+        s = 200.0 / ratio  # a cube of this size on a floor 200 wide
+        scene = box((200, 1, 200)).translate((0, -0.5, 0)) | box(s).translate((0.3 * s, s / 2, -0.2 * s))
+        return scene, Camera.look_at((2.2 * s, 1.8 * s, 2.6 * s), (0.3 * s, s / 2, -0.2 * s), fov=40)
+    return build
+
+
+def _offset(r: float) -> Callable[[], tuple[Node, Camera]]:
+    def build() -> tuple[Node, Camera]:
+        c = r * np.array([0.8123456789, -0.4567891234, 0.3651234567])  # on no power-of-two grid
+        scene = (box(1.5) - sphere(0.95)).translate(tuple(c))
+        return scene, OrbitCamera(target=tuple(c), distance=4, yaw=30, pitch=25)
+    return build
+
+
+def _twist_720() -> tuple[Node, Camera]:
+    return box((0.8, 2.0, 0.5)).twist(720), OrbitCamera(distance=4.5, yaw=20, pitch=20)
+
+
+def _bend_120() -> tuple[Node, Camera]:
+    return box((2.4, 0.3, 0.6)).bend(120), OrbitCamera(distance=4, yaw=10, pitch=30)
+
+
+def _ghost_wall() -> tuple[Node, Camera]:
+    # the side faces of both boxes coincide where z in (0, 0.5): f = 0 on a sheet, > 0 either side
+    return box(1.0) - box(1.0).translate((0, 0, 0.5)), OrbitCamera(distance=4, yaw=30, pitch=20)
+
+
+def _empty_difference() -> tuple[Node, Camera]:
+    a = rounded_box(1.2, 0.2)
+    return a - a, OrbitCamera(distance=4, yaw=30, pitch=20)
+
+
+def _small_spheres() -> tuple[Node, Camera]:
+    balls = [sphere(0.05).translate((x, y, 0.0)) for x in np.linspace(-1, 1, 7) for y in np.linspace(-0.7, 0.7, 5)]
+    return union(*balls), Camera.look_at((0, 0, 4), (0, 0, 0), fov=40)
+
+
+def _low_repeat() -> tuple[Node, Camera]:
+    # a 61 x 61 field of spheres seen at a low angle: rays pass near one sphere on the way to another
+    return (sphere(0.3).repeat((1.0, 0.0, 1.0), count=(30, 0, 30)),
+            Camera.look_at((0.17, 0.55, 31.3), (0.0, 0.0, 0.0), fov=40))
+
+
+def _telephoto() -> tuple[Node, Camera]:
+    return sphere(1.0).translate((0.1, 0, 0)), Camera.look_at((0.3, 0.2, 1000), (0, 0, 0), fov=0.5)
+
+
+def _big_sphere() -> tuple[Node, Camera]:
+    return sphere(1e4), OrbitCamera(distance=3.2e4, yaw=30, pitch=20)
+
+
+def _far_torus() -> tuple[Node, Camera]:
+    return torus(1e4, 3e3), OrbitCamera(distance=4e4, yaw=20, pitch=30)
+
+
+def _near_face() -> tuple[Node, Camera]:
+    return box(100.0), Camera.look_at((0.3, 0.2, 50 + 1e-4), (0.3, 0.2, 0), fov=60)  # 1e-6 of the size away
+
+
+def _on_surface() -> tuple[Node, Camera]:
+    # the eye exactly on a face: rays into the solid hit at 0, rays leaving it go on
+    return box(2.0).translate((0, 0, -1)) | sphere(0.5).translate((0, 0, 3)), Camera.look_at((0, 0, 0), (0, 0, 1), fov=120)
+
+
 CASES: tuple[HardCase, ...] = (
     HardCase("grazing_sphere", "rays graze a sphere seen from just above its surface", _grazing_sphere),
     HardCase("horizon_plane", "a ground plane up to the horizon: ever shallower rays", _horizon_plane),
@@ -149,10 +233,11 @@ CASES: tuple[HardCase, ...] = (
     HardCase("five_spheres", "seed Exp. 3: staggered spheres, rays pass near nearer ones", _five_spheres),
     HardCase("product_union", "seed: a product of two SDFs, not a distance (Newton marching)",
              _product_union, settings={"method": "newton"},
-             expect=Expect(mismatch_frac=0.05, outlier_frac=0.02, lost_frac=0.005)),
+             expect=Expect(outlier_frac=0.02, lost_frac=0.005)),
     HardCase("thin_shell", "a spherical shell 1e-3 thick, cut open", _thin_shell,
              expect=Expect(outlier_frac=0.02)),
-    HardCase("box_frame", "thin bars (0.02) of a box frame", _box_frame, expect=Expect(mismatch_frac=0.07)),
+    HardCase("box_frame", "thin bars (0.02) of a box frame", _box_frame,
+             expect=Expect(normal_deg_p99=30.0)),  # bars 2 pixels wide: most pixels straddle an edge
     HardCase("far_1e3", "a unit sphere 1e3 away (narrow fov)", _far(1e3)),
     HardCase("far_1e4", "a unit sphere 1e4 away (narrow fov)", _far(1e4), max_dist=2e4),
     HardCase("large_world", "a scene 1e5 units from the origin", _large_world),
@@ -165,6 +250,33 @@ CASES: tuple[HardCase, ...] = (
     HardCase("repeat_boundary", "repeated spheres touching their cell walls", _repeat_boundary,
              expect=Expect(outlier_frac=0.05)),
     HardCase("normal_jumps", "gradient jumps: touching spheres and a box edge", _normal_jumps),
+    *(HardCase(f"grazing_face_{deg:g}", f"a flat face seen at {deg / 2:g} to {1.5 * deg:g} degrees",
+               _grazing_face(deg)) for deg in (0.5, 1.0, 2.0, 4.0)),
+    HardCase("small_beside_big_1e3", "a 0.2 cube on a floor 200 wide (sizes 1:1e3)", _small_beside_big(1e3)),
+    HardCase("small_beside_big_1e4", "a 0.02 cube on a floor 200 wide (sizes 1:1e4)", _small_beside_big(1e4)),
+    *(HardCase(f"offset_{r:.0e}", f"a unit scene {r:.0e} from the origin, off any grid", _offset(r))
+      for r in (1e5, 1e6, 1e7)),
+    HardCase("twist_720", "twisted box at 720 degrees per unit", _twist_720,
+             expect=Expect(outlier_frac=0.005),
+             failing="a few rays (4 of 3072 at 64x48) skim the twisted faces for many footprints at a tiny "
+                     "distance; a probe that jumps a thin twisted blade lands in the next one, so the hit is on "
+                     "the true surface but not the first: depth p99 2.5 footprints, normal p99 29 degrees"),
+    HardCase("bend_120", "bent bar at 120 degrees per unit", _bend_120),
+    HardCase("ghost_wall", "coinciding faces of a difference: f = 0 on a sheet outside the solid", _ghost_wall),
+    HardCase("empty_difference", "a - a: an empty solid whose field touches 0 on a's surface",
+             _empty_difference, expect=Expect(min_hits=0, max_hits=0)),
+    HardCase("small_spheres", "35 spheres a few pixels wide: silhouettes everywhere", _small_spheres),
+    HardCase("low_repeat", "61 x 61 repeated spheres seen at a low angle", _low_repeat),
+    HardCase("telephoto_1000", "a unit sphere from 1000 away through a 0.5 degree lens (marched)", _telephoto,
+             settings={"analytic": False}),
+    HardCase("big_sphere_1e4", "a sphere of radius 1e4 (marched; beyond max_dist's default)", _big_sphere,
+             settings={"analytic": False}),
+    HardCase("far_torus", "torus(1e4, 3e3) seen from 4e4", _far_torus),
+    HardCase("near_face_forward_newton", "forward Newton 1e-6 of the scene size from a face", _near_face,
+             settings={"method": "forward_newton"},
+             # the eye's own float32 rounding (8e-7 at 50) is 0.35 footprints at 64x48, 0.7 at 128x96
+             expect=Expect(depth_px_median=1.0, depth_px_p99=1.0, surface_px_max=1.0)),
+    HardCase("on_surface", "the eye exactly on a face: rays leaving the solid must go on", _on_surface),
 )
 
 
@@ -178,30 +290,58 @@ def case(name: str) -> HardCase:
 
 def run_case(c: HardCase, size: tuple[int, int] = (64, 48), **settings: object) -> tuple[ErrorReport, "RenderResult"]:
     """Render ``c`` (shadows and AO off: only primary rays matter) and compare with the reference."""
-    from .reference import compare, trace
+    from dataclasses import replace
+
+    from .reference import compare, surface_offsets, trace
     from .render import render
     scene, cam = c.build()
     opts = {"shadows": False, "ao": False, "max_dist": c.max_dist, **c.settings, **settings}
     res = render(scene, cam, size, outputs=("color", "depth", "normal", "steps"), **opts)
-    return compare(res, trace(scene, cam, size, max_dist=c.max_dist)), res
+    err = compare(res, trace(scene, cam, size, max_dist=c.max_dist))
+    off = surface_offsets(scene, cam, res)
+    if off.size:
+        err = replace(err, surface_px_p99=float(np.percentile(off, 99)), surface_px_max=float(off.max()))
+    else:
+        err = replace(err, surface_px_p99=0.0, surface_px_max=0.0)
+    return err, res
 
 
 def table(size: tuple[int, int] = (128, 96), **settings: object) -> str:
     """A markdown table of every hard case's errors for the given settings."""
-    rows = ["| case | hits | silhouette mismatch (false/lost) | depth outliers | depth med / p99 (px) "
-            "| normal med / p99 (deg) | NaN | mean steps | bounds met |",
-            "|---|---|---|---|---|---|---|---|---|"]
+    rows = ["| case | hits | false / lost | depth outliers | depth med / p99 / max (px) | hit-to-surface max (px) "
+            "| normal med / p99 / max (deg) | NaN | mean steps | bounds met |",
+            "|---|---|---|---|---|---|---|---|---|---|"]
     for c in CASES:
         e, res = run_case(c, size, **settings)
         bad = c.expect.violations(e)
-        rows.append(f"| {c.name} | {e.hits} | {e.silhouette_mismatch} ({e.false_hits}/{e.lost_hits}) | "
-                    f"{e.depth_outliers} | {e.depth_px_median:.2g} / {e.depth_px_p99:.2g} | "
-                    f"{e.normal_deg_median:.2g} / {e.normal_deg_p99:.2g} | {e.nan_count} | "
-                    f"{float(res.steps.mean()):.1f} | {'yes' if not bad else '; '.join(bad)} |")
+        status = "yes" if not bad else ("FAILING: " if c.failing else "no: ") + "; ".join(bad)
+        rows.append(f"| {c.name} | {e.hits} | {e.false_hits} / {e.lost_hits} | {e.depth_outliers} | "
+                    f"{e.depth_px_median:.2g} / {e.depth_px_p99:.2g} / {e.depth_px_max:.2g} | {e.surface_px_max:.2g} | "
+                    f"{e.normal_deg_median:.2g} / {e.normal_deg_p99:.2g} / {e.normal_deg_max:.2g} | {e.nan_count} | "
+                    f"{float(res.steps.mean()):.1f} | {status} |")
     return "\n".join(rows)
 
 
-if __name__ == "__main__":  # python -m sdfgl.hardcases [WxH]
+def document(size: tuple[int, int] = (128, 96)) -> str:
+    """docs/hardcases.md: what each case tests, its known failure if any, and the table."""
+    lines = ["# The hard cases", "",
+             f"Every case of `sdfgl.hardcases` against the float64 reference at {size[0]}x{size[1]}, default "
+             "settings, shadows and AO off (`python -m sdfgl.hardcases "
+             f"{size[0]}x{size[1]} --doc docs/hardcases.md`). Depth and normal figures are over pixels where "
+             "render and reference hit; a false hit is a render hit where every ray of the reference misses; "
+             "hit-to-surface is the distance along the ray from each render hit to the nearest sign change of "
+             "the twin. The tests run the same cases at 64x48 and hold each to its bounds; a case marked "
+             "failing stays in the suite as an expected failure.", "", "| case | what it tests | known failure |",
+             "|---|---|---|"]
+    lines += [f"| {c.name} | {c.what} | {c.failing or '-'} |" for c in CASES]
+    return "\n".join(lines + ["", table(size), ""])
+
+
+if __name__ == "__main__":  # python -m sdfgl.hardcases [WxH] [--doc FILE]
     import sys
     w, h = (int(x) for x in (sys.argv[1] if len(sys.argv) > 1 else "128x96").split("x"))
-    print(table((w, h)))
+    if "--doc" in sys.argv:
+        from pathlib import Path
+        Path(sys.argv[sys.argv.index("--doc") + 1]).write_text(document((w, h)), encoding="utf-8")
+    else:
+        print(table((w, h)))

@@ -12,7 +12,11 @@ compute with it as if it were a number (numpy sees its current value through
 """
 from __future__ import annotations
 
+import functools
+import itertools
 import math
+import threading
+import weakref
 from typing import TYPE_CHECKING, Any, Callable
 
 import numpy as np
@@ -23,6 +27,31 @@ if TYPE_CHECKING:  # pragma: no cover
     from .codegen import Emitter
 
 Number = (int, float, np.integer, np.floating)
+
+_building = threading.local()
+_tokens = itertools.count()
+
+
+def owns_checks(init: Callable[..., None]) -> Callable[..., None]:
+    """Wrap a node's ``__init__`` so the live-parameter checks it registers belong to the node.
+
+    A Param then holds those checks weakly: when the node is gone, so are its checks (a
+    discarded node never rejects a value, and rebuilt nodes do not pile up checks)."""
+    @functools.wraps(init)
+    def wrapper(self: Any, *args: Any, **kwargs: Any) -> None:
+        stack = _building.__dict__.setdefault("stack", [])
+        stack.append(self)
+        try:
+            init(self, *args, **kwargs)
+        finally:
+            stack.pop()
+    return wrapper
+
+
+def _owner() -> Any:
+    """The node whose constructor is running on this thread (innermost), or None."""
+    stack = getattr(_building, "stack", None)
+    return stack[-1] if stack else None
 
 
 class Live:
@@ -35,8 +64,9 @@ class Live:
     @property
     def value(self) -> Any:
         a = [x.value if isinstance(x, Live) else x for x in self.args]
-        return {"add": lambda: a[0] + a[1], "sub": lambda: a[0] - a[1], "mul": lambda: a[0] * a[1],
-                "div": lambda: a[0] / a[1], "neg": lambda: -a[0]}[self.op]()
+        with np.errstate(all="ignore"):  # a NaN here is caught by the checks of the nodes that use it
+            out = OPS[self.op][0](*a)
+        return float(out) if np.ndim(out) == 0 else np.asarray(out, dtype=np.float64)
 
     def __array__(self, dtype: Any = None, copy: Any = None) -> np.ndarray:
         return np.asarray(self.value, dtype=dtype)
@@ -46,7 +76,7 @@ class Live:
 
     @property
     def dims(self) -> int:
-        return max((x.dims if isinstance(x, Live) else (np.size(x) if np.size(x) > 1 else 1)) for x in self.args)
+        return max(_dims(x) for x in self.args)
 
     def roots(self) -> list["Param"]:
         """The parameters this expression reads."""
@@ -58,10 +88,9 @@ class Live:
 
     def glsl(self, em: "Emitter") -> str:
         g = [x.glsl(em) if isinstance(x, Live) else em.literal(x) for x in self.args]
-        if self.op == "neg":
-            return f"(-{g[0]})"
-        sym = {"add": "+", "sub": "-", "mul": "*", "div": "/"}[self.op]
-        return f"({g[0]} {sym} {g[1]})"
+        if self.op in FUNCS and self.dims == 3:  # GLSL has no min(float, vec3): promote scalars
+            g = [c if _dims(x) == 3 else f"vec3({c})" for c, x in zip(g, self.args)]
+        return OPS[self.op][1].format(*g)
 
     # -- arithmetic builds expressions; anything else falls back to the current value --
     def _bin(self, op: str, other: Any, swap: bool = False) -> Any:
@@ -70,8 +99,7 @@ class Live:
         if isinstance(other, Live) or (isinstance(other, Number) and not isinstance(other, bool)):
             return Live(op, other, self) if swap else Live(op, self, other)
         val = self.value
-        return {"add": np.add, "sub": np.subtract, "mul": np.multiply, "div": np.divide}[op](
-            *((other, val) if swap else (val, other)))
+        return OPS[op][0](*((other, val) if swap else (val, other)))
 
     def __add__(self, o: Any) -> Any: return self._bin("add", o)
     def __radd__(self, o: Any) -> Any: return self._bin("add", o, True)
@@ -81,7 +109,12 @@ class Live:
     def __rmul__(self, o: Any) -> Any: return self._bin("mul", o, True)
     def __truediv__(self, o: Any) -> Any: return self._bin("div", o)
     def __rtruediv__(self, o: Any) -> Any: return self._bin("div", o, True)
+    def __pow__(self, o: Any) -> Any: return self._bin("pow", o)
+    def __rpow__(self, o: Any) -> Any: return self._bin("pow", o, True)
+    def __mod__(self, o: Any) -> Any: return self._bin("mod", o)
+    def __rmod__(self, o: Any) -> Any: return self._bin("mod", o, True)
     def __neg__(self) -> "Live": return Live("neg", self)
+    def __abs__(self) -> "Live": return Live("abs", self)
     def __matmul__(self, o: Any) -> Any: return np.asarray(self.value) @ np.asarray(o)
     def __rmatmul__(self, o: Any) -> Any: return np.asarray(o) @ np.asarray(self.value)
 
@@ -92,24 +125,46 @@ class Live:
 
 
 class Param(Live):
-    """A scalar or 3-vector that is a shader uniform; set ``.value`` between renders."""
+    """A scalar or 3-vector that is a shader uniform; set ``.value`` between renders.
+
+    Made by :func:`sdfgl.param`. Arithmetic with numbers and other parameters (+, -, *, /,
+    unary -) gives live expressions that stay uniforms in the GLSL.
+
+    Example:
+        >>> p = sg.param((0.0, 1.0, 0.0), name="offset")
+        >>> s = sg.sphere(0.5).translate(p)
+        >>> p.value = (0.0, 2.0, 0.0)
+        >>> float(s.distance((0, 2, 0)))
+        -0.5
+    """
 
     def __init__(self, value: Any, name: str | None = None, range: tuple[float, float] | None = None) -> None:
         super().__init__("param")
         self.name = name
-        self._checks: list[Callable[[Any], None]] = []
+        # token -> callable returning the check (a weak reference when a node owns the check)
+        self._checks: dict[int, Callable[[], Callable[[Any], None] | None]] = {}
         self._value = self._coerce(value)
         self.range = None if range is None else self._check_range(range)
+        self._in_range(self._value)
 
     def _check_range(self, rng: Any) -> tuple[float, float]:
-        """A slider range (lo, hi) with lo < hi (for a 3-vector, of each component)."""
+        """The allowed (lo, hi) with lo < hi (for a 3-vector, of each component); an
+        infinite end leaves that side open."""
         try:
             lo, hi = (float(x) for x in rng)
         except (TypeError, ValueError):
             raise ParameterError(f"param {self.label}: range must be (low, high), got {rng!r}") from None
-        if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
-            raise ParameterError(f"param {self.label}: range must be two finite numbers low < high, got {rng!r}")
+        if math.isnan(lo) or math.isnan(hi) or not lo < hi:
+            raise ParameterError(f"param {self.label}: range must be two numbers low < high (an infinite end leaves "
+                                 f"that side open), got {rng!r}")
         return lo, hi
+
+    def _in_range(self, value: Any) -> None:
+        if self.range is not None:
+            lo, hi = self.range
+            if np.any(np.asarray(value) < lo) or np.any(np.asarray(value) > hi):
+                shown = value if np.ndim(value) == 0 else tuple(float(x) for x in value)
+                raise ParameterError(f"param {self.label}: value {shown!r} is outside its range [{lo:g}, {hi:g}]")
 
     @staticmethod
     def _coerce(value: Any) -> Any:
@@ -138,10 +193,13 @@ class Param(Live):
         if np.ndim(v) != np.ndim(self._value):
             raise ParameterError(f"param {self.label}: a {'vector' if np.ndim(self._value) else 'scalar'} "
                                  f"parameter cannot take {new!r}")
+        self._in_range(v)
         old, self._value = self._value, v
         try:
-            for check in self._checks:
-                check(v)
+            for ref in list(self._checks.values()):
+                check = ref()
+                if check is not None:
+                    check(v)
         except ParameterError:
             self._value = old
             raise
@@ -155,9 +213,25 @@ class Param(Live):
         return self.name or f"#{id(self) & 0xffff:04x}"
 
     def add_check(self, check: Callable[[Any], None]) -> None:
-        """Run ``check(value)`` now and on every later assignment (it raises ParameterError)."""
+        """Run ``check(value)`` now and on every later assignment (it raises ParameterError).
+
+        Registered while a node is being built, the check lives as long as that node: the
+        node holds it and this parameter only a weak reference (dropped when the node dies).
+        """
         check(self._value)
-        self._checks.append(check)
+        token = next(_tokens)
+        owner = _owner()
+        if owner is None:
+            self._checks[token] = lambda: check
+            return
+        owner.__dict__.setdefault("_param_checks", []).append(check)
+        checks = self._checks
+        self._checks[token] = weakref.ref(check, lambda _r: checks.pop(token, None))
+
+    @property
+    def checks(self) -> int:
+        """How many live checks guard this parameter (those of nodes still alive)."""
+        return sum(1 for ref in self._checks.values() if ref() is not None)
 
     def roots(self) -> list["Param"]:
         return [self]
@@ -170,9 +244,114 @@ class Param(Live):
 
 
 def param(value: Any, name: str | None = None, range: tuple[float, float] | None = None) -> Param:
-    """A live value (number or 3-vector) that a render reads as a uniform: changing it needs no recompile.
+    """A live value that a render reads as a uniform: changing it needs no recompile.
 
-    ``name`` labels it (in shaders, sliders and errors); ``range`` is the (low, high) of its
-    slider in the browser views (default: around the value, within what its nodes accept).
+    Args:
+        value: a finite number or 3 finite numbers (a position, size or colour).
+        name: a label for messages, shader comments, sliders and scene documents.
+        range: the (low, high) the value must stay in (each component of a 3-vector);
+            an infinite end leaves that side open. Sliders in the browser views span it
+            (default: around the value, within what its nodes accept); scene documents
+            keep it as ``min``/``max``.
+
+    Every node that uses it checks each new value, naming itself.
+
+    Example:
+        >>> r = sg.param(1.0, name="r", range=(0.5, 2.0))
+        >>> s = sg.sphere(r)
+        >>> r.value = 2.0
+        >>> float(s.distance((3, 0, 0)))
+        1.0
+        >>> r.value = 3.0
+        Traceback (most recent call last):
+        sdfgl.errors.ParameterError: param r: value 3.0 is outside its range [0.5, 2]
     """
     return Param(value, name, range)
+
+
+class Time(Param):
+    """The animation clock in seconds: ``sg.time()``. ``sg.animate`` sets it for every frame.
+
+    It is an ordinary live scalar, so expressions over it (``1 + 0.2 * sg.sin(t)``) are
+    written over one uniform and checked, at every new time, by the nodes that use them.
+    """
+
+    def __init__(self, value: float = 0.0) -> None:
+        if np.ndim(value):
+            raise ParameterError(f"time: the clock is a number of seconds, got {value!r}")
+        super().__init__(value, "time")
+
+    def __repr__(self) -> str:
+        return f"time({self._value!r})"
+
+
+def time(start: float = 0.0) -> Time:
+    """A live parameter holding the animation time in seconds (``start`` until something sets it)."""
+    return Time(start)
+
+
+def _dims(x: Any) -> int:
+    return x.dims if isinstance(x, Live) else (3 if np.size(x) > 1 else 1)
+
+
+def _mix(a: Any, b: Any, t: Any) -> Any:
+    return a * (1.0 - t) + b * t
+
+
+def _smoothstep(e0: Any, e1: Any, x: Any) -> Any:
+    t = np.minimum(np.maximum((x - e0) / (e1 - e0), 0.0), 1.0)
+    return t * t * (3.0 - 2.0 * t)
+
+
+# op -> (numpy float64 evaluation, GLSL template). The same table drives both evaluators.
+OPS: dict[str, tuple[Callable[..., Any], str]] = {
+    "add": (np.add, "({0} + {1})"),
+    "sub": (np.subtract, "({0} - {1})"),
+    "mul": (np.multiply, "({0} * {1})"),
+    "div": (np.divide, "({0} / {1})"),
+    "neg": (np.negative, "(-{0})"),
+    "sin": (np.sin, "sin({0})"),
+    "cos": (np.cos, "cos({0})"),
+    "tan": (np.tan, "tan({0})"),
+    "abs": (np.abs, "abs({0})"),
+    "sqrt": (np.sqrt, "sqrt({0})"),
+    "exp": (np.exp, "exp({0})"),
+    "log": (np.log, "log({0})"),
+    "sign": (np.sign, "sign({0})"),
+    "floor": (np.floor, "floor({0})"),
+    "fract": (lambda x: x - np.floor(x), "fract({0})"),
+    "radians": (np.radians, "radians({0})"),
+    "min": (np.minimum, "min({0}, {1})"),
+    "max": (np.maximum, "max({0}, {1})"),
+    "pow": (np.power, "pow({0}, {1})"),
+    "mod": (lambda x, y: x - y * np.floor(x / y), "mod({0}, {1})"),
+    "step": (lambda e, x: np.where(x < e, 0.0, 1.0), "step({0}, {1})"),
+    "clamp": (lambda x, lo, hi: np.minimum(np.maximum(x, lo), hi), "clamp({0}, {1}, {2})"),
+    "mix": (_mix, "mix({0}, {1}, {2})"),
+    "smoothstep": (_smoothstep, "smoothstep({0}, {1}, {2})"),
+}
+FUNCS = frozenset(OPS) - {"add", "sub", "mul", "div", "neg"}  # written as GLSL calls
+
+
+def apply(op: str, *args: Any) -> Any:
+    """``op`` (a name in OPS) of ``args``: a Live expression if any argument is live, else a number now."""
+    vals = []
+    for i, x in enumerate(args):
+        if isinstance(x, Live):
+            vals.append(x)
+            continue
+        if isinstance(x, bool):
+            x = None
+        try:
+            arr = np.asarray(x, dtype=np.float64)
+        except (TypeError, ValueError):
+            arr = None
+        if arr is None or arr.shape not in ((), (3,)):
+            raise ParameterError(f"sg.{op}: argument {i + 1} must be a number, 3 numbers or a live value, "
+                                 f"got {type(args[i]).__name__} {args[i]!r}")
+        vals.append(float(arr) if arr.ndim == 0 else arr)
+    if any(isinstance(x, Live) for x in vals):
+        return Live(op, *vals)
+    with np.errstate(all="ignore"):
+        out = OPS[op][0](*vals)
+    return float(out) if np.ndim(out) == 0 else np.asarray(out, dtype=np.float64)

@@ -29,6 +29,7 @@ class Reference:
     normal: np.ndarray     # float64 (H, W, 3) unit normal, 0 on a miss or where the gradient vanishes
     undecided: np.ndarray  # bool: rays the reference could not settle within its iteration limit
     pixel_angle: float
+    pixel_size: float = 0.0  # an orthographic camera's pixel width (its footprint at every t)
 
     @property
     def hit(self) -> np.ndarray:
@@ -43,7 +44,8 @@ def _clip(scene: Node, o: np.ndarray, d: np.ndarray, max_dist: float) -> tuple[n
     t1 = (hi + pad - o) / safe
     tn = np.minimum(t0, t1).max(axis=-1)
     tf = np.maximum(t0, t1).min(axis=-1)
-    return np.maximum(tn, 0.0), np.minimum(tf, max_dist)
+    far = max_dist if not (np.all(np.isfinite(scene.bounds[0])) and np.all(np.isfinite(scene.bounds[1]))) else np.inf
+    return np.maximum(tn, 0.0), np.minimum(tf, far)
 
 
 def _bisect(scene: Node, o: np.ndarray, d: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -71,7 +73,7 @@ def trace_rays(scene: Node, o: np.ndarray, d: np.ndarray, max_dist: float = 1000
     idx = np.nonzero(tmin <= tmax)[0]
     t = tmin[idx].copy()
     f = scene.distance(o[idx] + d[idx] * t[:, None])
-    start_inside = f <= 0
+    start_inside = f < 0  # on the surface (f = 0) is not inside: a ray leaving the solid goes on
     t_hit[idx[start_inside]] = t[start_inside]
     keep = ~start_inside
     idx, t, f = idx[keep], t[keep], f[keep]
@@ -82,7 +84,7 @@ def trace_rays(scene: Node, o: np.ndarray, d: np.ndarray, max_dist: float = 1000
         h = np.maximum(f / lip, near) if np.isfinite(lip) else np.full_like(t, fixed)
         t_new = t + h
         f_new = scene.distance(o[idx] + d[idx] * t_new[:, None])
-        crossed = f_new <= 0
+        crossed = f_new < 0
         if crossed.any():
             j = idx[crossed]
             t_hit[j] = _bisect(scene, o[j], d[j], t[crossed], t_new[crossed])
@@ -111,7 +113,8 @@ def trace(scene: Node, camera: Camera, size: tuple[int, int], max_dist: float = 
     hit = np.isfinite(t)
     if hit.any():
         nrm[hit] = normals(scene, o.reshape(-1, 3)[hit] + d.reshape(-1, 3)[hit] * t[hit, None])
-    return Reference(t.reshape(h, w), nrm.reshape(h, w, 3), undecided.reshape(h, w), camera.pixel_angle(h))
+    return Reference(t.reshape(h, w), nrm.reshape(h, w, 3), undecided.reshape(h, w), camera.pixel_angle(h),
+                     float(camera.footprint(0.0, h)) if camera.orthographic else 0.0)
 
 
 @dataclass
@@ -136,6 +139,8 @@ class ErrorReport:
     normal_deg_max: float
     nan_count: int              # NaN anywhere in depth or normal, Inf in normal
     undecided: int              # rays the reference could not settle (left out of the figures)
+    surface_px_p99: float = float("nan")  # render hits: distance along the ray to the nearest
+    surface_px_max: float = float("nan")  #   sign change of the twin, in footprints (surface_offsets)
 
     def as_dict(self) -> dict[str, float]:
         return asdict(self)
@@ -158,7 +163,8 @@ def compare(result: RenderResult, ref: Reference) -> ErrorReport:
     g_hit = ref.hit & decided
     both = r_hit & g_hit
     err = np.abs(depth[both] - ref.t[both])
-    foot = np.maximum(ref.t[both], 1e-12) * ref.pixel_angle
+    foot = (np.full(err.shape, ref.pixel_size) if ref.pixel_size
+            else np.maximum(ref.t[both], 1e-12) * ref.pixel_angle)
     gn = ref.normal[both]
     defined = np.linalg.norm(gn, axis=-1) > 0.5
     cosang = np.sum(gn[defined] * result.normal[both][defined].astype(np.float64), axis=-1)
@@ -175,3 +181,37 @@ def compare(result: RenderResult, ref: Reference) -> ErrorReport:
         lost_hits=int((~r_hit & g_hit).sum()),
         normal_deg_median=nd[0], normal_deg_p99=nd[1], normal_deg_max=nd[2],
         nan_count=nan_count, undecided=int(ref.undecided.sum()))
+
+
+def surface_offsets(scene: Node, camera: Camera, result: RenderResult, reach: float = 2.0,
+                    samples: int = 801) -> np.ndarray:
+    """For every pixel the render hit: how far (in pixel footprints, along the ray) its
+    hit lies from the nearest sign change of the float64 twin, searched within ``reach``
+    footprints either side (inf where there is none: the hit is on no surface).
+
+    This is the "reported hit within x footprints of the true surface" figure; unlike the
+    depth error it does not ask which surface along the ray comes first.
+    """
+    if result.depth is None:
+        raise ValueError("surface_offsets() needs a render made with the 'depth' output")
+    h, w = result.depth.shape
+    o, d = camera.rays(w, h)
+    hit = np.isfinite(result.depth)
+    t = result.depth[hit].astype(np.float64)
+    o, d = o[hit], d[hit]
+    foot = np.maximum(t, 1e-12) * camera.pixel_angle(h)
+    out = np.full(t.shape, np.inf)
+    fine = np.linspace(-0.01, 0.01, 201)  # slivers: a chord far below a footprint near the hit
+    u = np.unique(np.concatenate([np.linspace(-reach, reach, samples), fine]))
+    for s0 in range(0, t.size, 256):
+        sl = slice(s0, s0 + 256)
+        ts = t[sl, None] + foot[sl, None] * u[None, :]
+        f = scene.distance((o[sl, None, :] + d[sl, None, :] * ts[..., None]).reshape(-1, 3)).reshape(ts.shape)
+        change = (f[:, :-1] > 0) != (f[:, 1:] > 0)
+        near = np.minimum(np.abs(u[:-1]), np.abs(u[1:]))  # the nearer end of each interval
+        near = np.where((u[:-1] < 0) & (u[1:] > 0), 0.0, near)
+        out[sl] = np.where(change, near[None, :], np.inf).min(axis=1)
+    start = t <= 0.0
+    if start.any():  # a ray that starts inside the solid hits at t = 0
+        out[start] = np.where(scene.distance(o[start]) <= 0, 0.0, out[start])
+    return out

@@ -3,37 +3,48 @@ from __future__ import annotations
 
 import io
 import math
+import threading
 import time
+import weakref
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Sequence
+from typing import Callable, Sequence, TypeVar
 
 import moderngl
 import numpy as np
-from PIL import Image
 
 from .camera import Camera, OrbitCamera
 from .codegen import BOUNDS_PAD, GLSL_FAR, ShaderSource, generate, scene_frame
 from .errors import ParameterError, SdfglError
-from .gl.context import headless_context
+from .gl.cache import CacheBudget, default_budget
+from .gl.context import CurrentContext, GLThread, describe, gl_thread
+from .gl.data import DataTextures
 from .gl.programs import ProgramCache
-from .gl.targets import Targets
+from .gl.targets import TargetCache
 from .nodes.base import Node
 from .settings import Settings
+
+T = TypeVar("T")
 
 
 def shader_origin(scene: Node, eye: np.ndarray) -> np.ndarray:
     """The world point the shader's float32 coordinates are taken relative to.
 
-    The centre of a bounded scene (else the eye) is the anchor: where rays hit, float32
-    then only has to resolve the scene relative to itself. Within 1000 of the world
-    origin the origin stays 0; beyond, the anchor is snapped to a power-of-two grid
-    about 1/1000 of its distance wide, so a moving camera seldom changes the source.
+    A bounded scene with no live parameters is anchored exactly at the centre of its box:
+    float32 then only has to resolve the scene relative to itself, the same at any
+    offset from the world origin (the offset is folded into the scene's translations in
+    float64), and the camera never changes the source. Where the box moves with live
+    parameters (its centre) or is unbounded (the eye), the anchor is snapped to a
+    power-of-two grid about 1/1000 of its distance wide beyond 1000 (0 within), so a
+    moving parameter or camera seldom changes the source.
     """
     lo, hi = scene.bounds
-    anchor = (lo + hi) / 2 if np.all(np.isfinite(lo)) and np.all(np.isfinite(hi)) else eye
+    bounded = np.all(np.isfinite(lo)) and np.all(np.isfinite(hi))
+    anchor = (lo + hi) / 2 if bounded else eye
+    if bounded and not scene.live_params():
+        return np.asarray(anchor, dtype=np.float64)
     r = float(np.max(np.abs(anchor)))
-    if r <= 1000.0:
+    if not r > 1000.0:
         return np.zeros(3)
     step = 2.0 ** math.ceil(math.log2(r * 1e-3))
     return np.round(anchor / step) * step
@@ -41,9 +52,20 @@ def shader_origin(scene: Node, eye: np.ndarray) -> np.ndarray:
 
 @dataclass
 class RenderResult:
-    """Images of one draw. Row 0 is the top row of the image."""
+    """Images of one draw. Row 0 is the top row of the image.
 
-    color: np.ndarray                      # uint8 (H, W, 3), gamma-corrected
+    ``color`` is uint8 (H, W, 3), gamma-corrected; ``depth`` float32 (H, W), the ray
+    parameter t of the pixel centre (inf on a miss); ``normal`` float32 (H, W, 3) unit
+    normals (0 on a miss); ``steps`` int32 map() calls. ``save(path)`` writes the colour
+    image; :func:`sdfgl.outputs.save_outputs` writes the others or an .npz.
+
+    Example:
+        >>> res = sg.render(sg.box(1), size=(16, 12))
+        >>> res.color.dtype.name, res.depth is None
+        ('uint8', True)
+    """
+
+    color: np.ndarray                      # uint8 (H, W, 3), gamma-corrected; (H, W, 4) with alpha=True
     depth: np.ndarray | None = None        # float32 (H, W): ray t of the pixel centre, inf on a miss
     normal: np.ndarray | None = None       # float32 (H, W, 3): unit normal, 0 on a miss
     steps: np.ndarray | None = None        # int32 (H, W): map() calls of the pixel-centre ray
@@ -61,18 +83,16 @@ class RenderResult:
 
     def _repr_png_(self) -> bytes:
         """The colour image as PNG: Jupyter shows a result inline."""
+        from PIL import Image
         buf = io.BytesIO()
         Image.fromarray(self.color).save(buf, format="PNG")
         return buf.getvalue()
 
-    def save(self, path: str | Path) -> Path:
-        """Write the colour image as PNG (or any format Pillow knows from the suffix)."""
-        p = Path(path)
-        try:
-            Image.fromarray(self.color).save(p)
-        except (OSError, ValueError, KeyError) as exc:
-            raise SdfglError(f"cannot write image file '{p}': {exc}") from exc
-        return p
+    def save(self, path: str | Path, **options: object) -> Path:
+        """Write the colour image as PNG (or any format Pillow knows from the suffix);
+        ``options`` go to Pillow (PNG defaults to the fast ``compress_level=1``)."""
+        from .outputs import write_image
+        return write_image(self.color, path, **options)
 
 
 def _set_uniform(prog: moderngl.Program, name: str, value: object) -> None:
@@ -91,6 +111,14 @@ def _check_size(size: Sequence[int]) -> tuple[int, int]:
     return w, h
 
 
+def check_float32_camera(camera: Camera, origin: np.ndarray) -> None:
+    """Refuse a camera whose eye, relative to the shader origin, float32 cannot hold."""
+    rel = np.asarray(camera.eye, dtype=np.float64) - origin
+    if not np.all(np.abs(rel) < 1e30):
+        raise ParameterError(f"render: camera eye {tuple(np.asarray(camera.eye).tolist())} is {float(np.max(np.abs(rel))):g} "
+                             f"from the scene, beyond what the shader's float32 can hold (1e30)")
+
+
 def camera_uniforms(prog: moderngl.Program, camera: Camera, size: tuple[int, int], origin: np.ndarray,
                     jitter: tuple[float, float] = (0.0, 0.0)) -> None:
     """Set the camera uniforms common.glsl declares."""
@@ -101,6 +129,7 @@ def camera_uniforms(prog: moderngl.Program, camera: Camera, size: tuple[int, int
     _set_uniform(prog, "uUp", tuple(u.tolist()))
     _set_uniform(prog, "uForward", tuple(f.tolist()))
     _set_uniform(prog, "uTanHalfFov", camera.tan_half_fov)
+    _set_uniform(prog, "uOrthoHalfHeight", 0.5 * camera.ortho_height)
     _set_uniform(prog, "uJitter", jitter)
     _set_uniform(prog, "uZero", 0)
 
@@ -108,11 +137,13 @@ def camera_uniforms(prog: moderngl.Program, camera: Camera, size: tuple[int, int
 DATA_UNIT = 1  # first texture unit of scene data (unit 0 is evaluate()'s points)
 
 
-def scene_uniforms(prog: moderngl.Program, source: ShaderSource, scene: Node, origin: np.ndarray) -> None:
+def scene_uniforms(prog: moderngl.Program, source: ShaderSource, scene: Node, origin: np.ndarray,
+                   data: DataTextures | None = None) -> None:
     """Set the uniforms of live parameters (and the scene box they move) to their current values,
-    and bind the textures of unions kept as data."""
+    and bind the textures of unions kept as data (uploaded once into ``data``, by default a
+    cache kept per context). Call on the context's thread."""
     if source.data:
-        bind_data(prog, source)
+        bind_data(prog, source, data)
     for i, prm in enumerate(source.params):
         val = prm.value
         _set_uniform(prog, f"uP{i}", float(val) if np.ndim(val) == 0 else tuple(float(x) for x in val))
@@ -129,81 +160,163 @@ def live_frame(scene: Node, origin: np.ndarray) -> dict[str, object]:
             "uGroundY": float((lo[1] if lo[1] > -GLSL_FAR else 0.0) - origin[1]), "uSceneScale": float(scale)}
 
 
-_data_textures: dict[int, tuple[ShaderSource, list[moderngl.Texture]]] = {}
+_data_by_ctx: "weakref.WeakKeyDictionary[moderngl.Context, DataTextures]" = weakref.WeakKeyDictionary()
 
 
-def bind_data(prog: moderngl.Program, source: ShaderSource) -> None:
+def bind_data(prog: moderngl.Program, source: ShaderSource, data: DataTextures | None = None) -> None:
     """Upload (once per source) and bind the data textures a shader samples."""
-    entry = _data_textures.get(id(source))
-    if entry is None or entry[0] is not source:
-        if entry is not None:
-            for t in entry[1]:
-                t.release()
-        texs = []
-        for _, arr in source.data:
-            tex = prog.ctx.texture((arr.shape[1], arr.shape[0]), 4, np.ascontiguousarray(arr).tobytes(), dtype="f4")
-            tex.filter = (moderngl.NEAREST, moderngl.NEAREST)
-            texs.append(tex)
-        entry = _data_textures[id(source)] = (source, texs)
-        while len(_data_textures) > 32:  # keep the most recent sources' textures
-            for t in _data_textures.pop(next(iter(_data_textures)))[1]:
-                t.release()
-    for unit, ((name, _), tex) in enumerate(zip(source.data, entry[1]), start=DATA_UNIT):
+    if data is None:
+        data = _data_by_ctx.get(prog.ctx)
+        if data is None:
+            data = _data_by_ctx[prog.ctx] = DataTextures(default_budget)
+    texs = data.textures(prog.ctx, source)
+    for unit, ((name, _), tex) in enumerate(zip(source.data, texs), start=DATA_UNIT):
         tex.use(unit)
         _set_uniform(prog, name, unit)
 
 
+def check_size(ctx: moderngl.Context, size: tuple[int, int], what: str = "render: 'size'") -> None:
+    """Refuse an image larger than the GL implementation's textures and viewports can hold."""
+    info = ctx.info
+    limit = min(int(info.get("GL_MAX_TEXTURE_SIZE", 16384)), *(int(x) for x in info.get("GL_MAX_VIEWPORT_DIMS",
+                                                                                          (16384, 16384))))
+    if max(size) > limit:
+        raise ParameterError(f"{what} {size[0]}x{size[1]} exceeds this GL implementation's largest texture and "
+                             f"viewport side ({limit}, GL_MAX_TEXTURE_SIZE / GL_MAX_VIEWPORT_DIMS of "
+                             f"{describe(ctx)})")
+
+
+class _Limits:
+    """A renderer's own budget, or the global one: what its caches ask for their limits."""
+
+    def __init__(self, budget: CacheBudget | None) -> None:
+        self.budget = budget
+
+    def __call__(self) -> CacheBudget:
+        return self.budget if self.budget is not None else default_budget()
+
+
+def _free_caches(gl: GLThread | CurrentContext, epoch: list[int], programs: ProgramCache, data: DataTextures,
+                 targets: TargetCache) -> None:
+    """Release a renderer's GL objects (on its context's thread); forget them if the context is gone."""
+    if epoch[0] != gl.epoch:
+        data.forget()
+        targets.forget()
+    else:
+        data.clear()
+        targets.clear()
+    programs._clear()  # syncs with the context itself
+
+
 class Renderer:
-    """Draws scenes on one GL context, caching programs by source and targets by size."""
+    """Draws scenes on one GL context, caching programs by source and targets by size (LRU, bounded).
 
-    def __init__(self, ctx: moderngl.Context | None = None) -> None:
-        self.ctx = ctx or headless_context()
-        self.programs = ProgramCache(self.ctx)
-        self._targets: Targets | None = None
-        self._vao: dict[int, moderngl.VertexArray] = {}
+    Without ``ctx`` it renders headless on the process's GL thread (see :mod:`sdfgl.gl.context`):
+    every method may be called from any thread, and survives ``fork``. With ``ctx`` (a window's
+    context) its GL work runs on the calling thread, which must be the one that context is
+    current on. ``budget`` gives it cache limits of its own (default: ``sg.cache_budget()``).
+    
+    Example:
+        >>> r = sg.Renderer()
+        >>> r.render(sg.sphere(1), size=(8, 8)).color.shape
+        (8, 8, 3)
+    """
 
-    def _targets_for(self, size: tuple[int, int], outputs: tuple[str, ...]) -> Targets:
-        t = self._targets
-        if t is None or t.size != size or t.outputs != outputs:
-            if t is not None:
-                t.release()
-            t = self._targets = Targets(self.ctx, size, outputs)
-        return t
+    def __init__(self, ctx: moderngl.Context | None = None, budget: CacheBudget | None = None) -> None:
+        self.gl: GLThread | CurrentContext = gl_thread() if ctx is None else CurrentContext(ctx)
+        self._limits = _Limits(budget)
+        self.programs = ProgramCache(self.gl, self._limits)
+        self.data = DataTextures(self._limits)
+        self.targets = TargetCache(self._limits)
+        self._epoch = [self.gl.epoch]
+        self._last_source: tuple | None = None  # (key, scene, source): frames of one scene skip codegen
+        if isinstance(self.gl, GLThread):  # a dropped headless renderer frees its GL objects
+            fin = weakref.finalize(self, self.gl.submit, _free_caches, self.gl, self._epoch, self.programs,
+                                   self.data, self.targets)
+            fin.atexit = False
+
+    @property
+    def budget(self) -> CacheBudget | None:
+        """This renderer's own cache limits (None: those of ``sg.cache_budget()``)."""
+        return self._limits.budget
+
+    @budget.setter
+    def budget(self, value: CacheBudget | None) -> None:
+        self._limits.budget = value
+
+    @property
+    def ctx(self) -> moderngl.Context:
+        """The GL context (GL calls on it belong on its thread: use :meth:`run`)."""
+        return self.gl.ctx
+
+    def run(self, fn: Callable[..., T], *args: object, **kwargs: object) -> T:
+        """Run ``fn(*args, **kwargs)`` where this renderer's context is current (the GL thread)."""
+        return self.gl.call(self._synced, fn, args, kwargs)
+
+    def _synced(self, fn: Callable[..., T], args: tuple, kwargs: dict) -> T:
+        self.gl.ctx  # noqa: B018 - (re)creates the context first, so a replaced one is noticed below
+        if self._epoch[0] != self.gl.epoch:  # the context was replaced (fork): its objects are gone
+            self.programs.sync()
+            self.data.forget()
+            self.targets.forget()
+            self._epoch[0] = self.gl.epoch
+        return fn(*args, **kwargs)
+
+    def release(self) -> None:
+        """Release every cached program, texture and target now (they are rebuilt when needed)."""
+        self.gl.call(_free_caches, self.gl, self._epoch, self.programs, self.data, self.targets)
 
     def vao(self, prog: moderngl.Program) -> moderngl.VertexArray:
-        """A buffer-less vertex array drawing the full-screen triangle with ``prog``."""
-        key = id(prog)
-        if key not in self._vao:
-            self._vao[key] = self.ctx.vertex_array(prog, [])
-        return self._vao[key]
+        """The buffer-less vertex array drawing the full-screen triangle with cached ``prog``."""
+        return self.programs.vao(prog)
 
     def render(self, scene: Node, camera: Camera | None = None, size: Sequence[int] = (640, 480),
                **settings: object) -> RenderResult:
-        """Render ``scene``; see :func:`sdfgl.render`."""
+        """Render ``scene``; see :func:`sdfgl.render`. Safe to call from any thread."""
         if not isinstance(scene, Node):
             raise ParameterError(f"render: 'scene' must be an sdfgl node, got {type(scene).__name__} {scene!r}")
-        st = Settings.build(**settings)
+        st = Settings.build(**settings).resolved(scene.exactness)
         wh = _check_size(size)
-        cam = camera if camera is not None else OrbitCamera.framing(*scene.bounds)
+        cam = camera if camera is not None else OrbitCamera.framing(*scene.bounds, aspect=wh[0] / wh[1])
         if not isinstance(cam, Camera):
             raise ParameterError(f"render: 'camera' must be an sdfgl Camera, got {type(cam).__name__}")
         origin = shader_origin(scene, cam.eye)
+        check_float32_camera(cam, origin)
 
         t0 = time.perf_counter()
-        source = generate(scene, st, origin)
+        key = (id(scene), st, origin.tobytes(), cam.projection)  # nodes are immutable, params are uniforms:
+        last = self._last_source                  # the same scene, settings and origin give the same source
+        if last is not None and last[0] == key and last[1] is scene:
+            source = last[2]
+        else:
+            source = generate(scene, st, origin, projection=cam.projection)
+            self._last_source = (key, scene, source)
         t1 = time.perf_counter()
-        prog = self.programs.get(source)
+        res = self.run(self._draw, scene, cam, wh, st, source, origin)
+        res.timings["codegen_s"] = t1 - t0
+        res.timings["total_s"] = time.perf_counter() - t0
+        return res
+
+    def _draw(self, scene: Node, cam: Camera, wh: tuple[int, int], st: Settings, source: ShaderSource,
+              origin: np.ndarray) -> RenderResult:
+        ctx = self.ctx
+        check_size(ctx, wh)
+        prog, vao = self.programs.entry(source)
         compile_s = self.programs.last_compile_s
-        targets = self._targets_for(wh, st.outputs)
+        try:
+            targets = self.targets.get(ctx, wh, st.outputs)
+        except moderngl.Error as exc:
+            raise SdfglError(f"render: cannot allocate {wh[0]}x{wh[1]} targets for {', '.join(st.outputs)}: "
+                             f"{exc}") from None
         camera_uniforms(prog, cam, wh, origin)
-        scene_uniforms(prog, source, scene, origin)
+        scene_uniforms(prog, source, scene, origin, self.data)
         targets.fbo.use()
-        self.ctx.viewport = (0, 0, *wh)
+        ctx.viewport = (0, 0, *wh)
         t2 = time.perf_counter()
-        self.vao(prog).render(moderngl.TRIANGLES, vertices=3)
-        self.ctx.finish()
+        vao.render(moderngl.TRIANGLES, vertices=3)
+        ctx.finish()
         t3 = time.perf_counter()
-        res = RenderResult(color=np.ascontiguousarray(targets.read("color")[..., :3]), source=source,
+        res = RenderResult(color=np.ascontiguousarray(targets.read("color")[..., :4 if st.alpha else 3]), source=source,
                            settings=st, camera=cam)
         if "depth" in st.outputs:
             d = targets.read("depth")[..., 0].copy()
@@ -213,30 +326,48 @@ class Renderer:
             res.normal = np.ascontiguousarray(targets.read("normal")[..., :3])
         if "steps" in st.outputs:
             res.steps = targets.read("steps")[..., 0].astype(np.int32)
-        t4 = time.perf_counter()
-        res.timings = {"codegen_s": t1 - t0, "compile_s": compile_s, "draw_s": t3 - t2, "read_s": t4 - t3,
-                       "total_s": t4 - t0}
+        res.timings = {"compile_s": compile_s, "draw_s": t3 - t2, "read_s": time.perf_counter() - t3}
         return res
 
 
 _default: Renderer | None = None
+_default_lock = threading.Lock()
 
 
 def default_renderer() -> Renderer:
     """The process-wide headless renderer (EGL)."""
     global _default
     if _default is None:
-        _default = Renderer()
+        with _default_lock:
+            if _default is None:
+                _default = Renderer()
     return _default
 
 
 def render(scene: Node, camera: Camera | None = None, size: Sequence[int] = (640, 480),
            **settings: object) -> RenderResult:
-    """Render ``scene`` headless and return its images.
+    """Render ``scene`` headless (EGL) and return its images.
 
-    ``camera`` defaults to an orbit camera framing the scene bounds. Settings (see
-    :class:`sdfgl.settings.Settings`): ``aa`` 1..4, ``shadows`` False/"hard"/"soft",
-    ``ao``, ``ground``, ``method``, ``max_steps``, ``hit``, ``hit_scale``, ``max_dist`` and
-    ``outputs`` (any of "color", "depth", "normal", "steps").
+    Args:
+        scene: the scene node.
+        camera: a :class:`Camera` or :class:`OrbitCamera`; default: an orbit camera
+            framing the scene's bounds.
+        size: (width, height) in pixels, each 1..16384.
+        settings: see :class:`sdfgl.settings.Settings`: ``aa`` 1..4 (n x n samples per
+            pixel), ``shadows`` False/"hard"/"soft", ``ao``, ``ground``, ``method``,
+            ``max_steps``, ``hit``, ``hit_scale``, ``max_dist``, ``debug`` and ``outputs``
+            (any of "color", "depth", "normal", "steps").
+
+    Returns a :class:`RenderResult`: ``color`` uint8 (H, W, 3), and as asked ``depth``
+    (float32 ray parameter t along the unit direction, inf on a miss), ``normal`` and
+    ``steps``. Row 0 is the top row. No output ever holds NaN.
+
+    Safe to call from any thread and in forked children: the GL work runs on sdfgl's GL
+    thread (see :mod:`sdfgl.gl.context`); caches are bounded by :func:`sdfgl.cache_budget`.
+
+    Example:
+        >>> res = sg.render(sg.sphere(1), sg.OrbitCamera(distance=4), (32, 24), outputs=("color", "depth"))
+        >>> res.color.shape, bool(res.depth.min() < 4)
+        ((24, 32, 3), True)
     """
     return default_renderer().render(scene, camera, size, **settings)

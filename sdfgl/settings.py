@@ -1,19 +1,42 @@
 """Render settings: validated once, turned into #defines by the code generator."""
 from __future__ import annotations
 
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, field, fields, replace
 from typing import Any
 
 from .errors import ParameterError
 
 OUTPUTS = ("color", "depth", "normal", "steps")
 SHADOWS = (False, "hard", "soft")
-METHODS = ("sphere", "relaxed", "enhanced", "newton", "forward_newton", "reference")
+METHODS = ("auto", "sphere", "relaxed", "enhanced", "newton", "forward_newton", "reference")
 # methods that step by the field value and so need a distance bound
-DISTANCE_METHODS = ("sphere", "relaxed", "enhanced")
+DISTANCE_METHODS = ("auto", "sphere", "relaxed", "enhanced")
 DEFAULT_OMEGA = {"relaxed": 1.6, "enhanced": 0.9}
 HIT_MODES = ("cone", "relative", "absolute")
 DEBUG_VIEWS = (None, "steps", "normal", "depth", "select")
+# Settings become float32 literals and uniforms: magnitudes must stay inside what float32
+# holds (3.4e38) with room for the shader's arithmetic, and below its stand-in for infinity
+# (codegen.GLSL_FAR, 1e30); positive ones must not round to zero (float32's smallest normal is 1.2e-38).
+F32_SETTING_MAX = 1e29
+F32_SETTING_MIN = 1e-30
+
+
+def float32_setting(name: str, val: Any, lo: float = 0.0, inclusive: bool = False) -> float:
+    """``val`` as a float if it is a real number above ``lo`` that float32 arithmetic can hold."""
+    if isinstance(val, bool) or not isinstance(val, (int, float)):
+        raise ParameterError(f"setting '{name}' must be a number, got {type(val).__name__} {val!r}")
+    v = float(val)
+    if v != v or v in (float("inf"), float("-inf")):
+        raise ParameterError(f"setting '{name}' must be finite, got {val!r}")
+    if not (v >= lo if inclusive else v > lo):
+        raise ParameterError(f"setting '{name}' must be {'>=' if inclusive else '>'} {lo:g}, got {val!r}")
+    if abs(v) > F32_SETTING_MAX:
+        raise ParameterError(f"setting '{name}' must be at most {F32_SETTING_MAX:g} (the shader computes in float32, "
+                             f"which holds up to 3.4e38, and uses 1e30 as infinity), got {val!r}")
+    if v != 0 and abs(v) < F32_SETTING_MIN:
+        raise ParameterError(f"setting '{name}' must be at least {F32_SETTING_MIN:g} (smaller values round to 0 or "
+                             f"lose all precision in float32), got {val!r}")
+    return v
 
 
 @dataclass(frozen=True)
@@ -24,7 +47,9 @@ class Settings:
     shadows: False, "hard" or "soft" (Inigo Quilez's improved penumbra).
     ao: 5-tap ambient occlusion along the normal.
     ground: an analytic ground plane under the scene (intersected, not marched).
-    method: the marching algorithm: "sphere" (Hart), "relaxed" (Keinert et al.),
+    method: the marching algorithm: "auto" (the default: "enhanced" for exact and bound
+        fields, "newton" for implicit ones; resolved per scene, and the result's settings
+        show the choice), "sphere" (Hart), "relaxed" (Keinert et al.),
         "enhanced" (Balint & Valasek), "newton", "forward_newton" (the seed thesis) or
         "reference" (fixed small steps and bisection, for validation).
     omega: relaxation of "relaxed" (in (1, 2), default 1.6) or "enhanced" (in (0, 1],
@@ -36,7 +61,8 @@ class Settings:
     hit: "cone" (distance below hit_scale pixel footprints), "relative" (below
         hit_scale * t) or "absolute" (below hit_scale).
     hit_scale: the factor of the hit test.
-    max_dist: far limit along a ray where the scene is unbounded.
+    max_dist: far limit along a ray where the scene is unbounded (a bounded scene is
+        marched to the far side of its box, whatever max_dist says).
     outputs: which images the draw writes (color always).
     debug: None, or a debug view shown instead of the shaded image: "steps" (heat map of
         map() calls), "normal", "depth" or "select" (grey, tinted where the subtree given to
@@ -44,13 +70,24 @@ class Settings:
     grid: keep big unions of simple primitives as data with a cell grid (False writes
         them out as code, to compare).
     analytic: intersect a lone sphere or plane in closed form instead of marching it.
+    lights: None (the default rig: key light, back light) or a list of up to 8
+        sg.directional_light / sg.point_light; each casts the shadow it names, or the
+        ``shadows`` setting's where it names none.
+    ambient: hemisphere light, a (sky, ground) pair of colours or one colour; None for
+        the default (a blue sky, no ground bounce).
+    background: None or "sky" (the default environment), a colour, or a (top, bottom)
+        pair of colours (a vertical gradient over the image).
+    alpha: an RGBA image whose alpha is the share of each pixel's samples that hit
+        (colour un-premultiplied), so anti-aliased edges composite over anything.
+    fog: None, or a distance d: surfaces fade into the background by 1 - exp(-t / d)
+        (with alpha, they fade out).
     """
 
     aa: int = 1
     shadows: Any = "soft"
     ao: bool = True
     ground: bool = False
-    method: str = "enhanced"
+    method: str = "auto"
     omega: Any = None
     ref_step: Any = None
     newton_cap: Any = 2.0
@@ -62,6 +99,11 @@ class Settings:
     debug: Any = None
     grid: bool = True
     analytic: bool = True
+    lights: Any = None
+    ambient: Any = None
+    background: Any = None
+    alpha: bool = False
+    fog: Any = None
 
     def __post_init__(self) -> None:
         if isinstance(self.aa, bool) or not isinstance(self.aa, int) or not 1 <= self.aa <= 4:
@@ -72,13 +114,13 @@ class Settings:
             object.__setattr__(self, "shadows", False)
         if self.shadows not in SHADOWS:
             raise ParameterError(f"setting 'shadows' must be False, 'hard' or 'soft', got {self.shadows!r}")
-        for name in ("ao", "ground", "grid", "analytic"):
+        for name in ("ao", "ground", "grid", "analytic", "alpha"):
             if not isinstance(getattr(self, name), bool):
                 raise ParameterError(f"setting '{name}' must be True or False, got {getattr(self, name)!r}")
         if self.method not in METHODS:
             raise ParameterError(f"setting 'method' must be one of {', '.join(METHODS)}, got {self.method!r}")
         if self.omega is not None:
-            lo_hi = {"relaxed": (1.0, 2.0), "enhanced": (0.0, 1.0)}.get(self.method)
+            lo_hi = {"relaxed": (1.0, 2.0), "enhanced": (0.0, 1.0), "auto": (0.0, 1.0)}.get(self.method)
             if lo_hi is None:
                 raise ParameterError(f"setting 'omega' applies to methods 'relaxed' and 'enhanced', not {self.method!r}")
             ok = isinstance(self.omega, (int, float)) and not isinstance(self.omega, bool)
@@ -87,31 +129,47 @@ class Settings:
                                      f"{')' if self.method == 'relaxed' else ']'}, got {self.omega!r}")
             object.__setattr__(self, "omega", float(self.omega))
         if self.ref_step is not None:
-            if isinstance(self.ref_step, bool) or not isinstance(self.ref_step, (int, float)) or not self.ref_step > 0:
-                raise ParameterError(f"setting 'ref_step' must be a positive number, got {self.ref_step!r}")
-            object.__setattr__(self, "ref_step", float(self.ref_step))
+            object.__setattr__(self, "ref_step", float32_setting("ref_step", self.ref_step))
         if self.newton_cap is not None:
-            ok = isinstance(self.newton_cap, (int, float)) and not isinstance(self.newton_cap, bool)
-            if not ok or not self.newton_cap >= 1:
-                raise ParameterError(f"setting 'newton_cap' must be None or a number >= 1, got {self.newton_cap!r}")
-            object.__setattr__(self, "newton_cap", float(self.newton_cap))
+            object.__setattr__(self, "newton_cap", float32_setting("newton_cap", self.newton_cap, 1.0, inclusive=True))
         if isinstance(self.max_steps, bool) or not isinstance(self.max_steps, int) or not 1 <= self.max_steps <= 100000:
             raise ParameterError(f"setting 'max_steps' must be an integer 1..100000, got {self.max_steps!r}")
         if self.hit not in HIT_MODES:
             raise ParameterError(f"setting 'hit' must be one of {', '.join(HIT_MODES)}, got {self.hit!r}")
         for name in ("hit_scale", "max_dist"):
-            val = getattr(self, name)
-            if isinstance(val, bool) or not isinstance(val, (int, float)) or not (0 < float(val) < float("inf")):
-                raise ParameterError(f"setting '{name}' must be a positive finite number, got {val!r}")
-            object.__setattr__(self, name, float(val))
+            object.__setattr__(self, name, float32_setting(name, getattr(self, name)))
         if self.debug not in DEBUG_VIEWS:
             raise ParameterError(f"setting 'debug' must be None, 'steps', 'normal', 'depth' or 'select', "
                                  f"got {self.debug!r}")
+        if not isinstance(self.outputs, (str, list, tuple)):
+            raise ParameterError(f"setting 'outputs' must be a name or a sequence of names from {', '.join(OUTPUTS)}, "
+                                 f"got {self.outputs!r}")
         outs = (self.outputs,) if isinstance(self.outputs, str) else tuple(self.outputs)
         bad = [o for o in outs if o not in OUTPUTS]
         if bad:
             raise ParameterError(f"setting 'outputs' has unknown entries {bad}; choose from {', '.join(OUTPUTS)}")
         object.__setattr__(self, "outputs", tuple(o for o in OUTPUTS if o in outs or o == "color"))
+        from .look.background import check_background
+        from .look.lights import check_ambient, check_lights
+        object.__setattr__(self, "lights", check_lights(self.lights))
+        object.__setattr__(self, "ambient", None if self.ambient is None else check_ambient(self.ambient))
+        object.__setattr__(self, "background", check_background(self.background))
+        if self.fog is not None:
+            if isinstance(self.fog, bool) or not isinstance(self.fog, (int, float)) or not 0 < self.fog < float("inf"):
+                raise ParameterError(f"setting 'fog' must be None or a positive distance, got {self.fog!r}")
+            object.__setattr__(self, "fog", float(self.fog))
+
+    def resolved(self, exactness: str) -> "Settings":
+        """These settings with method "auto" replaced by the method a scene of the given
+        exactness class ("exact", "bound" or "implicit") renders with."""
+        if self.method != "auto":
+            return self
+        if exactness == "implicit":
+            if self.omega is not None:
+                raise ParameterError("setting 'omega' applies to methods 'relaxed' and 'enhanced'; method 'auto' "
+                                     "picks 'newton' for this implicit field")
+            return replace(self, method="newton")
+        return replace(self, method="enhanced")
 
     @classmethod
     def build(cls, **kwargs: Any) -> "Settings":

@@ -14,11 +14,38 @@ float pixelAngle() {
     return 2.0 * uTanHalfFov / uResolution.y;
 }
 
+#ifdef ORTHOGRAPHIC
+uniform float uOrthoHalfHeight;  // half the view's height in world units
+
+// Width of one pixel at ray parameter t (the same everywhere: parallel rays).
+float footprint(float t) {
+    return 2.0 * uOrthoHalfHeight / uResolution.y;
+}
+
+// Origin of the ray through window position fragCoord: on the image plane through the eye.
+vec3 rayOrigin(vec2 fragCoord) {
+    vec2 ndc = (2.0 * (fragCoord + uJitter) - uResolution) / uResolution.y;
+    return uEye + uOrthoHalfHeight * (ndc.x * uRight + ndc.y * uUp);
+}
+
+vec3 rayDir(vec2 fragCoord) {
+    return uForward;
+}
+#else
+float footprint(float t) {
+    return pixelAngle() * t;
+}
+
+vec3 rayOrigin(vec2 fragCoord) {
+    return uEye;
+}
+
 // Unit direction through window position fragCoord (pixel centres at +0.5, y up).
 vec3 rayDir(vec2 fragCoord) {
     vec2 ndc = (2.0 * (fragCoord + uJitter) - uResolution) / uResolution.y;
     return normalize(uForward + uTanHalfFov * (ndc.x * uRight + ndc.y * uUp));
 }
+#endif
 
 // The part [tmin, tmax] of the ray inside the scene's bounding box (tmin > tmax: miss).
 vec2 sceneRange(vec3 ro, vec3 rd) {
@@ -36,7 +63,7 @@ vec2 sceneRange(vec3 ro, vec3 rd) {
 // Distance below which a sample at ray parameter t counts as a hit.
 float hitEpsilon(float t) {
 #if defined(HIT_CONE)
-    return max(HIT_SCALE * pixelAngle() * t, 1e-7 * SCENE_SCALE);
+    return max(HIT_SCALE * footprint(t), 1e-7 * SCENE_SCALE);
 #elif defined(HIT_RELATIVE)
     return max(HIT_SCALE * t, 1e-7 * SCENE_SCALE);
 #else

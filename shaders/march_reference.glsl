@@ -1,5 +1,5 @@
 // Brute-force march for validation: fixed steps of REF_STEP until the field changes
-// sign, then bracketRoot. Needs no distance property at all; its cost is the ray
+// sign, then settle() pins the root down. Needs no distance property at all; its cost is the ray
 // length over REF_STEP.
 float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
     float t = tmin;
@@ -12,8 +12,8 @@ float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
         float tNext = t + REF_STEP;
         float fNext = map(ro + rd * tNext);
         steps++;
-        if (fNext <= 0.0) {
-            return bracketRoot(ro, rd, t, f, tNext, fNext, steps);
+        if (fNext < 0.0) {
+            return settle(ro, rd, t, f, tNext, fNext, steps);
         }
         t = tNext;
         f = fNext;

@@ -1,29 +1,103 @@
-// Move a hit at t (field value d < hitEpsilon) onto the surface along the ray. A
-// sphere step to t1 = t + d is always safe for a distance bound; the secant through
-// the two close samples (t, d) and (t1, d1) then estimates the root, its slope
-// clamped to [0.1, 1] (a 1-Lipschitz field falls at most 1 per unit of t). One more
-// map() call checks the estimate and keeps it only if the field there is closer to 0
-// than d1, so a secant cannot jump through a feature thinner than the hit threshold.
-// Two map() calls per hit, counted in steps, made in one loop (one copy of map()).
-float refineHit(vec3 ro, vec3 rd, float tmin, float t, float d, inout int steps) {
-    if (d <= 0.0) {
-        return max(t + d, tmin);
+// Settling a ray near the surface, shared by every marcher. A hit needs a sign change of
+// f(t) = map(ro + t rd): a ray that only comes close to f = 0 (a near miss at a
+// silhouette, a sheet where two faces coincide and f touches 0 without going below) is
+// no hit, and marching goes on.
+//
+// A marcher whose sample (t, r) comes within the hit threshold (hitEpsilon) probes
+// past the root that the field's fall along the ray predicts (probeStep). settle()
+// samples the probe and, where f < 0 there, pins the bracketed root down with the
+// Illinois variant of regula falsi (no fixed slope clamp: the slope comes from the
+// samples) to SETTLE_TOL hit thresholds in t: the bracket that small, or f near linear
+// across it (the slopes either side of the last sample within 2x) and the sample's
+// value below the tolerance times that slope. Where the probe finds f >= 0, the
+// marcher decides (nearMiss): if the unbounding spheres of t and the probe overlap
+// (the field is at most 1-Lipschitz), nothing lies between and the ray goes on from
+// the probe; if not, a thin part may lie in the gap, so the ray takes the plain safe
+// step r and probes again from closer in, until the probe lands inside, the spheres
+// overlap, or r is below the probe's minimum step (a sheet where f touches 0: a
+// near miss).
+#define UNSAMPLED 3.0e38
+#define SETTLE_CALLS 24
+#define SETTLE_TOL 0.01
+
+// Smallest probe step at t: keeps progress above float32 resolution where r is 0.
+float minProbe(float t, float roLen) {
+    return max(0.3 * SETTLE_TOL * hitEpsilon(t), 4e-7 * (abs(t) + roLen));
+}
+
+// The probe distance past a near sample (field r, falling at slope s per unit of t): a
+// quarter beyond the root the slope predicts, at least the covered step r, plus the
+// minimum step (on implicit fields at most 4 r); where the field does not fall, 1.9 r.
+float probeStep(float r, float s, float minStep) {
+    if (s <= 1e-3) {
+        return max(1.9 * r, r + minStep);  // not closing in: a step the two spheres cover
     }
-    float t1 = t + d;
-    float d1 = 0.0;
-    float tSec = t1;
-    for (int i = uZero; i < 2; i++) {
-        float tq = i == 0 ? t1 : tSec;
-        float dq = map(ro + rd * tq);
+    float step = max(1.25 * r / s, r);
+#ifdef IMPLICIT_FIELD
+    step = min(step, 4.0 * r);  // the field is no distance: its slope says little far off
+#endif
+    return step + minStep;
+}
+
+// True when a positive probe fb at b, from a near sample (t, r), shows a near miss.
+// rounds counts the probes from closer in during which r stopped shrinking (a ray that
+// runs along a surface at a tiny distance): the level below which r counts as a touch
+// of f = 0 doubles every four of them, up to 16 times, so such a ray moves on. On an implicit field (no distance bound) only
+// that level decides.
+bool nearMiss(float t, float r, float b, float fb, float minStep, int rounds) {
+#ifdef IMPLICIT_FIELD
+    return r <= minStep * exp2(0.25 * float(rounds));  // no Lipschitz bound: no spheres to overlap
+#else
+    return r + fb >= 0.999 * (b - t) || r <= minStep * exp2(min(0.25 * float(rounds), 4.0));
+#endif
+}
+
+// The root in [a, b] where f(a) = fa >= 0 and fb = f(b) < 0, or, with fb = UNSAMPLED,
+// b is a probe sampled first: then -1.0 when f(b) >= 0, with fb set to f(b). A probe
+// that lands inside with a gap the two spheres do not cover may have jumped an earlier
+// surface (a thin part, a twisted blade); its bracket is kept only if the first secant
+// sample agrees with the straight line (|f| below half of fa there, as on a face seen
+// at a grazing angle), else -2.0: the marcher steps closer in and probes again. All
+// map() calls are in one loop (one copy of map()) and counted in steps.
+float settle(vec3 ro, vec3 rd, float a, float fa, float b, inout float fb, inout int steps) {
+    int side = 0;
+    bool check = false;
+    for (int i = uZero; i < SETTLE_CALLS; i++) {
+        bool probing = fb >= UNSAMPLED;
+        float c = b;
+        if (!probing) {
+            c = b - fb * (b - a) / (fb - fa);
+            c = clamp(c, a + 0.01 * (b - a), b - 0.01 * (b - a));
+        }
+        float fc = map(ro + rd * c);
         steps++;
-        if (i == 1) {
-            return abs(dq) < d1 ? tSec : t1;
+        if (probing) {
+            fb = fc;
+            if (fc >= 0.0) return -1.0;
+            check = fa - fc < 0.999 * (b - a);
+            continue;
         }
-        if (dq <= 0.0) {
-            return t1 + dq;
+        if (check && abs(fc) > 0.5 * fa) return -2.0;
+        check = false;
+        float tol = SETTLE_TOL * hitEpsilon(c);
+        float sLeft = (fa - fc) / (c - a);
+        float sRight = (fc - fb) / (b - c);
+        float sMin = min(sLeft, sRight);
+        if (sMin > 0.0 && max(sLeft, sRight) < 2.0 * sMin && abs(fc) <= tol * sMin) {
+            return c;  // f is near linear across the bracket and c within tol of its root
         }
-        d1 = dq;
-        tSec = t1 + d1 / clamp((d - d1) / d, 0.1, 1.0);
+        if (fc < 0.0) {
+            b = c;
+            fb = fc;
+            if (side == -1) fa *= 0.5;
+            side = -1;
+        } else {
+            a = c;
+            fa = fc;
+            if (side == 1) fb *= 0.5;
+            side = 1;
+        }
+        if (b - a <= tol) break;
     }
-    return t1;
+    return a + fa * (b - a) / (fa - fb);
 }

@@ -1,7 +1,7 @@
 // The image: trace each sample, shade, average, gamma-correct; write depth, normal and
 // step count of the pixel-centre ray when those outputs are on.
 void main() {
-    vec3 ro = uEye;
+    vec3 ro = rayOrigin(gl_FragCoord.xy);
 #ifdef DEBUG_VIEW
     outColor = vec4(pow(debugView(ro, rayDir(gl_FragCoord.xy)), vec3(1.0 / 2.2)), 1.0);
     return;
@@ -9,14 +9,15 @@ void main() {
 #if AA == 1
     vec3 rd = rayDir(gl_FragCoord.xy);
     Hit h = tracePrimary(ro, rd);
-    vec3 col = radiance(ro, rd, h);
+    vec4 col = sampleColor(ro, rd, h);
 #else
-    vec3 col = vec3(0.0);
+    vec4 col = vec4(0.0);
     for (int j = 0; j < AA; j++) {
         for (int i = 0; i < AA; i++) {
             vec2 off = (vec2(float(i), float(j)) + 0.5) / float(AA) - 0.5;
+            vec3 ros = rayOrigin(gl_FragCoord.xy + off);
             vec3 rds = rayDir(gl_FragCoord.xy + off);
-            col += radiance(ro, rds, tracePrimary(ro, rds));
+            col += sampleColor(ros, rds, tracePrimary(ros, rds));
         }
     }
     col /= float(AA * AA);
@@ -25,7 +26,7 @@ void main() {
     Hit h = tracePrimary(ro, rd);
 #endif
 #endif
-    outColor = vec4(pow(clamp(col, 0.0, 1.0), vec3(1.0 / 2.2)), 1.0);
+    outColor = pixelColor(col);
 #ifdef OUT_DEPTH
     outDepth = h.t;
 #endif

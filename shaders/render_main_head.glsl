@@ -26,6 +26,7 @@ Hit tracePrimary(vec3 ro, vec3 rd) {
 #endif
     if (range.x <= range.y) {
         h.t = march(ro, rd, range.x, range.y, h.steps);
+        if (isnan(h.t) || isinf(h.t)) h.t = -1.0;  // a field that overflows (x^1000) is no hit, never NaN
     }
 #ifdef GROUND
     if (h.t < 0.0 && tg > 0.0) {
@@ -49,10 +50,39 @@ vec3 radiance(vec3 ro, vec3 rd, Hit h) {
     vec3 nor = hitNormal(ro, rd, h);
 #ifdef GROUND
     if (h.ground) {
-        vec3 col = shadeSurface(pos, nor, rd, groundAlbedo(pos), h.t);
+        vec3 col = shadeSurface(pos, nor, rd, defaultSurface(groundAlbedo(pos)), h.t);
         float fog = 1.0 - exp(-h.t / (SCENE_SCALE * 40.0));
         return mix(col, background(rd), fog);
     }
 #endif
-    return shadeSurface(pos, nor, rd, mapColor(pos), h.t);
+    return shadeSurface(pos, nor, rd, sceneSurface(pos), h.t);
+}
+
+// One sample as (linear colour, coverage). With ALPHA a miss is transparent and the
+// colour is premultiplied by coverage, so averaging samples gives coverage-weighted colour.
+vec4 sampleColor(vec3 ro, vec3 rd, Hit h) {
+#ifdef ALPHA
+    if (h.t < 0.0) return vec4(0.0);
+    float cover = 1.0;
+#ifdef FOG_DISTANCE
+    cover = exp(-h.t / FOG_DISTANCE);
+#endif
+    return vec4(radiance(ro, rd, h) * cover, cover);
+#else
+    vec3 col = radiance(ro, rd, h);
+#ifdef FOG_DISTANCE
+    if (h.t >= 0.0) col = mix(background(rd), col, exp(-h.t / FOG_DISTANCE));
+#endif
+    return vec4(col, 1.0);
+#endif
+}
+
+// The pixel from its averaged samples: gamma-encoded, straight (un-premultiplied) alpha.
+vec4 pixelColor(vec4 acc) {
+#ifdef ALPHA
+    vec3 straight = acc.a > 0.0 ? acc.rgb / acc.a : vec3(0.0);
+    return vec4(pow(clamp(straight, 0.0, 1.0), vec3(1.0 / 2.2)), acc.a);
+#else
+    return vec4(pow(clamp(acc.rgb, 0.0, 1.0), vec3(1.0 / 2.2)), 1.0);
+#endif
 }

@@ -58,3 +58,17 @@ def test_bad_scene_file_gives_one_clear_line(tmp_path):
 def test_bad_size_argument():
     r = sdfgl("render", "--demo", "--size", "big")
     assert r.returncode == 2 and "size must look like 800x600" in r.stderr
+
+
+def test_render_transparent_orthographic(tmp_path):
+    out = tmp_path / "cut.png"
+    r = sdfgl("render", "demos/csg.py", "-o", str(out), "--size", "48x96", "--alpha", "--ortho",
+              "--background", "white,#336699")
+    assert r.returncode == 0, r.stderr
+    a = np.asarray(Image.open(out))
+    assert a.shape == (96, 48, 4)
+    alpha = a[..., 3]
+    assert (alpha == 0).any() and (alpha == 255).any()
+    assert alpha[0].max() == 0 and alpha[-1].max() == 0 and alpha[:, 0].max() == 0  # framed with room around
+    bad = sdfgl("render", "demos/csg.py", "-o", str(tmp_path / "x.png"), "--background", "nonsense")
+    assert bad.returncode != 0 and "not a colour" in bad.stderr and "Traceback" not in bad.stderr

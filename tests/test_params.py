@@ -90,20 +90,21 @@ def test_moving_the_camera_never_recompiles(renderer):
 
 def test_setting_a_bad_value_names_the_node_and_keeps_the_old_value():
     r = sg.param(0.5, "radius")
-    sg.sphere(r)
+    s = sg.sphere(r)  # checks live as long as their node (a discarded node checks nothing)
     with pytest.raises(sg.ParameterError, match=r"sphere: parameter 'radius' must be > 0, got -1"):
         r.value = -1
     assert r.value == 0.5
     size, rad = sg.param(1.0), sg.param(0.2)
-    sg.rounded_box(size, rad)
+    b = sg.rounded_box(size, rad)
     with pytest.raises(sg.ParameterError, match=r"rounded_box: parameter 'radius' \(0.6\) must be at most half"):
         rad.value = 0.6
     with pytest.raises(sg.ParameterError, match="a scalar parameter cannot take"):
         size.value = (1, 2, 3)
     k = sg.param(0.2)
-    sg.union(sg.sphere(1), sg.box(1), k=k)
+    u = sg.union(sg.sphere(1), sg.box(1), k=k)
     with pytest.raises(sg.ParameterError, match="live parameter 'k' must stay >= 1e-30"):
         k.value = 0.0
+    assert s is not None and b is not None and u is not None
 
 
 def test_params_that_shape_the_code_are_refused():

@@ -100,16 +100,21 @@ def test_tree_selection_tints_the_subtree(viewer):
     box = scene.children[1]
     src = generate(scene, Settings.build(debug="select", shadows=False, ao=False), highlight=box)
     r = default_renderer()
-    prog = r.programs.get(src)
     cam = OrbitCamera(target=tuple(st["target"]), distance=st["distance"], yaw=st["yaw"], pitch=st["pitch"])
-    t = Targets(r.ctx, (W, H), ("color",))
-    camera_uniforms(prog, cam, (W, H), np.zeros(3))
-    scene_uniforms(prog, src, scene, np.zeros(3))
-    t.fbo.use()
-    r.ctx.viewport = (0, 0, W, H)
-    r.vao(prog).render(vertices=3)
-    ref = t.read("color")[..., :3].astype(np.int16)
-    t.release()
+
+    def draw():  # on the renderer's GL thread, which owns its context
+        prog, vao = r.programs.entry(src)
+        t = Targets(r.ctx, (W, H), ("color",))
+        camera_uniforms(prog, cam, (W, H), np.zeros(3))
+        scene_uniforms(prog, src, scene, np.zeros(3))
+        t.fbo.use()
+        r.ctx.viewport = (0, 0, W, H)
+        vao.render(vertices=3)
+        out = t.read("color")
+        t.release()
+        return out
+
+    ref = r.run(draw)[..., :3].astype(np.int16)
     want = (ref[..., 0] > ref[..., 2] + 60)[:, PANEL:]
     assert want.sum() > 500
     iou = (tint & want).sum() / (tint | want).sum()

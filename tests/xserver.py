@@ -19,10 +19,17 @@ def start_xvfb() -> tuple[subprocess.Popen, str]:
             proc = subprocess.Popen(["Xvfb", f":{n}", "-screen", "0", "1600x900x24", "-nolisten", "tcp"],
                                     stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
             for _ in range(100):
+                if proc.poll() is not None:  # lost the race for :n to another Xvfb (whose socket we'd use)
+                    break
                 if Path(f"/tmp/.X11-unix/X{n}").exists():
-                    return proc, f":{n}"
+                    time.sleep(0.2)
+                    if proc.poll() is None:
+                        return proc, f":{n}"
+                    break
                 time.sleep(0.05)
-            proc.kill()
+            if proc.poll() is None:
+                proc.kill()
+            proc.wait(5)
     pytest.fail("could not start Xvfb on any display :90..:139")
 
 

@@ -1,11 +1,21 @@
-"""Offscreen render targets: one texture per requested output, read back as numpy."""
+"""Offscreen render targets: one texture per requested output, read back as numpy; an LRU of them."""
 from __future__ import annotations
+
+from typing import Callable
 
 import moderngl
 import numpy as np
 
+from .cache import LRU, MB, CacheBudget
+
 # output name -> (components, dtype) of its texture
 FORMATS = {"color": (4, "f1"), "depth": (1, "f4"), "normal": (4, "f4"), "steps": (1, "f4")}
+
+
+def target_bytes(size: tuple[int, int], outputs: tuple[str, ...]) -> int:
+    """GPU memory of the textures of one target."""
+    per_px = sum(FORMATS[n][0] * (1 if FORMATS[n][1] == "f1" else 4) for n in outputs)
+    return size[0] * size[1] * per_px
 
 
 class Targets:
@@ -27,3 +37,32 @@ class Targets:
         self.fbo.release()
         for t in self.textures.values():
             t.release()
+
+
+class TargetCache:
+    """Render targets by (size, outputs), least recently used released beyond ``budget().targets_mb``."""
+
+    def __init__(self, budget: Callable[[], CacheBudget]) -> None:
+        self._budget = budget
+        self._lru: LRU[Targets] = LRU(Targets.release)
+
+    def get(self, ctx: moderngl.Context, size: tuple[int, int], outputs: tuple[str, ...]) -> Targets:
+        """The target for ``size`` and ``outputs`` (made if new); call on the context's thread."""
+        key = (size, outputs)
+        t = self._lru.get(key)
+        if t is None:
+            t = Targets(ctx, size, outputs)
+            self._lru.put(key, t, target_bytes(size, outputs))
+            mb = self._budget().targets_mb
+            self._lru.trim(max_bytes=None if mb is None else mb * MB)
+        return t
+
+    def forget(self) -> None:
+        self._lru.forget()
+
+    def clear(self) -> None:
+        """Release every target."""
+        self._lru.clear()
+
+    def __len__(self) -> int:
+        return len(self._lru)

@@ -6,7 +6,14 @@ from .domain import repeat
 from .fractals import sierpinski, tree
 from .implicit import displace_expr, implicit, parametric
 from .noise import displace, noise
-from .shapes2d import circle, extrude, polygon, rectangle, revolve
+from .shapes2d import Shape2D, circle, extrude, polygon, rectangle, revolve
+from .shapes2d_more import arc, capsule2, ellipse, regular_polygon, star, triangle
+from .shapes2d_ops import slice
+from .primitives_more import (bezier_tube, capped_torus, dodecahedron, gyroid, icosahedron, pyramid, slab,
+                              tetrahedron, tube)
+from .operators import morph
+from .deform import taper
+from .user_glsl import glsl
 from .shaping import elongate, mirror, repeat_polar, rounded, shell, symmetric
 from .primitives import (box, box_frame, capsule, cone, cylinder, ellipsoid, hex_prism, octahedron, plane,
                          rounded_box, sphere, torus)
@@ -15,4 +22,7 @@ __all__ = ["Node", "Primitive", "EXACT", "BOUND", "IMPLICIT", "sphere", "box", "
            "torus", "capsule", "cylinder", "cone", "ellipsoid", "octahedron", "hex_prism", "union",
            "intersection", "difference", "box_frame", "product", "twist", "bend", "repeat",
            "sierpinski", "tree", "circle", "rectangle", "polygon", "extrude", "revolve", "mirror", "symmetric",
-           "repeat_polar", "elongate", "rounded", "shell", "displace", "noise", "implicit", "parametric", "displace_expr"]
+           "repeat_polar", "elongate", "rounded", "shell", "displace", "noise", "implicit", "parametric", "displace_expr",
+           "Shape2D", "arc", "capsule2", "ellipse", "regular_polygon", "star", "triangle", "slice",
+           "bezier_tube", "capped_torus", "dodecahedron", "gyroid", "icosahedron", "pyramid", "slab",
+           "tetrahedron", "tube", "morph", "taper", "glsl"]

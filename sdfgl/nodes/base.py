@@ -10,7 +10,8 @@ from typing import TYPE_CHECKING, Any, ClassVar, Sequence
 import numpy as np
 
 from ..errors import ParameterError
-from ..params import Live, Param
+from ..params import Live, Param, owns_checks
+from .record import Recorded
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..codegen import Emitter
@@ -24,16 +25,38 @@ INF = float("inf")
 
 def as_points(points: object) -> np.ndarray:
     """Return points as a float64 array of shape (..., 3)."""
-    p = np.asarray(points, dtype=np.float64)
+    try:
+        p = np.asarray(points, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise ParameterError(f"points must be numbers of shape (..., 3), got {type(points).__name__}") from None
     if p.ndim == 0 or p.shape[-1] != 3:
         raise ParameterError(f"points must have shape (..., 3), got {p.shape}")
     return p
 
 
-class Node:
-    """Base class of every scene-graph node. Nodes are immutable after construction."""
+class Node(Recorded, register=False):
+    """Base class of every scene-graph node. Nodes are immutable after construction.
+
+    Operators and methods build new nodes (fogleman/sdf style): ``a | b``, ``a & b``,
+    ``a - b``, ``.translate``, ``.rotate``, ``.scale``, ``.color`` and the rest. Every node
+    has ``distance(points)`` (the float64 twin of the generated GLSL), ``exactness``,
+    ``lipschitz`` and ``bounds``.
+
+    A subclass that sets ``kind`` is registered under it (see :mod:`sdfgl.nodes.record`):
+    pickle and scene documents rebuild it from its constructor's arguments.
+
+    Example:
+        >>> s = (sg.sphere(1) & sg.box(1.5)).translate((0, 1, 0)).color(0.9, 0.3, 0.2)
+        >>> s.exactness, float(s.distance((0, 3, 0)))
+        ('bound', 1.25)
+    """
 
     kind: ClassVar[str] = "node"
+
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        super().__init_subclass__(**kwargs)
+        if "__init__" in cls.__dict__:  # live-parameter checks made while building belong to the node
+            cls.__init__ = owns_checks(cls.__init__)  # type: ignore[method-assign]
 
     def __init__(self, children: Sequence["Node"] = (), **params: object) -> None:
         for i, c in enumerate(children):
@@ -80,6 +103,11 @@ class Node:
         if not self.children:
             return self.label()
         return f"{self.label()}[{', '.join(repr(c) for c in self.children)}]"
+
+    def to_dict(self) -> dict:
+        """This scene as a JSON-ready document (docs/scene-format.md); ``sg.from_dict`` reads it back."""
+        from ..scene_io import to_dict
+        return to_dict(self)
 
     def _repr_png_(self) -> bytes | None:
         """A small render, shown inline by Jupyter (``sg.set_preview(False)`` turns it off)."""
@@ -163,6 +191,15 @@ class Node:
         return out
 
     # -- modelling API (fogleman/sdf style) ---------------------------------------------
+    def save(self, path: str, **mesh_options: Any) -> Any:
+        """Mesh this node and write it (fogleman/sdf's ``f.save("out.stl")``); returns the Mesh.
+
+        ``mesh_options`` are those of :func:`sdfgl.mesh` (step, resolution, samples, bounds, mode)."""
+        from ..mesh import mesh
+        m = mesh(self, **mesh_options)
+        m.save(path)
+        return m
+
     def __or__(self, other: "Node") -> "Node":
         from .booleans import union
         return union(self, other)
@@ -175,17 +212,20 @@ class Node:
         from .booleans import difference
         return difference(self, other)
 
-    def union(self, *others: "Node", k: float = 0.0) -> "Node":
+    def union(self, *others: "Node", k: float = 0.0, blend: str = "quadratic") -> "Node":
+        """``self | others`` with blend radius ``k`` and ``blend`` style, as :func:`sdfgl.union`."""
         from .booleans import union
-        return union(self, *others, k=k)
+        return union(self, *others, k=k, blend=blend)
 
-    def intersection(self, *others: "Node", k: float = 0.0) -> "Node":
+    def intersection(self, *others: "Node", k: float = 0.0, blend: str = "quadratic") -> "Node":
+        """``self & others`` with blend radius ``k`` and ``blend`` style, as :func:`sdfgl.intersection`."""
         from .booleans import intersection
-        return intersection(self, *others, k=k)
+        return intersection(self, *others, k=k, blend=blend)
 
-    def difference(self, *others: "Node", k: float = 0.0) -> "Node":
+    def difference(self, *others: "Node", k: float = 0.0, blend: str = "quadratic") -> "Node":
+        """``self - others`` with blend radius ``k`` and ``blend`` style, as :func:`sdfgl.difference`."""
         from .booleans import difference
-        return difference(self, *others, k=k)
+        return difference(self, *others, k=k, blend=blend)
 
     def translate(self, offset: Sequence[float]) -> "Node":
         from .transforms import Translate
@@ -206,15 +246,38 @@ class Node:
         from .transforms import scale
         return scale(self, factor)
 
-    def twist(self, rate: float) -> "Node":
-        """Twist about Y by ``rate`` degrees per unit of height (a bound; steps shortened here only)."""
+    def twist(self, rate: float, axis: str = "y") -> "Node":
+        """Twist about ``axis`` (x, y or z) by ``rate`` degrees per unit along it (a bound; steps
+        shortened here only)."""
         from .deform import Twist
-        return Twist(self, rate)
+        return Twist(self, rate, axis)
 
-    def bend(self, rate: float) -> "Node":
-        """Bend in the XY plane by ``rate`` degrees per unit along X (a bound)."""
+    def bend(self, rate: float, axis: str = "z") -> "Node":
+        """Bend about ``axis`` by ``rate`` degrees per unit: about Z the XY plane turns by
+        rate * x, about X the YZ plane by rate * y, about Y the ZX plane by rate * z (a bound)."""
         from .deform import Bend
-        return Bend(self, rate)
+        return Bend(self, rate, axis)
+
+    def taper(self, rate: float, axis: str | Sequence[float] = "y", origin: float = 0.0) -> "Node":
+        """Scale the cross-section across ``axis`` ("x", "y" or "z") by 1 + rate (u - origin)
+        along it (a bound; only this subtree's steps shrink)."""
+        from .deform import Taper
+        return Taper(self, rate, axis, origin)
+
+    def dilate(self, radius: float) -> "Node":
+        """Grow by ``radius`` (f - r; the same node as :meth:`round`)."""
+        return self.round(radius)
+
+    def erode(self, radius: float) -> "Node":
+        """Shrink by ``radius`` (f + r; a bound)."""
+        from .operators import Erode
+        return Erode(self, radius)
+
+    def shear(self, amount: float, along: str = "x", by: str = "y") -> "Node":
+        """Move coordinate ``along`` by ``amount`` times coordinate ``by`` (a bound; only this
+        subtree's steps shrink)."""
+        from .operators import Shear
+        return Shear(self, amount, along, by)
 
     def repeat(self, period: float | Sequence[float], count: int | Sequence[int] | None = None) -> "Node":
         """Copies every ``period`` along the axes with a non-zero period; ``count`` limits them."""
@@ -263,9 +326,30 @@ class Node:
         rgb = r if g is None and b is None else (r, g, b)
         return Material(self, rgb)
 
+    def material(self, color: object = None, *, specular: object = None, roughness: object = None,
+                 shininess: object = None, metallic: object = None, emission: object = None) -> "Node":
+        """Give every part of this node that does not set them itself these material fields.
+
+        ``color`` as for :meth:`color`; ``specular`` (>= 0, default 0.25) scales the
+        highlight; ``roughness`` in [0.05, 1] or ``shininess`` (the Blinn-Phong exponent,
+        1..10000, default 48) sets its size; ``metallic`` in [0, 1] tints the highlight by
+        the colour and removes the diffuse part; ``emission`` a colour added unlit. Fields
+        left out keep what an outer node (or the default) says.
+        """
+        from .material import SurfaceMaterial
+        return SurfaceMaterial(self, color, specular=specular, roughness=roughness, shininess=shininess,
+                               metallic=metallic, emission=emission)
+
 
 class Unary(Node):
     """A node with one child whose exactness and Lipschitz factor it keeps unless it says otherwise."""
+
+    def __new__(cls, child: object = None, *args: object, **kwargs: object) -> "Unary":
+        # subclasses read the child (bounds, exactness) before Node.__init__ checks it
+        if not isinstance(child, Node):
+            raise ParameterError(f"{cls.kind}: the operand must be an sdfgl node, got {type(child).__name__} "
+                                 f"{child!r}"[:200])
+        return super().__new__(cls, child, *args, **kwargs)
 
     def __init__(self, child: Node, **params: object) -> None:
         super().__init__((child,), **params)

@@ -129,8 +129,7 @@ class Union(_Boolean):
         if grid is None:
             return super()._emit(em, p)
         pt = em.point(p)
-        acc = em.assign("vec4", f"{em.grid_name(grid)}Union({pt})")
-        acc = acc if em.mode == "color" else em.assign("float", f"{acc}.w")
+        acc = em.grid_union(grid, pt)
         for c in self.children:
             if not any(c is g for g in grid.children):
                 acc = self._combine(em, acc, c.emit(em, pt))
@@ -264,21 +263,83 @@ class Product(Node):
 
 
 def product(a: Node, b: Node) -> Node:
-    """The implicit field a * b (zero on both surfaces); render with a Newton method."""
+    """The seed thesis's "product union": the implicit field a * b, zero on both surfaces.
+
+    Args:
+        a: first node.
+        b: second node.
+
+    Implicit (no distance guarantee): render with ``method="newton"`` or
+    ``"forward_newton"``; the sphere-tracing methods refuse it.
+
+    Example:
+        >>> sg.product(sg.sphere(1), sg.box(1)).exactness
+        'implicit'
+    """
     return Product(a, b)
 
 
 def union(*nodes: Node, k: float = 0.0, blend: str = "quadratic") -> Node:
-    """Union of two or more nodes; ``k`` > 0 blends them over that distance: ``blend`` is
-    "quadratic" (smooth), "circular" (a quarter-circle fillet) or "chamfer" (a bevel)."""
+    """Union of two or more nodes (``a | b``), optionally blended; 2D shapes give a 2D union.
+
+    Args:
+        nodes: two or more nodes; colours are kept per part (and mixed across a blend).
+        k: blend radius in scene units, >= 0 (0: a hard min; may be a live ``sg.param``).
+        blend: "quadratic" (smooth minimum), "circular" (a quarter-circle fillet) or
+            "chamfer" (a 45-degree bevel).
+
+    A bound: exact outside for a hard union of exact fields, a bound inside and when blended.
+
+    Example:
+        >>> float(sg.union(sg.sphere(1), sg.sphere(1, (3, 0, 0))).distance((1.5, 0, 0)))
+        0.5
+    """
+    if _all_2d(nodes):
+        from .shapes2d_ops import union as union2
+        return union2(*nodes, k=k, blend=blend)  # type: ignore[return-value]
     return Union(*nodes, k=k, blend=blend)
 
 
 def intersection(*nodes: Node, k: float = 0.0, blend: str = "quadratic") -> Node:
-    """Intersection of two or more nodes; ``k`` > 0 rounds the seam."""
+    """Intersection of two or more nodes (``a & b``) or 2D shapes, optionally blended.
+
+    Args:
+        nodes: two or more nodes.
+        k: blend radius in scene units, >= 0: rounds the seam.
+        blend: "quadratic", "circular" or "chamfer" (see :func:`union`).
+
+    A bound.
+
+    Example:
+        >>> float((sg.sphere(1) & sg.box(1)).distance((2, 0, 0)))
+        1.5
+    """
+    if _all_2d(nodes):
+        from .shapes2d_ops import intersection as intersection2
+        return intersection2(*nodes, k=k, blend=blend)  # type: ignore[return-value]
     return Intersection(*nodes, k=k, blend=blend)
 
 
 def difference(*nodes: Node, k: float = 0.0, blend: str = "quadratic") -> Node:
-    """The first node minus the others; ``k`` > 0 rounds the cut."""
+    """The first node (or 2D shape) minus all the others (``a - b``), optionally blended.
+
+    Args:
+        nodes: the node to cut, then the nodes cut away.
+        k: blend radius in scene units, >= 0: rounds the cut.
+        blend: "quadratic", "circular" or "chamfer" (see :func:`union`).
+
+    A bound.
+
+    Example:
+        >>> float((sg.box(2) - sg.sphere(0.5)).distance((0, 0, 0)))
+        0.5
+    """
+    if _all_2d(nodes):
+        from .shapes2d_ops import difference as difference2
+        return difference2(*nodes, k=k, blend=blend)  # type: ignore[return-value]
     return Difference(*nodes, k=k, blend=blend)
+
+
+def _all_2d(nodes: tuple) -> bool:
+    from .shapes2d import Shape2D
+    return bool(nodes) and all(isinstance(n, Shape2D) for n in nodes)

@@ -10,7 +10,7 @@ meet at the box wall with a jump, never an overestimate.
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Sequence
 
 import numpy as np
 
@@ -30,15 +30,23 @@ class _Warp(Unary):
 
     lib: tuple[str, ...] = ()
     glsl_fn = ""
-    axes: tuple[int, int] = (0, 2)  # the two coordinates the warp rotates
+    default_axis = "y"
+    # per axis: (the two coordinates the warp rotates, the coordinate the angle follows)
+    planes: dict[str, tuple[tuple[int, int], int]] = {}
 
-    def __init__(self, child: Node, rate: float) -> None:
+    def __init__(self, child: Node, rate: float, axis: str = "") -> None:
         r = v.scalar(self.kind, "rate", rate)
         v.fixed(self.kind, "the step safety factor is compiled from it", rate=r)
+        axis = axis or self.default_axis
+        if not isinstance(axis, str) or axis not in self.planes:
+            raise ParameterError(f"{self.kind}: parameter 'axis' must be 'x', 'y' or 'z', got {axis!r}")
         lo, hi = child.bounds
         if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi))):
             raise ParameterError(f"{self.kind}: the child {child.label()} is unbounded; a warp needs finite bounds")
-        super().__init__(child, rate=r)
+        # the default axis keeps the original parameters (and so the node's key and label)
+        super().__init__(child, rate=r, **({} if axis == self.default_axis else {"axis": axis}))
+        self.axis = axis
+        self.axes, self.along = self.planes[axis]
         self.k = math.radians(r)
         a, b = self.axes
         radius = math.hypot(max(abs(lo[a]), abs(hi[a])), max(abs(lo[b]), abs(hi[b])))
@@ -67,10 +75,32 @@ class _Warp(Unary):
     def _warp(self, p: np.ndarray) -> np.ndarray:
         raise NotImplementedError
 
+    def _warp_glsl(self, em: "Emitter", pt: str) -> str:
+        """The warped point (a GLSL variable) at point ``pt``: the library function for the
+        default axis, else the same rotation of the other coordinate pair, inline."""
+        if self.axis == self.default_axis:
+            return em.assign("vec3", f"{self.glsl_fn}({pt}, {em.num(self.k)})")
+        a, b = ("xyz"[i] for i in self.axes)
+        ang = em.assign("float", f"{em.num(self.k)} * {pt}.{'xyz'[self.along]}")
+        cs = em.assign("vec2", f"vec2(cos({ang}), sin({ang}))")
+        q = em.assign("vec3", pt)
+        em.lines.append((f"    {q}.{a}{b} = vec2({cs}.x * {pt}.{a} - {cs}.y * {pt}.{b}, "
+                         f"{cs}.y * {pt}.{a} + {cs}.x * {pt}.{b});", em.owner))
+        return q
+
+    def _warp(self, p: np.ndarray) -> np.ndarray:
+        a, b = self.axes
+        ang = self.k * p[..., self.along]
+        c, s = np.cos(ang), np.sin(ang)
+        q = p.copy()
+        q[..., a] = c * p[..., a] - s * p[..., b]
+        q[..., b] = s * p[..., a] + c * p[..., b]
+        return q
+
     def _emit(self, em: "Emitter", p: str) -> str:
         em.require(*self.lib, "op_inside_box", "sd_box")
         pt = em.point(p)
-        q = em.assign("vec3", f"{self.glsl_fn}({pt}, {em.num(self.k)})")
+        q = self._warp_glsl(em, pt)
         inner = self.child.emit(em, q)
         blo, bhi = self.bounds
         centre, half = (blo + bhi) / 2, (bhi - blo) / 2
@@ -90,45 +120,152 @@ class _Warp(Unary):
 
 
 class Twist(_Warp):
-    """Twist about Y by ``rate`` degrees per unit of height."""
+    """Twist about ``axis`` (default Y) by ``rate`` degrees per unit along it."""
 
     kind = "twist"
     lib = ("op_twist",)
     glsl_fn = "opTwist"
-    axes = (0, 2)
+    planes = {"y": ((0, 2), 1), "z": ((0, 1), 2), "x": ((1, 2), 0)}
 
     def _stretch(self, r: float) -> float:
         h = abs(self.k) * r / 2  # largest singular value of the twist's Jacobian at radius r
         return h + math.sqrt(1 + h * h)
 
-    def _warp(self, p: np.ndarray) -> np.ndarray:
-        a = self.k * p[..., 1]
-        c, s = np.cos(a), np.sin(a)
-        return np.stack([c * p[..., 0] - s * p[..., 2], p[..., 1], s * p[..., 0] + c * p[..., 2]], axis=-1)
 
 
 class Bend(_Warp):
-    """Bend in the XY plane by ``rate`` degrees per unit along X."""
+    """Bend about ``axis`` by ``rate`` degrees per unit: about Z (the default) the XY plane
+    turns by rate * x; about X the YZ plane by rate * y; about Y the ZX plane by rate * z."""
 
     kind = "bend"
     lib = ("op_bend",)
     glsl_fn = "opBend"
-    axes = (0, 1)
+    default_axis = "z"
+    planes = {"z": ((0, 1), 0), "x": ((1, 2), 1), "y": ((2, 0), 2)}
 
     def _stretch(self, r: float) -> float:
         return 1.0 + abs(self.k) * r  # ||R + u e_x^T|| <= 1 + |u|, |u| = k r
 
+
+
+class Taper(_Warp):
+    """The cross-section across coordinate axis ``axis`` scaled by s(u) = 1 + rate (u - origin)
+    along it (u: the coordinate along the axis); s must stay positive over the solid."""
+
+    kind = "taper"
+    AXES = {"x": 0, "y": 1, "z": 2}
+
+    def __init__(self, child: Node, rate: float, axis: str | Sequence[float] = "y", origin: float = 0.0) -> None:
+        r = v.scalar(self.kind, "rate", rate)
+        o = v.scalar(self.kind, "origin", origin)
+        v.fixed(self.kind, "the step safety factor is compiled from it", rate=r, origin=o)
+        self.ax = _coordinate_axis(self.kind, axis)
+        lo, hi = child.bounds
+        if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi))):
+            raise ParameterError(f"{self.kind}: the child {child.label()} is unbounded; a taper needs finite bounds")
+        Unary.__init__(self, child, rate=r, axis="xyz"[self.ax], origin=o)
+        self.k, self.o = float(r), float(o)
+        blo, bhi = self.bounds
+        pad = PAD * float(np.max(bhi - blo)) + 1e-9
+        self.box_lo, self.box_hi = blo - pad, bhi + pad
+        s_ends = [self._s(self.box_lo[self.ax]), self._s(self.box_hi[self.ax])]
+        if min(s_ends) <= 0:
+            raise ParameterError(f"{self.kind}: the scale 1 + rate (u - origin) reaches {min(s_ends):g} within the "
+                                 f"solid; it must stay > 0 (a smaller rate, or another origin)")
+        perp = [i for i in range(3) if i != self.ax]
+        corners = np.abs(np.stack([self.box_lo, self.box_hi]))[:, perp]
+        far = float(np.hypot(*corners.max(axis=0)))
+        s_min = min(s_ends)
+        # ||J|| <= max(1, 1/s) + |s'| |p_perp| / s^2 over the box
+        self.stretch = max(1.0, 1.0 / s_min) + abs(self.k) * far / s_min ** 2
+
+    def _s(self, u: float | np.ndarray) -> float | np.ndarray:
+        return 1.0 + self.k * (u - self.o)
+
+    @property
+    def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        lo, hi = self.child.bounds
+        sa, sb = self._s(lo[self.ax]), self._s(hi[self.ax])
+        out_lo, out_hi = lo.copy(), hi.copy()
+        for j in range(3):
+            if j != self.ax:
+                vals = [lo[j] * sa, lo[j] * sb, hi[j] * sa, hi[j] * sb]
+                out_lo[j], out_hi[j] = min(vals), max(vals)
+        return out_lo, out_hi
+
+    def _warp_glsl(self, em: "Emitter", pt: str) -> str:
+        s = em.assign("float", f"1.0 + {em.num(self.k)} * ({pt}.{'xyz'[self.ax]} - {em.num(self.o)})")
+        div = ", ".join("1.0" if i == self.ax else s for i in range(3))
+        return em.assign("vec3", f"{pt} / vec3({div})")
+
     def _warp(self, p: np.ndarray) -> np.ndarray:
-        a = self.k * p[..., 0]
-        c, s = np.cos(a), np.sin(a)
-        return np.stack([c * p[..., 0] - s * p[..., 1], s * p[..., 0] + c * p[..., 1], p[..., 2]], axis=-1)
+        s = self._s(p[..., self.ax])
+        q = p / s[..., None]
+        q[..., self.ax] = p[..., self.ax]
+        return q
 
 
-def twist(node: Node, rate: float) -> Twist:
-    """Twist ``node`` about the Y axis by ``rate`` degrees per unit of height."""
-    return Twist(node, rate)
+def _coordinate_axis(node: str, axis: str | Sequence[float]) -> int:
+    """Index of a coordinate axis given as "x"/"y"/"z" or a unit vector along one."""
+    if isinstance(axis, str) and axis.lower() in Taper.AXES:
+        return Taper.AXES[axis.lower()]
+    a = v.vector(node, "axis", axis, nonzero=True)
+    nz = np.flatnonzero(np.asarray(a))
+    if len(nz) != 1 or a[nz[0]] <= 0:
+        raise ParameterError(f"{node}: parameter 'axis' must be 'x', 'y', 'z' or a positive coordinate axis, "
+                             f"got {axis!r}")
+    return int(nz[0])
 
 
-def bend(node: Node, rate: float) -> Bend:
-    """Bend ``node`` in the XY plane by ``rate`` degrees per unit along X."""
-    return Bend(node, rate)
+def taper(node: Node, rate: float, axis: str | Sequence[float] = "y", origin: float = 0.0) -> Taper:
+    """Scale ``node``'s cross-section across ``axis`` by 1 + rate (u - origin) along it.
+
+    Args:
+        node: the node to taper; it must be bounded.
+        rate: change of the scale per unit along the axis (a baked constant); the scale
+            must stay > 0 over the node.
+        axis: "x", "y", "z" or a positive coordinate axis such as (0, 1, 0).
+        origin: the coordinate u along the axis where the scale is 1.
+
+    A bound (Lipschitz factor > 1, this subtree only).
+
+    Example:
+        >>> sg.taper(sg.box(1), 0.3).exactness
+        'bound'
+    """
+    return Taper(node, rate, axis, origin)
+
+
+def twist(node: Node, rate: float, axis: str = "y") -> Twist:
+    """Twist ``node`` about a coordinate axis.
+
+    Args:
+        node: the node to twist.
+        rate: degrees of turn per unit along the axis (a baked constant).
+        axis: "x", "y" or "z".
+
+    A bound: the Lipschitz factor grows with rate and the node's radius; only this subtree's
+    steps are shortened.
+
+    Example:
+        >>> sg.twist(sg.box((0.6, 2, 0.4)), 90).exactness
+        'bound'
+    """
+    return Twist(node, rate, axis)
+
+
+def bend(node: Node, rate: float, axis: str = "z") -> Bend:
+    """Bend ``node`` about a coordinate axis (the default "z" bends in the XY plane).
+
+    Args:
+        node: the node to bend.
+        rate: degrees of bend per unit along the bent direction (a baked constant; see Bend).
+        axis: "x", "y" or "z".
+
+    A bound (Lipschitz factor > 1, this subtree only).
+
+    Example:
+        >>> sg.bend(sg.box((2, 0.3, 0.4)), 40).exactness
+        'bound'
+    """
+    return Bend(node, rate, axis)

@@ -19,6 +19,9 @@ if TYPE_CHECKING:  # pragma: no cover
 WALL_GAP = 0.1
 
 
+MAX_COUNT = 1_000_000  # copies per side and axis: the count is a GLSL int constant
+
+
 class Repeat(Unary):
     """Copies of the child every ``period[i]`` along each axis with a non-zero period.
 
@@ -43,8 +46,9 @@ class Repeat(Unary):
             n = np.full(3, -1)
         else:
             cnt = v.vector(self.kind, "count", count)
-            if np.any(cnt < 0) or np.any(cnt != np.round(cnt)):
-                raise ParameterError(f"{self.kind}: 'count' must be whole numbers >= 0, got {tuple(cnt)}")
+            if np.any(cnt < 0) or np.any(cnt != np.round(cnt)) or np.any(cnt > MAX_COUNT):
+                raise ParameterError(f"{self.kind}: 'count' must be whole numbers in 0..{MAX_COUNT}, "
+                                     f"got {tuple(cnt.tolist())}")
             n = cnt.astype(int)
         lo, hi = child.bounds
         axes = np.nonzero(s > 0)[0]
@@ -154,6 +158,20 @@ class Repeat(Unary):
 
 
 def repeat(node: Node, period: float | Sequence[float], count: int | Sequence[int] | None = None) -> Repeat:
-    """Repeat ``node`` every ``period`` (a number for all axes, or per axis, 0 = not repeated);
-    ``count`` limits the copies to -count..count cells per axis."""
+    """Repeat ``node`` on a grid.
+
+    Args:
+        node: the node placed in the cell around the origin; it must fit within half a
+            period on each repeated axis.
+        period: cell size: one number for all axes, or (px, py, pz) with 0 for an axis that
+            is not repeated.
+        count: None for endless copies, else copies per side on each axis (whole numbers,
+            0..1e6): count 2 gives 5 copies along that axis.
+
+    Keeps the child's exactness (copies that touch their cell walls are not cut).
+
+    Example:
+        >>> float(sg.repeat(sg.sphere(0.25), (1, 0, 0)).distance((3, 0, 0)))
+        -0.25
+    """
     return Repeat(node, period, count)

@@ -71,6 +71,8 @@ def unwrap(node: Node) -> tuple[Node, np.ndarray, np.ndarray, float, tuple[float
             r = r @ node.m
         elif isinstance(node, Scale):
             s = s * float(node.s)
+        elif node.surface:  # packed primitives carry a colour only, not a full material
+            return None
         else:
             color = node.rgb  # the innermost colour wins, as in code
         node = node.child

@@ -7,57 +7,91 @@ estimate with the gradient derived symbolically. It is no guaranteed bound (exac
 """
 from __future__ import annotations
 
-import multiprocessing as mp
+import functools
 import time
+import zlib
 from typing import TYPE_CHECKING, Any, Sequence
 
 import numpy as np
-import sympy as sp
-from sympy.printing.glsl import GLSLPrinter
 
+from .. import expr as ex
 from ..errors import ParameterError
 from .base import IMPLICIT, Node
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..codegen import Emitter
 
-X, Y, Z = sp.symbols("x y z", real=True)
 MAX_TERMS = 400  # an implicit equation bigger than this is refused as too large
 
 
-class _Printer(GLSLPrinter):
-    """sympy's GLSL printer, but integer powers become products (GLSL's pow(x, 2.0) is
-    undefined for negative x) and every number is a float literal."""
-
-    def _print_Pow(self, expr: sp.Pow) -> str:  # noqa: N802 - sympy's naming
-        base, exp = expr.as_base_exp()
-        if exp.is_Integer and 0 < abs(int(exp)) <= 8:
-            prod = " * ".join([f"({self._print(base)})"] * abs(int(exp)))
-            return f"({prod})" if exp > 0 else f"(1.0 / ({prod}))"
-        if exp == sp.Rational(1, 2):
-            return f"sqrt({self._print(base)})"
-        return f"pow({self._print(base)}, {self._print(sp.Float(exp))})"
-
-    def _print_Integer(self, expr: sp.Integer) -> str:  # noqa: N802
-        return f"{int(expr)}.0"
-
-    def _print_Rational(self, expr: sp.Rational) -> str:  # noqa: N802
-        return repr(float(expr))
+@functools.lru_cache(maxsize=None)
+def _xyz() -> tuple[Any, Any, Any]:
+    """The real symbols x, y, z (sympy is imported only when an expression node is built)."""
+    return ex.sympy_module("implicit surfaces").symbols("x y z", real=True)
 
 
-def _parse(expr: Any) -> sp.Expr:
+@functools.lru_cache(maxsize=None)
+def _printer_class() -> type:
+    from sympy.printing.glsl import GLSLPrinter
+
+    class _Printer(GLSLPrinter):
+        """sympy's GLSL printer, but integer powers become products, or pow() of the absolute
+        value with the sign restored for odd powers (GLSL's pow(x, y) is undefined for
+        negative x), and every number is a float literal."""
+
+        def _print_Pow(self, expr: Any) -> str:  # noqa: N802 - sympy's naming
+            import sympy as sp
+            base, exp = expr.as_base_exp()
+            if exp.is_Integer and 0 < abs(int(exp)) <= 8:
+                prod = " * ".join([f"({self._print(base)})"] * abs(int(exp)))
+                return f"({prod})" if exp > 0 else f"(1.0 / ({prod}))"
+            if exp.is_Integer and int(exp) != 0:
+                b, n = self._print(base), abs(int(exp))
+                mag = f"pow(abs({b}), {float(n)!r})"
+                val = mag if n % 2 == 0 else f"(sign({b}) * {mag})"
+                return val if exp > 0 else f"(1.0 / {val})"
+            if exp == sp.Rational(1, 2):
+                return f"sqrt({self._print(base)})"
+            return f"pow({self._print(base)}, {self._print(sp.Float(exp))})"
+
+        def _print_Integer(self, expr: Any) -> str:  # noqa: N802
+            return f"{int(expr)}.0"
+
+        def _print_Rational(self, expr: Any) -> str:  # noqa: N802
+            return repr(float(expr))
+
+    return _Printer
+
+
+def glsl(expr: Any, what: str) -> str:
+    """GLSL for a sympy expression; a printer failure names the unsupported function."""
+    try:
+        return _printer_class()().doprint(expr)
+    except Exception as exc:  # sympy raises several kinds here; all mean "cannot print"
+        name = ex.unsupported_function(expr) or type(exc).__name__
+        raise ParameterError(f"{what}: cannot write {name} in GLSL; use only "
+                             f"{', '.join(sorted(ex.FUNCTIONS))} and + - * / **") from None
+
+
+def _stable_name(prefix: str, key: tuple) -> str:
+    """A helper-function name that is the same in every process (hash() is salted)."""
+    return f"{prefix}{zlib.crc32(repr(key).encode()) % 10**8}"
+
+
+def _parse(expr: Any, what: str = "implicit") -> Any:
+    X, Y, Z = _xyz()
+    import sympy as sp
+    names = {"x": X, "y": Y, "z": Z}
     if isinstance(expr, str):
-        try:
-            e = sp.sympify(expr, locals={"x": X, "y": Y, "z": Z})
-        except (sp.SympifyError, SyntaxError, TypeError) as exc:
-            raise ParameterError(f"implicit: cannot parse {expr!r}: {exc}") from None
+        e = ex.parse_sympy(expr, names, what)
     elif isinstance(expr, sp.Expr):
-        e = expr.subs({s: {"x": X, "y": Y, "z": Z}[s.name] for s in expr.free_symbols if s.name in "xyz"})
+        ex.check_sympy(expr, what)
+        e = expr.subs({s: names[s.name] for s in expr.free_symbols if s.name in names})
     else:
-        raise ParameterError(f"implicit: expected a string or a sympy expression, got {type(expr).__name__}")
+        raise ParameterError(f"{what}: expected a string or a sympy expression, got {type(expr).__name__}")
     extra = sorted(s.name for s in e.free_symbols if s not in (X, Y, Z))
     if extra:
-        raise ParameterError(f"implicit: unknown symbol(s) {', '.join(extra)} in {expr!r}; use x, y and z")
+        raise ParameterError(f"{what}: unknown symbol(s) {', '.join(extra)} in {expr!r}; use x, y and z")
     return e
 
 
@@ -67,14 +101,14 @@ class Implicit(Node):
     kind = "implicit"
 
     def __init__(self, expr: Any, bounds: tuple[Sequence[float], Sequence[float]] | None = None) -> None:
+        X, Y, Z = _xyz()
+        import sympy as sp
         f = _parse(expr)
         grad = [sp.diff(f, s) for s in (X, Y, Z)]
         if all(g == 0 for g in grad):
             raise ParameterError(f"implicit: {f} does not depend on x, y or z")
-        lo, hi = (np.full(3, -np.inf), np.full(3, np.inf)) if bounds is None else (
-            np.asarray(bounds[0], dtype=float), np.asarray(bounds[1], dtype=float))
-        if lo.shape != (3,) or hi.shape != (3,) or np.any(lo >= hi):
-            raise ParameterError(f"implicit: 'bounds' must be two 3-vectors with lo < hi, got {bounds!r}")
+        lo, hi = _box("implicit", bounds)
+        self._glsl = (glsl(f, "implicit"), [glsl(g, "implicit: the gradient") for g in grad])
         super().__init__((), expr=str(f))
         self.f, self.grad, self.lo, self.hi = f, grad, lo, hi
         self._np = sp.lambdify((X, Y, Z), [f, *grad], "numpy")
@@ -88,11 +122,10 @@ class Implicit(Node):
         return f"implicit({text if len(text) < 60 else text[:57] + '...'})"
 
     def _emit(self, em: "Emitter", p: str) -> str:
-        pr = _Printer()
-        name = f"implicit{abs(hash(self.key)) % 10**8}"
+        name = _stable_name("implicit", self.key)
         body = (f"float {name}(vec3 p) {{\n    float x = p.x;\n    float y = p.y;\n    float z = p.z;\n"
-                f"    float f = {pr.doprint(self.f)};\n"
-                f"    vec3 g = vec3({', '.join(pr.doprint(g) for g in self.grad)});\n"
+                f"    float f = {self._glsl[0]};\n"
+                f"    vec3 g = vec3({', '.join(self._glsl[1])});\n"
                 f"    return f / max(length(g), 1e-12);\n}}")
         em.helper(name, f"// f = {self.f}  (an implicit surface, as f / |grad f|)\n{body}")
         return em.with_color(em.assign("float", f"{name}({em.point(p)})"))
@@ -109,46 +142,88 @@ class Implicit(Node):
 
 
 def implicit(expr: Any, bounds: tuple[Sequence[float], Sequence[float]] | None = None) -> Implicit:
-    """The surface ``expr`` = 0 in x, y, z (a string or sympy expression); ``bounds`` (lo, hi)
-    clips the rays to a box. Render with method="newton" or "forward_newton"."""
+    """The surface ``expr`` = 0 in x, y, z (solid where ``expr`` < 0), rendered as f / |grad f|.
+
+    Args:
+        expr: a string in the safe expression grammar (:mod:`sdfgl.expr`: numbers, x, y, z,
+            pi, E, + - * / ** ^ and sin cos tan asin acos atan sinh cosh tanh exp log sqrt abs)
+            or a sympy expression over those. Nothing in it is run as code.
+        bounds: (lo, hi) corners of a box that clips the rays (strongly advised), or None.
+
+    Implicit: no distance guarantee; render with ``method="newton"`` or ``"forward_newton"``
+    (and ``ao=False``). Needs the ``implicit`` extra (sympy).
+
+    Example:
+        >>> s = sg.implicit("x**2 + y**2 + z**2 - 1", bounds=((-1, -1, -1), (1, 1, 1)))
+        >>> float(s.distance((2, 0, 0)))
+        0.75
+    """
     return Implicit(expr, bounds)
 
 
-def _groebner_worker(gens: list[str], out: Any) -> None:
-    u, s, t = sp.symbols("u s t")
-    polys = [sp.sympify(g, locals={"u": u, "s": s, "t": t, "x": X, "y": Y, "z": Z}) for g in gens]
-    basis = sp.groebner(polys, u, s, t, X, Y, Z, order="lex")
-    found = [str(g) for g in basis.exprs if not ({u, s, t} & g.free_symbols)]
-    out.put(found)
+def _box(what: str, bounds: Any) -> tuple[np.ndarray, np.ndarray]:
+    """``bounds`` (lo, hi) as two float 3-vectors with lo < hi (None: unbounded)."""
+    if bounds is None:
+        return np.full(3, -np.inf), np.full(3, np.inf)
+    try:
+        lo, hi = (np.asarray(b, dtype=float) for b in bounds)
+        ok = lo.shape == (3,) and hi.shape == (3,) and not np.isnan(lo).any() and not np.isnan(hi).any() \
+            and bool(np.all(lo < hi))
+    except (TypeError, ValueError):
+        ok = False
+    if not ok:
+        raise ParameterError(f"{what}: 'bounds' must be two 3-vectors (lo, hi) with lo < hi, got {bounds!r}")
+    return lo, hi
 
 
-def implicitize(x: Any, y: Any, z: Any, timeout: float = 20.0) -> tuple[sp.Expr, float]:
+def _groebner_worker(gens: list, syms: tuple, out: Any) -> None:
+    import sympy as sp
+    basis = sp.groebner(gens, *syms, order="lex")
+    elim = set(syms[:3])
+    out.put([g for g in basis.exprs if not (elim & g.free_symbols)])
+
+
+def implicitize(x: Any, y: Any, z: Any, timeout: float = 20.0) -> tuple[Any, float]:
     """The implicit equation F(x, y, z) = 0 of the rational surface (x(s, t), y(s, t), z(s, t)).
 
     Eliminates s and t from <D x - Nx, D y - Ny, D z - Nz, 1 - u D> (D the common
     denominator) with a lex Groebner basis. Returns (F, seconds). Raises ParameterError
     if it does not finish within ``timeout`` seconds, finds no surface equation, or the
     equation has more than MAX_TERMS terms."""
+    X, Y, Z = _xyz()
+    import sympy as sp
     s, t, u = sp.symbols("s t u")
+    if isinstance(timeout, bool) or not isinstance(timeout, (int, float)) or not 0 < timeout <= 3600:
+        raise ParameterError(f"parametric: 'timeout' must be a number of seconds in (0, 3600], got {timeout!r}")
     comps = []
     for name, e in (("x", x), ("y", y), ("z", z)):
-        try:
-            ex = sp.sympify(e, locals={"s": s, "t": t}) if isinstance(e, str) else sp.sympify(e)
-        except (sp.SympifyError, SyntaxError, TypeError) as exc:
-            raise ParameterError(f"parametric: cannot parse {name} = {e!r}: {exc}") from None
-        extra = sorted(v.name for v in ex.free_symbols if v.name not in ("s", "t"))
+        what = f"parametric: {name}"
+        if isinstance(e, str):
+            c = ex.parse_sympy(e, {"s": s, "t": t}, what)
+        elif isinstance(e, (int, float)) and not isinstance(e, bool):
+            c = sp.Float(e) if isinstance(e, float) else sp.Integer(e)
+        elif isinstance(e, sp.Expr):
+            ex.check_sympy(e, what)
+            c = e
+        else:
+            raise ParameterError(f"{what}: expected a string, number or sympy expression, got {type(e).__name__}")
+        extra = sorted(v.name for v in c.free_symbols if v.name not in ("s", "t"))
         if extra:
             raise ParameterError(f"parametric: {name} uses unknown symbol(s) {', '.join(extra)}; use s and t")
-        num, den = sp.fraction(sp.together(ex))
+        c = c.subs({v: {"s": s, "t": t}[v.name] for v in c.free_symbols})
+        num, den = sp.fraction(sp.together(c))
         if not (num.is_polynomial(s, t) and den.is_polynomial(s, t)):
-            raise ParameterError(f"parametric: {name} = {ex} is not a rational function of s and t")
+            raise ParameterError(f"parametric: {name} = {c} is not a rational function of s and t")
         comps.append((num, den))
     d = sp.lcm_list([den for _, den in comps])
-    gens = [sp.expand(d * c - sp.cancel(num * d / den)) for c, (num, den) in zip((X, Y, Z), comps)]
-    gens.append(sp.expand(1 - u * d))
+    parts = [d * c - sp.cancel(num * d / den) for c, (num, den) in zip((X, Y, Z), comps)] + [1 - u * d]
+    for part in parts:
+        ex.check_expansion(part, "parametric")
+    gens = [sp.expand(g) for g in parts]
+    import multiprocessing as mp
     ctx = mp.get_context("fork")
     out = ctx.Queue()
-    proc = ctx.Process(target=_groebner_worker, args=([str(g) for g in gens], out), daemon=True)
+    proc = ctx.Process(target=_groebner_worker, args=(gens, (u, s, t, X, Y, Z), out), daemon=True)
     t0 = time.perf_counter()
     proc.start()
     proc.join(timeout)
@@ -166,16 +241,30 @@ def implicitize(x: Any, y: Any, z: Any, timeout: float = 20.0) -> tuple[sp.Expr,
         # none) mean the image is a curve or a point
         raise ParameterError(f"parametric: the elimination gave {len(found)} equations in x, y, z, not one: "
                              f"the parametrization does not describe a surface (a curve or a point?)")
-    eq = min((sp.sympify(g, locals={"x": X, "y": Y, "z": Z}) for g in found), key=lambda g: sp.total_degree(g))
-    if len(sp.Add.make_args(sp.expand(eq))) > MAX_TERMS:
+    eq = found[0]
+    if ex.expansion_terms(eq) > MAX_TERMS or len(sp.Add.make_args(sp.expand(eq))) > MAX_TERMS:
         raise ParameterError(f"parametric: the implicit equation has more than {MAX_TERMS} terms; too large to render")
     return eq, elapsed
 
 
 def parametric(x: Any, y: Any, z: Any, bounds: tuple[Sequence[float], Sequence[float]] | None = None,
                timeout: float = 20.0) -> Implicit:
-    """The rational parametric surface (x(s, t), y(s, t), z(s, t)), implicitized and rendered
-    as an implicit surface. ``node.implicitization_s`` keeps the time it took."""
+    """The rational parametric surface (x(s, t), y(s, t), z(s, t)), implicitized with a Groebner
+    basis (in a subprocess, so a basis that blows up ends with an error after ``timeout``).
+
+    Args:
+        x: x as a rational function of s and t (a string in the safe grammar, a number or a sympy expression).
+        y: likewise.
+        z: likewise.
+        bounds: (lo, hi) box that clips the rays, or None.
+        timeout: seconds the implicitization may take, in (0, 3600].
+
+    Implicit (see :func:`implicit`). ``node.implicitization_s`` keeps the time it took.
+
+    Example:
+        >>> sg.parametric("s", "t", "s**2 + t**2").label()
+        'implicit(x**2 + y**2 - z)'
+    """
     eq, seconds = implicitize(x, y, z, timeout)
     node = Implicit(eq, bounds)
     node.implicitization_s = seconds  # type: ignore[attr-defined]
@@ -193,9 +282,15 @@ class DisplaceExpr(Node):
     kind = "displace_expr"
 
     def __init__(self, child: Node, expr: Any, lipschitz: float | None = None) -> None:
+        if not isinstance(child, Node):
+            raise ParameterError(f"{self.kind}: the operand must be an sdfgl node, got {type(child).__name__}")
         if child.exactness == IMPLICIT:
             raise ParameterError(f"{self.kind}: the child {child.label()} is implicit (no distance bound)")
-        g = _parse(expr) if not isinstance(expr, (int, float)) else sp.Float(expr)
+        X, Y, Z = _xyz()
+        import sympy as sp
+        if isinstance(expr, bool):
+            raise ParameterError(f"{self.kind}: expected an expression string, got {expr!r}")
+        g = _parse(expr, self.kind) if not isinstance(expr, (int, float)) else sp.Float(expr)
         grad = [sp.diff(g, s) for s in (X, Y, Z)]
         if lipschitz is None:
             lipschitz = _gradient_bound(grad)
@@ -205,6 +300,9 @@ class DisplaceExpr(Node):
         elif isinstance(lipschitz, bool) or not isinstance(lipschitz, (int, float)) or not lipschitz >= 0:
             raise ParameterError(f"{self.kind}: 'lipschitz' must be a number >= 0, got {lipschitz!r}")
         super().__init__((child,), expr=str(g), lipschitz=float(lipschitz))
+        if not np.isfinite(float(lipschitz)):
+            raise ParameterError(f"{self.kind}: 'lipschitz' must be finite, got {lipschitz!r}")
+        self._glsl = glsl(g, self.kind)
         self.child, self.g, self.factor = child, g, 1.0 + float(lipschitz)
         self._np = sp.lambdify((X, Y, Z), g, "numpy")
         self._grow = _abs_bound(g)
@@ -218,9 +316,9 @@ class DisplaceExpr(Node):
 
     def _emit(self, em: "Emitter", p: str) -> str:
         pt = em.point(p)
-        name = f"displacement{abs(hash(self.key)) % 10**8}"
+        name = _stable_name("displacement", self.key)
         em.helper(name, f"float {name}(vec3 p) {{\n    float x = p.x;\n    float y = p.y;\n    float z = p.z;\n"
-                        f"    return {_Printer().doprint(self.g)};\n}}")
+                        f"    return {self._glsl};\n}}")
         r = self.child.emit(em, p)
         scale = em.num(1.0 / self.factor)
         if em.mode == "dist":
@@ -239,8 +337,9 @@ class DisplaceExpr(Node):
         return lo - self._grow, hi + self._grow
 
 
-def _abs_bound(g: sp.Expr) -> float | None:
+def _abs_bound(g: Any) -> float | None:
     """A bound of |g| when g is built from sin, cos, numbers, products and sums."""
+    import sympy as sp
     if g.is_number:
         return abs(float(g))
     if isinstance(g, (sp.sin, sp.cos)):
@@ -254,10 +353,12 @@ def _abs_bound(g: sp.Expr) -> float | None:
     return None
 
 
-def _gradient_bound(grad: list[sp.Expr]) -> float | None:
+def _gradient_bound(grad: list) -> float | None:
     """|grad g| <= sqrt(sum of squared component bounds), when each component is bounded."""
+    import sympy as sp
     parts = []
     for comp in grad:
+        ex.check_expansion(comp, "displace_expr")
         b = _abs_bound(sp.expand(comp))
         if b is None:
             return None
@@ -266,5 +367,19 @@ def _gradient_bound(grad: list[sp.Expr]) -> float | None:
 
 
 def displace_expr(node: Node, expr: Any, lipschitz: float | None = None) -> DisplaceExpr:
-    """Displace ``node`` by the function ``expr`` of x, y, z (e.g. "0.05*sin(8*x)*sin(8*y)")."""
+    """Displace ``node`` by a function g(x, y, z) given as an expression: the field f + g.
+
+    Args:
+        node: a node with a distance bound (not implicit).
+        expr: g as a string in the safe grammar (see :func:`implicit`) or a sympy expression.
+        lipschitz: a bound of |grad g| you vouch for; None derives one in closed form for
+            sums and products of sin, cos and numbers (else it is refused).
+
+    A bound: the field is divided by 1 + lipschitz, in this subtree only.
+
+    Example:
+        >>> s = sg.displace_expr(sg.sphere(1), "0.05*sin(8*x)")
+        >>> s.exactness
+        'bound'
+    """
     return DisplaceExpr(node, expr, lipschitz)

@@ -111,11 +111,38 @@ class NoiseField(Primitive):
 
 def displace(node: Node, amplitude: float, frequency: float = 1.0, octaves: int = 4,
              normal_octaves: int | None = None) -> Displace:
-    """Displace ``node``'s surface by fBm noise; ``normal_octaves`` > ``octaves`` adds detail to
-    the shading only (octaves=0 keeps the surface itself and shades it as if displaced)."""
+    """Displace ``node``'s surface by fractal (fBm) gradient noise.
+
+    Args:
+        node: the node.
+        amplitude: largest displacement in scene units, > 0.
+        frequency: noise frequency in cycles per unit, > 0.
+        octaves: octaves marched, a whole number >= 1.
+        normal_octaves: octaves used for shading normals (>= octaves; more shade finer
+            detail than is marched, the seeds' terrain and water trick). None: same as octaves.
+
+    A bound; only this subtree's steps shrink.
+
+    Example:
+        >>> sg.displace(sg.sphere(1), 0.05, 4.0, 3).exactness
+        'bound'
+    """
     return Displace(node, amplitude, frequency, octaves, normal_octaves)
 
 
 def noise(frequency: float = 1.0, octaves: int = 4, amplitude: float = 1.0, offset: float = 0.0) -> NoiseField:
-    """fBm noise as a field of its own: solid where offset + amplitude * fbm < 0."""
+    """fBm noise as a field of its own: solid where offset + amplitude * fbm(frequency * p) < 0.
+
+    Args:
+        frequency: cycles per unit, > 0.
+        octaves: octaves, a whole number >= 1.
+        amplitude: amplitude, > 0.
+        offset: level shift.
+
+    A bound; unbounded (intersect it with a box).
+
+    Example:
+        >>> (sg.noise(1.5, 3) & sg.box(2)).exactness
+        'bound'
+    """
     return NoiseField(frequency, octaves, amplitude, offset)

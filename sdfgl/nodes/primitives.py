@@ -364,61 +364,193 @@ class BoxFrame(Primitive):
 
 
 def sphere(radius: float = 1.0, center: Sequence[float] = (0.0, 0.0, 0.0)) -> Sphere:
-    """Sphere of ``radius`` centred at ``center``. Exact."""
+    """Sphere of ``radius`` centred at ``center``.
+
+    Args:
+        radius: radius in scene units, > 0 (a number or a live ``sg.param``).
+        center: centre point (x, y, z) in scene units (or a live 3-vector).
+
+    Exact: ``distance()`` is the Euclidean distance to the surface (negative inside).
+
+    Example:
+        >>> float(sg.sphere(1.0, center=(0, 1, 0)).distance((0, 3, 0)))
+        1.0
+    """
     return Sphere(radius, center)
 
 
 def box(size: float | Sequence[float] = 1.0) -> Box:
-    """Axis-aligned box centred at the origin; ``size`` is the full edge length(s). Exact."""
+    """Axis-aligned box centred at the origin.
+
+    Args:
+        size: full edge lengths: one number for a cube or (sx, sy, sz), each > 0 (as in
+            fogleman/sdf; the half-extents are size / 2).
+
+    Exact.
+
+    Example:
+        >>> float(sg.box((2, 1, 1)).distance((3, 0, 0)))
+        2.0
+    """
     return Box(size)
 
 
 def rounded_box(size: float | Sequence[float] = 1.0, radius: float = 0.1) -> RoundedBox:
-    """Box of full edge lengths ``size`` with edges rounded by ``radius``. Exact."""
+    """Box of full edge lengths ``size`` with its edges rounded by ``radius``.
+
+    Args:
+        size: full edge lengths (a number or (sx, sy, sz)), > 0.
+        radius: rounding radius, 0 <= radius <= half the smallest edge. The outer size is kept.
+
+    Exact.
+
+    Example:
+        >>> float(sg.rounded_box(2, 0.5).distance((2, 0, 0)))
+        1.0
+    """
     return RoundedBox(size, radius)
 
 
 def plane(normal: Sequence[float] = (0.0, 1.0, 0.0), point: Sequence[float] = (0.0, 0.0, 0.0)) -> Plane:
-    """Half-space behind the plane through ``point`` facing ``normal``. Exact."""
+    """Half-space behind the plane through ``point`` facing ``normal`` (solid opposite the normal).
+
+    Args:
+        normal: outward normal (x, y, z), not zero; normalised here.
+        point: a point on the plane.
+
+    Exact. Unbounded: the renderer intersects a lone plane in closed form.
+
+    Example:
+        >>> float(sg.plane((0, 1, 0), (0, -1, 0)).distance((0, 2, 0)))
+        3.0
+    """
     return Plane(normal, point)
 
 
 def torus(r1: float = 1.0, r2: float = 0.25) -> Torus:
-    """Torus in the XZ plane with major radius ``r1`` and tube radius ``r2``. Exact."""
+    """Torus lying in the XZ plane (around the Y axis), centred at the origin.
+
+    Args:
+        r1: major radius (centre of the tube to the Y axis), > 0.
+        r2: tube radius, > 0.
+
+    Exact.
+
+    Example:
+        >>> float(sg.torus(1.0, 0.25).distance((1, 0, 0)))
+        -0.25
+    """
     return Torus(r1, r2)
 
 
 def capsule(a: Sequence[float] = (0.0, -0.5, 0.0), b: Sequence[float] = (0.0, 0.5, 0.0),
             radius: float = 0.25) -> Capsule:
-    """Capsule (swept sphere) from point ``a`` to point ``b``. Exact."""
+    """Capsule: the points within ``radius`` of the segment from ``a`` to ``b``.
+
+    Args:
+        a: one end point (x, y, z).
+        b: the other end point.
+        radius: radius, > 0.
+
+    Exact.
+
+    Example:
+        >>> float(sg.capsule((0, -1, 0), (0, 1, 0), 0.5).distance((0, 3, 0)))
+        1.5
+    """
     return Capsule(a, b, radius)
 
 
 def cylinder(radius: float = 0.5, height: float = 1.0) -> Cylinder:
-    """Capped cylinder along Y centred at the origin. Exact."""
+    """Capped cylinder along Y, centred at the origin.
+
+    Args:
+        radius: radius, > 0.
+        height: full height (from -height/2 to height/2), > 0.
+
+    Exact.
+
+    Example:
+        >>> float(sg.cylinder(0.5, 2.0).distance((0, 2, 0)))
+        1.0
+    """
     return Cylinder(radius, height)
 
 
 def cone(height: float = 1.0, r1: float = 0.5, r2: float = 0.0) -> Cone:
-    """Capped cone along Y centred at the origin: radius ``r1`` at the bottom, ``r2`` at the top. Exact."""
+    """Capped cone (frustum) along Y, centred at the origin.
+
+    Args:
+        height: full height, > 0.
+        r1: radius at the bottom (y = -height/2), >= 0.
+        r2: radius at the top (y = height/2), >= 0; not both radii 0.
+
+    Exact.
+
+    Example:
+        >>> float(sg.cone(2.0, 1.0, 0.0).distance((0, -2, 0)))
+        1.0
+    """
     return Cone(height, r1, r2)
 
 
 def ellipsoid(radii: float | Sequence[float] = (1.0, 0.5, 0.75)) -> Ellipsoid:
-    """Ellipsoid with semi-axes ``radii``. A distance bound, not exact."""
+    """Ellipsoid centred at the origin.
+
+    Args:
+        radii: semi-axes (one number or (rx, ry, rz)), each > 0.
+
+    A distance bound (Inigo Quilez's), not exact: ``|f|`` never exceeds the distance.
+
+    Example:
+        >>> sg.ellipsoid((1, 0.5, 0.75)).exactness
+        'bound'
+    """
     return Ellipsoid(radii)
 
 
 def octahedron(size: float = 1.0) -> Octahedron:
-    """Regular octahedron with vertices at distance ``size`` on each axis. Exact."""
+    """Regular octahedron centred at the origin.
+
+    Args:
+        size: distance from the centre to each vertex (on the axes), > 0.
+
+    Exact.
+
+    Example:
+        >>> float(sg.octahedron(1.0).distance((2, 0, 0)))
+        1.0
+    """
     return Octahedron(size)
 
 
 def box_frame(size: float | Sequence[float] = 1.0, thickness: float = 0.05) -> BoxFrame:
-    """The edges of a box of full edge lengths ``size``, as square bars ``thickness`` wide. Exact."""
+    """The twelve edges of a box, as square bars.
+
+    Args:
+        size: full edge lengths of the box (a number or (sx, sy, sz)), > 0.
+        thickness: width of the bars, > 0 and at most half the smallest edge.
+
+    Exact.
+
+    Example:
+        >>> sg.box_frame(1.0, 0.05).exactness
+        'exact'
+    """
     return BoxFrame(size, thickness)
 
 
 def hex_prism(radius: float = 0.5, height: float = 1.0) -> HexPrism:
-    """Hexagonal prism along Y with inradius ``radius`` and full ``height``. Exact."""
+    """Hexagonal prism along Y, centred at the origin.
+
+    Args:
+        radius: inradius (centre to the middle of a side), > 0.
+        height: full height, > 0.
+
+    Exact.
+
+    Example:
+        >>> float(sg.hex_prism(0.5, 1.0).distance((0, 1.5, 0)))
+        1.0
+    """
     return HexPrism(radius, height)

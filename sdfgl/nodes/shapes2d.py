@@ -8,28 +8,52 @@ import numpy as np
 from ..errors import ParameterError
 from . import validate as v
 from .base import EXACT, Node
+from .record import Recorded
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..codegen import Emitter
 
 
-class Shape2D:
-    """A 2D signed distance: GLSL over a vec2, numpy over (..., 2), and its bounds."""
+class Shape2D(Recorded, register=False):
+    """A 2D signed distance: GLSL over a vec2, numpy over (..., 2), and its bounds.
+
+    Shapes combine like 3D nodes (``a | b``, ``a & b``, ``a - b``, ``sg.union(..., k=)``),
+    move (``translate``, ``rotate``, ``scale``), round and onion, and become solids by
+    ``extrude`` or ``revolve``. Each keeps its exactness and Lipschitz factor.
+
+    Example:
+        >>> ring = sg.circle(1) - sg.rectangle(1)
+        >>> isinstance(ring, sg.Shape2D), float(sg.extrude(ring, 0.2).distance((0, 0, 0)))
+        (True, 0.5)
+    """
 
     kind = "shape2d"
     exactness = EXACT
+    lipschitz = 1.0
 
-    def __init__(self, **params: object) -> None:
+    def __init__(self, children: Sequence["Shape2D"] = (), **params: object) -> None:
         v.fixed(self.kind, "2D shapes are baked", **params)
+        for i, c in enumerate(children):
+            if not isinstance(c, Shape2D):
+                raise ParameterError(f"{self.kind}: operand {i} must be a 2D shape, got {type(c).__name__} {c!r}")
+        self.children: tuple[Shape2D, ...] = tuple(children)
         self.params = params
 
     def label(self) -> str:
         def fmt(x: object) -> str:
+            if isinstance(x, str):
+                return x
             return "(" + ", ".join(f"{y:g}" for y in np.ravel(x)) + ")" if isinstance(x, np.ndarray) else f"{x:g}"
-        return f"{self.kind}({', '.join(f'{k}={fmt(x)}' for k, x in self.params.items())})"
+        own = f"{self.kind}({', '.join(f'{k}={fmt(x)}' for k, x in self.params.items())})"
+        return own if not self.children else f"{own}[{', '.join(c.label() for c in self.children)}]"
+
+    def __repr__(self) -> str:
+        return self.label()
 
     def key(self) -> tuple:
-        return (self.kind, tuple((k, tuple(np.ravel(x).tolist())) for k, x in self.params.items()))
+        def freeze(x: object) -> object:
+            return x if isinstance(x, str) else tuple(np.ravel(x).tolist())
+        return (self.kind, tuple((k, freeze(x)) for k, x in self.params.items()), tuple(c.key() for c in self.children))
 
     def expr(self, em: "Emitter", q: str) -> str:
         raise NotImplementedError
@@ -41,9 +65,50 @@ class Shape2D:
     def bounds2(self) -> tuple[np.ndarray, np.ndarray]:
         raise NotImplementedError
 
+    # -- combining and moving (sdfgl.nodes.shapes2d_ops) ---------------------------------
+    def _op(self, name: str, other: object) -> "Shape2D":
+        from . import shapes2d_ops as ops
+        if not isinstance(other, Shape2D):
+            raise ParameterError(f"2D {name}: both operands must be 2D shapes (extrude or revolve a 2D shape to "
+                                 f"combine it with 3D nodes), got {type(other).__name__}")
+        return getattr(ops, name)(self, other)
+
+    def __or__(self, other: object) -> "Shape2D":
+        return self._op("union", other)
+
+    def __and__(self, other: object) -> "Shape2D":
+        return self._op("intersection", other)
+
+    def __sub__(self, other: object) -> "Shape2D":
+        return self._op("difference", other)
+
+    def translate(self, offset: Sequence[float]) -> "Shape2D":
+        from .shapes2d_ops import Translate2D
+        return Translate2D(self, offset)
+
+    def rotate(self, angle: float) -> "Shape2D":
+        """Rotate by ``angle`` degrees (counter-clockwise) about the origin."""
+        from .shapes2d_ops import Rotate2D
+        return Rotate2D(self, angle)
+
+    def scale(self, factor: float | Sequence[float]) -> "Shape2D":
+        """Scale uniformly (exactness kept) or per axis (a bound)."""
+        from .shapes2d_ops import Scale2D
+        return Scale2D(self, factor)
+
+    def round(self, radius: float) -> "Shape2D":
+        """Grow by ``radius``: rounded corners."""
+        from .shapes2d_ops import Round2D
+        return Round2D(self, radius)
+
+    def onion(self, thickness: float) -> "Shape2D":
+        """A band ``thickness`` wide around the outline."""
+        from .shapes2d_ops import Onion2D
+        return Onion2D(self, thickness)
+
     # -- making solids ------------------------------------------------------------------
-    def extrude(self, height: float) -> "Extrude":
-        return Extrude(self, height)
+    def extrude(self, height: float, taper: float = 0.0, twist: float = 0.0) -> "Node":
+        return extrude(self, height, taper, twist)
 
     def revolve(self, offset: float = 0.0) -> "Revolve":
         return Revolve(self, offset)
@@ -154,7 +219,11 @@ class Extrude(Node):
 
     @property
     def exactness(self) -> str:
-        return EXACT
+        return self.shape.exactness
+
+    @property
+    def lipschitz(self) -> float:
+        return self.shape.lipschitz
 
     def _emit(self, em: "Emitter", p: str) -> str:
         em.require("op_extrude")
@@ -190,7 +259,11 @@ class Revolve(Node):
 
     @property
     def exactness(self) -> str:
-        return EXACT
+        return self.shape.exactness
+
+    @property
+    def lipschitz(self) -> float:
+        return self.shape.lipschitz
 
     def _emit(self, em: "Emitter", p: str) -> str:
         pt = em.point(p)
@@ -209,25 +282,99 @@ class Revolve(Node):
 
 
 def circle(radius: float = 0.5, center: Sequence[float] = (0.0, 0.0)) -> Circle:
-    """A 2D circle."""
+    """A 2D circle in the XY plane, made solid by :func:`extrude` or :func:`revolve`.
+
+    Args:
+        radius: radius, > 0.
+        center: centre (x, y).
+
+    Exact (in 2D).
+
+    Example:
+        >>> sg.extrude(sg.circle(0.5), 0.2).exactness
+        'exact'
+    """
     return Circle(radius, center)
 
 
 def rectangle(size: float | Sequence[float] = 1.0, radius: float = 0.0) -> Rectangle:
-    """A 2D rectangle of full ``size``, corners rounded by ``radius``."""
+    """A 2D rectangle centred at the origin of the XY plane.
+
+    Args:
+        size: full side lengths (a number or (sx, sy)), > 0.
+        radius: corner rounding radius, 0 .. half the smaller side.
+
+    Exact (in 2D).
+
+    Example:
+        >>> float(sg.extrude(sg.rectangle((2, 1)), 1.0).distance((2, 0, 0)))
+        1.0
+    """
     return Rectangle(size, radius)
 
 
 def polygon(points: Sequence[Sequence[float]]) -> Polygon:
-    """A 2D simple polygon."""
+    """A 2D simple polygon (no self-intersections) in the XY plane.
+
+    Args:
+        points: 3 or more (x, y) vertices in order (either winding).
+
+    Exact (in 2D).
+
+    Example:
+        >>> tri = sg.polygon([(0, 0), (1, 0), (0, 1)])
+        >>> sg.extrude(tri, 0.2).exactness
+        'exact'
+    """
     return Polygon(points)
 
 
-def extrude(shape: Shape2D, height: float) -> Extrude:
-    """Extrude a 2D shape along Z to full ``height``. Exact."""
-    return Extrude(shape, height)
+def extrude(shape: Shape2D, height: float, taper: float = 0.0, twist: float = 0.0) -> Node:
+    """Extrude a 2D shape along Z, centred on z = 0.
+
+    Args:
+        shape: a 2D shape (:func:`circle`, :func:`rectangle`, :func:`polygon`, ...).
+        height: full height along Z (from -height/2 to height/2), > 0.
+        taper: the shape shrinks linearly from full size at the bottom (z = -height/2) to
+            (1 - taper) times it at the top (negative widens it); < 1.
+        twist: degrees the shape turns (counter-clockwise seen from +Z) from bottom to top.
+
+    Exact where the shape is, without taper and twist. Both are warps
+    (sdfgl.nodes.deform) that divide only this solid's field by their own stretch.
+
+    Example:
+        >>> float(sg.extrude(sg.circle(0.5), 1.0).distance((0, 0, 1.5)))
+        1.0
+        >>> sg.extrude(sg.rectangle(1), 2.0, twist=90).exactness
+        'bound'
+    """
+    t = v.scalar("extrude", "taper", taper)
+    w = v.scalar("extrude", "twist", twist)
+    v.fixed("extrude", "taper and twist are compiled into the warp", taper=t, twist=w)
+    if not t < 1.0:
+        raise ParameterError(f"extrude: parameter 'taper' must be < 1 (1 shrinks the top to a point), got {t:g}")
+    node: Node = Extrude(shape, height)
+    h = 2.0 * float(node.h)  # type: ignore[attr-defined]
+    if w:
+        from .deform import Twist
+        node = Twist(node, -w / h, "z")  # q = R(-a) p: the shape turns counter-clockwise by a
+    if t:
+        from .deform import Taper
+        node = Taper(node, -t / h, axis="z", origin=-h / 2)
+    return node
 
 
 def revolve(shape: Shape2D, offset: float = 0.0) -> Revolve:
-    """Revolve a 2D shape about the Y axis, its x measured from ``offset``. Exact."""
+    """Revolve a 2D shape about the Y axis: its x is the distance from the axis minus ``offset``.
+
+    Args:
+        shape: a 2D shape in the XY plane.
+        offset: distance of the shape's origin from the Y axis (>= 0 or negative).
+
+    Exact.
+
+    Example:
+        >>> float(sg.revolve(sg.circle(0.25), 1.0).distance((0, 0, 1)))
+        -0.25
+    """
     return Revolve(shape, offset)

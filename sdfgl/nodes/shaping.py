@@ -72,9 +72,18 @@ class Mirror(Unary):
 
 
 def symmetric(node: Node, axes: str = "x") -> Node:
-    """Mirror ``node`` across the planes x = 0, y = 0 and/or z = 0 named in ``axes``
-    (e.g. "xz"): the part on the positive side, repeated to every octant named."""
-    if not axes or any(a not in "xyz" for a in axes):
+    """Mirror ``node`` across the planes x = 0, y = 0 and/or z = 0 named in ``axes``.
+
+    Args:
+        node: the node; its part on the positive side of each named axis is kept.
+        axes: letters from "xyz", e.g. "xz" for four copies.
+
+    Example:
+        >>> s = sg.symmetric(sg.sphere(0.3, (1, 0, 1)), "xz")
+        >>> float(s.distance((-1, 0, -1)))
+        -0.3
+    """
+    if not isinstance(axes, str) or not axes or any(a not in "xyz" for a in axes):
         raise ParameterError(f"symmetric: 'axes' must be letters from 'xyz', got {axes!r}")
     for a in dict.fromkeys(axes):
         node = Mirror(node, np.eye(3)["xyz".index(a)])
@@ -211,25 +220,81 @@ class Shell(_Offset):
 
 
 def mirror(node: Node, normal: Sequence[float] = (1.0, 0.0, 0.0), point: Sequence[float] = (0.0, 0.0, 0.0)) -> Node:
-    """``node`` on the side ``normal`` points to, plus its reflection in the plane through ``point``."""
+    """``node`` on the side ``normal`` points to, plus its reflection in that plane.
+
+    Args:
+        node: the node (only its part on the normal's side is kept).
+        normal: the plane's normal (x, y, z), not zero.
+        point: a point on the plane.
+
+    Keeps the child's exactness where the child lies on one side.
+
+    Example:
+        >>> s = sg.mirror(sg.sphere(0.5, (1, 0, 0)), (1, 0, 0))
+        >>> float(s.distance((-1, 0, 0)))
+        -0.5
+    """
     return Mirror(node, normal, point)
 
 
 def repeat_polar(node: Node, count: int) -> Node:
-    """``count`` copies of ``node`` (placed around +X) turned evenly about the Y axis."""
+    """``count`` copies of ``node`` turned evenly about the Y axis.
+
+    Args:
+        node: the copy placed around +X.
+        count: number of copies, a whole number >= 1 (a baked constant).
+
+    Example:
+        >>> s = sg.repeat_polar(sg.sphere(0.2, (1, 0, 0)), 4)
+        >>> round(float(s.distance((0, 0, 1))), 6)
+        -0.2
+    """
     return PolarRepeat(node, count)
 
 
 def elongate(node: Node, length: float | Sequence[float]) -> Node:
-    """Stretch ``node`` by ``length`` along each axis (a number or one per axis)."""
+    """Stretch ``node`` by inserting a slab at its centre planes.
+
+    Args:
+        node: the node.
+        length: added length per axis (one number or (lx, ly, lz)), >= 0.
+
+    Keeps exactness.
+
+    Example:
+        >>> float(sg.elongate(sg.sphere(1), (2, 0, 0)).distance((3, 0, 0)))
+        1.0
+    """
     return Elongate(node, length)
 
 
 def rounded(node: Node, radius: float) -> Node:
-    """Grow ``node`` by ``radius``: rounded edges (f - r)."""
+    """Grow ``node`` by ``radius`` (f - r): rounded edges and corners.
+
+    Args:
+        node: the node.
+        radius: growth in scene units, >= 0.
+
+    Exact outside where the child is exact.
+
+    Example:
+        >>> float(sg.rounded(sg.box(1), 0.1).distance((1, 0, 0)))
+        0.4
+    """
     return Round(node, radius)
 
 
 def shell(node: Node, thickness: float) -> Node:
-    """A shell ``thickness`` thick around ``node``'s surface (|f| - t/2), an 'onion' layer."""
+    """A shell of the given thickness around ``node``'s surface (|f| - t/2).
+
+    Args:
+        node: the node.
+        thickness: full wall thickness, > 0.
+
+    Keeps exactness (a hollow shape; cut it open to see inside).
+
+    Example:
+        >>> float(sg.shell(sg.sphere(1), 0.1).distance((0, 0, 0)))
+        0.95
+    """
     return Shell(node, thickness)

@@ -16,6 +16,8 @@ if TYPE_CHECKING:  # pragma: no cover
 
 
 class Translate(Unary):
+    """The child moved by ``offset`` (x, y, z); keeps its exactness."""
+
     kind = "translate"
 
     def __init__(self, child: Node, offset: Sequence[float]) -> None:
@@ -200,9 +202,11 @@ class Material(Unary):
         c = v.color(self.kind, rgb)
         super().__init__(child, rgb=c)
         self.rgb = c
+        self.fields: dict[str, object] = {"albedo": c}  # the material fields this node sets
+        self.surface = False  # sets fields besides colour (see sdfgl.nodes.material)
 
     def _emit(self, em: "Emitter", p: str) -> str:
-        with em.colored(self.rgb):
+        with em.colored(self.fields):
             return self.child.emit(em, p)
 
     def _distance(self, p: np.ndarray) -> np.ndarray:

@@ -83,9 +83,13 @@ def vector(node: str, name: str, value: object, n: int = 3, *, positive: bool = 
     return out
 
 
-def color(node: str, value: object) -> Any:
-    """An RGB triple with components in [0, 1] (or a live 3-vector checked the same way)."""
-    rgb = vector(node, "color", value)
+def color(node: str, value: object, name: str = "color") -> Any:
+    """A linear RGB triple (see sdfgl.nodes.colors: names, hex, 0..255 or 0..1), or a live
+    3-vector whose components must stay in [0, 1]."""
+    if not isinstance(value, Live):
+        from .colors import parse
+        return parse(node, name, value)
+    rgb = vector(node, name, value)
 
     def check() -> None:
         c = np.broadcast_to(np.asarray(rgb.value if isinstance(rgb, Live) else rgb, float), (3,))

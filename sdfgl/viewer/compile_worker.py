@@ -145,11 +145,11 @@ class CompileWorker:
             glfw.destroy_window(self._hidden)
             self._hidden = None
 
-    def trim(self, keep: RawProgram | None) -> None:
-        """Release the least recently made programs beyond CACHE_SIZE (never ``keep``)."""
+    def trim(self, *keep: RawProgram | None) -> None:
+        """Release the least recently made programs beyond CACHE_SIZE (never those in ``keep``)."""
         while len(self._cache) > CACHE_SIZE:
             text, prog = next(iter(self._cache.items()))
-            if prog is keep:
+            if any(prog is k for k in keep):
                 self._cache.move_to_end(text)
                 continue
             del self._cache[text]

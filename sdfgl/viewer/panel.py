@@ -208,18 +208,15 @@ class Panel:
         self.viewer.param_changed()
 
     def _save_json(self) -> str:
+        """Write the scene, the view's camera and its settings as a JSON scene document (sdfgl.scene_io)."""
+        from ..scene_io import save_scene
         v = self.viewer
-        try:
-            from .. import scene_io  # type: ignore[attr-defined]  # optional: JSON scene documents
-        except ImportError:
-            return "JSON scene documents need sdfgl.scene_io (not in this build); use 'print as Python'"
         path = v.screenshot_dir / "scene.json"
+        # the tree's selection is a view of this window, not a setting a document can render alone
+        settings = {k: val for k, val in v.state.settings.items() if not (k == "debug" and val == "select")}
         try:
-            save = getattr(scene_io, "save", None) or getattr(scene_io, "dump", None)
-            if save is None:
-                return "sdfgl.scene_io has no save()"
-            save(v.scene, path)
-        except (SdfglError, OSError, TypeError) as exc:
+            save_scene(v.scene, path, camera=v.camera, settings=settings)
+        except SdfglError as exc:
             return f"could not save {path}: {exc}"
         return f"saved {path}"
 

@@ -48,6 +48,17 @@ METHOD_CYCLE = ("sphere", "relaxed", "enhanced", "newton", "forward_newton")
 DEBUG_CYCLE = (None, "steps", "normal", "depth")
 SHADOW_CYCLE = (False, "hard", "soft")
 MOVE_HOLD_S = 0.15  # a camera change keeps the low-resolution mode this long
+ZOOM_RANGE = (1e-4, 100.0)  # wheel zoom keeps the distance within these multiples of the framing distance
+
+
+def describe_error(exc: BaseException, where: str) -> str:
+    """One message for the overlay, whatever the exception (ours name their node or file)."""
+    if isinstance(exc, SdfglError):
+        return str(exc)
+    if isinstance(exc, RecursionError):
+        return f"{where}: the scene is nested too deeply for Python's recursion limit ({exc})"
+    text = f"{where}: {type(exc).__name__}: {exc}"
+    return text if len(text) < 800 else text[:800] + " ..."
 
 
 def _fitting_font(draw: ImageDraw.ImageDraw, text: str, width: int, height: int) -> Any:
@@ -59,6 +70,16 @@ def _fitting_font(draw: ImageDraw.ImageDraw, text: str, width: int, height: int)
         if box[2] - box[0] <= width and box[3] - box[1] <= height:
             return font
     return font
+
+
+def _codegen(scene: Node, settings: Settings, origin: np.ndarray, projection: str, highlight: Node | None) -> Any:
+    """The window's shader source (run in the compile worker); any failure becomes one overlay message."""
+    try:
+        return generate(scene, settings, origin, projection=projection, highlight=highlight)
+    except SdfglError:
+        raise
+    except Exception as exc:  # noqa: BLE001 - a user's scene may raise anything while generating code
+        raise SdfglError(describe_error(exc, "compile")) from exc
 
 
 def _r2(n: int) -> tuple[float, float]:
@@ -98,21 +119,21 @@ class Viewer:
                  max_samples: int = 16, state_file: str | Path | None = None,
                  screenshot_dir: str | Path = ".", panel: bool | None = None, **settings: Any) -> None:
         self.path = Path(path) if path else None
+        self._explicit = dict(settings)  # given by the caller: a reload keeps them
+        self._file_settings: dict[str, Any] = {}
         if self.path is not None:
             sf = load_scene_file(self.path)
             scene, camera = sf.scene, camera or sf.camera
+            self._file_settings = sf.settings
             settings = {**sf.settings, **settings}
             self._mtime = self.path.stat().st_mtime
         if scene is None:
             raise SdfglError("Viewer needs a scene or a scene file")
         self.scene = scene
-        base = {"aa": 1, "shadows": "soft", "ao": scene.exactness != IMPLICIT, "ground": False}
-        if scene.exactness == IMPLICIT:
-            base["method"] = "newton"
-        self.state = ViewState(settings={**base, **settings})
+        self.state = ViewState(settings={**self._base(scene), **settings})
         Settings.build(**self.state.settings)  # validate before opening a window
-        self.home = self._orbit_of(camera, scene)
-        self.camera = self._orbit_of(camera, scene)
+        self.home = self._orbit_of(camera, scene, size[0] / size[1])
+        self.camera = self._orbit_of(camera, scene, size[0] / size[1])
         self.size, self.target_ms, self.adaptive = size, target_ms, adaptive
         self.max_samples = max_samples
         self.state_file = Path(state_file) if state_file else None
@@ -128,17 +149,28 @@ class Viewer:
         self._overlay_text: str | None = None
         self._overlay_x = 10
         self._shown: tuple[Node, RawProgram, Any, np.ndarray] | None = None  # scene, program, source, origin
+        self._good: tuple[Any, Node, dict[str, Any]] | None = None  # the last (shown, scene, settings) that drew
         self._token = 0
+        self._error_token = 0
         self._highlight: tuple[Node, Node] | None = None  # (scene, subtree) tinted by the "select" debug view
         self._debug_before: Any = None
-        self._pending: tuple[Node, dict[str, Any], str, tuple] | None = None  # what the newest compile is for
+        # what the newest compile is for: scene, settings, why, origin, the file's settings (reloads)
+        self._pending: tuple[Node, dict[str, Any], str, np.ndarray, dict[str, Any] | None] | None = None
         self._open_window()
         self._request(self.scene, self.state.settings, "open")
 
     # -- set-up ---------------------------------------------------------------------
     @staticmethod
-    def _orbit_of(camera: Camera | None, scene: Node) -> OrbitCamera:
-        return OrbitCamera.of(camera, *scene.bounds)
+    def _base(scene: Node) -> dict[str, Any]:
+        """The window's default settings for ``scene``."""
+        base: dict[str, Any] = {"aa": 1, "shadows": "soft", "ao": scene.exactness != IMPLICIT, "ground": False}
+        if scene.exactness == IMPLICIT:
+            base["method"] = "newton"
+        return base
+
+    @staticmethod
+    def _orbit_of(camera: Camera | None, scene: Node, aspect: float) -> OrbitCamera:
+        return OrbitCamera.of(camera, *scene.bounds, aspect=aspect)
 
     def _open_window(self) -> None:
         if not glfw.init():
@@ -168,12 +200,12 @@ class Viewer:
             self.panel = panel_mod.Panel(self)
             if self._want_panel is not None:
                 self.panel.visible = self._want_panel
-            glfw.set_char_callback(self.window, lambda _w, c: self._ui(self.panel.on_char(c)))
-        glfw.set_cursor_pos_callback(self.window, self._on_cursor)
-        glfw.set_mouse_button_callback(self.window, self._on_button)
-        glfw.set_scroll_callback(self.window, self._on_scroll)
-        glfw.set_key_callback(self.window, self._on_key)
-        glfw.set_framebuffer_size_callback(self.window, lambda *_: self._resize_targets())
+            glfw.set_char_callback(self.window, self._guarded(lambda _w, c: self._ui(self.panel.on_char(c)), "key"))
+        glfw.set_cursor_pos_callback(self.window, self._guarded(self._on_cursor, "mouse"))
+        glfw.set_mouse_button_callback(self.window, self._guarded(self._on_button, "mouse"))
+        glfw.set_scroll_callback(self.window, self._guarded(self._on_scroll, "zoom"))
+        glfw.set_key_callback(self.window, self._guarded(self._on_key, "key"))
+        glfw.set_framebuffer_size_callback(self.window, self._guarded(lambda *_: self._resize_targets(), "resize"))
         glfw.set_window_refresh_callback(self.window, lambda *_: self._mark())
 
     def _resize_targets(self) -> None:
@@ -189,6 +221,15 @@ class Viewer:
         self._mark()
 
     # -- events -----------------------------------------------------------------------
+    def _guarded(self, fn: Any, where: str) -> Any:
+        """``fn`` as a glfw callback that shows any exception in the window instead of raising it."""
+        def callback(*args: Any) -> None:
+            try:
+                fn(*args)
+            except Exception as exc:  # noqa: BLE001 - the window never dies from input
+                self._set_error(describe_error(exc, where))
+        return callback
+
     def _mark(self, moved: bool = False) -> None:
         self._dirty = True
         self.state.samples = 0
@@ -236,7 +277,10 @@ class Viewer:
             self._ui()
             if self.panel.on_scroll(_dx, dy):
                 return
-        self.camera.zoom(0.88 ** dy)
+        framing = OrbitCamera.framing(*self.scene.bounds, fov=self.camera.fov).distance
+        lo, hi = ZOOM_RANGE[0] * framing, ZOOM_RANGE[1] * framing
+        target = min(max(self.camera.distance * 0.88 ** dy, lo), hi)
+        self.camera.zoom(target / self.camera.distance)
         self._mark(moved=True)
 
     @property
@@ -278,11 +322,12 @@ class Viewer:
             self._cycle("debug", DEBUG_CYCLE)
         elif key == glfw.KEY_F:
             framed = OrbitCamera.framing(*self.scene.bounds, yaw=self.camera.yaw, pitch=self.camera.pitch,
-                                         fov=self.camera.fov)
+                                         fov=self.camera.fov, aspect=self.size[0] / self.size[1],
+                                         projection=self.camera.projection)
             self.camera = framed
             self._mark(moved=True)
         elif key == glfw.KEY_R:
-            self.camera = self._orbit_of(self.home, self.scene)
+            self.camera = self._orbit_of(self.home, self.scene, self.size[0] / self.size[1])
             self._mark(moved=True)
         elif key == glfw.KEY_P:
             self.screenshot()
@@ -328,22 +373,30 @@ class Viewer:
         new = {**self.wanted_settings, **change}
         try:
             Settings.build(**new)
-        except SdfglError as exc:
-            self._set_error(str(exc))
+        except Exception as exc:  # noqa: BLE001 - shown in the window; the old settings stay
+            self._set_error(describe_error(exc, "settings"))
             return
         self._request(scene, new, "settings")
 
     # -- drawing ----------------------------------------------------------------------
-    def _request(self, scene: Node, settings: dict[str, Any], why: str) -> None:
-        """Compile (in the worker) the program for ``scene`` and ``settings``; it replaces the shown one when ready."""
+    def _request(self, scene: Node, settings: dict[str, Any], why: str,
+                 file_settings: dict[str, Any] | None = None) -> None:
+        """Compile (in the worker) the program for ``scene`` and ``settings``; it replaces the shown one when ready.
+
+        ``file_settings`` are the scene file's own settings when ``why`` is "reload"; a request made
+        while a reload is still compiling stays a reload (it carries that reload's scene)."""
+        if self._pending is not None and self._pending[2] == "reload" and why != "reload":
+            why, file_settings = "reload", self._pending[4]
         origin = shader_origin(scene, self.camera.eye)
         st = Settings.build(**settings)
         hl = None
         if st.debug == "select":  # the scene tree's selection (else the whole scene) is tinted
             hl = self._highlight[1] if self._highlight and self._highlight[0] is scene else scene
+        projection = self.camera.projection
         self._token += 1
-        self._pending = (scene, dict(settings), why, tuple(origin.tolist()))
-        self.compiler.submit(Job(self._token, lambda: generate(scene, st, origin, highlight=hl), (scene, dict(settings), why, origin)))
+        meta = (scene, dict(settings), why, origin, file_settings)
+        self._pending = meta
+        self.compiler.submit(Job(self._token, lambda: _codegen(scene, st, origin, projection, hl), meta))
         self.state.compiling = True
         self._overlay_text = None
         self._dirty = True
@@ -362,18 +415,21 @@ class Viewer:
         if res.token != self._token:
             return  # a newer request is on its way
         self._pending = None
-        scene, settings, why, origin = res.meta
+        scene, settings, why, origin, file_settings = res.meta
         self._overlay_text = None
         self._dirty = True
         if res.program is None:
             self._set_error(res.error)
             return
         self._shown = (scene, res.program, res.source, origin)
-        self.compiler.trim(res.program)
+        good = self._good[0][1] if self._good and self._good[0] else None
+        self.compiler.trim(res.program, good)  # both may be drawn next
         if why == "reload":
             self.state.reloads += 1
+            self._file_settings = dict(file_settings or {})
         self.scene, self.state.settings = scene, settings
-        self._set_error("")
+        if self._error_token < res.token:  # an error raised after this request (a failed reload) stays shown
+            self._set_error("")
         self._mark()
 
     def _moving(self) -> bool:
@@ -397,7 +453,7 @@ class Viewer:
         if self._pending is None and not np.array_equal(shader_origin(scene, self.camera.eye), origin):
             self._request(scene, self.state.settings, "origin")  # far scenes: re-anchor float32 coordinates
         camera_uniforms(prog, self.camera, size, origin, jitter)
-        scene_uniforms(prog, source, scene, origin)
+        scene_uniforms(prog, source, scene, origin, self.renderer.data)
         fbo.use()
         self.ctx.viewport = (0, 0, *size)
         if blend:
@@ -508,7 +564,10 @@ class Viewer:
     # -- actions ----------------------------------------------------------------------
     def screenshot(self) -> Path:
         """Render the current view at the window's framebuffer size and save it as PNG."""
-        self.screenshot_dir.mkdir(parents=True, exist_ok=True)
+        try:
+            self.screenshot_dir.mkdir(parents=True, exist_ok=True)
+        except OSError as exc:
+            raise SdfglError(f"cannot write screenshots to '{self.screenshot_dir}': {exc}") from exc
         path = self.screenshot_dir / f"sdfgl-{time.strftime('%Y%m%d-%H%M%S')}-{len(self.state.screenshots):03d}.png"
         res = self.renderer.render(self.scene, self.camera, self.fb_size, **self.state.settings)
         res.save(path)
@@ -522,6 +581,7 @@ class Viewer:
         if text and text != self.state.error:
             print(f"sdfgl: {text}", flush=True)
         self.state.error = text
+        self._error_token = self._token  # the newest request when the error came
         self._overlay_text = None
         self._dirty = True
 
@@ -537,14 +597,48 @@ class Viewer:
         self._mtime = mtime
         try:
             sf = load_scene_file(self.path)
-            settings = dict(self.state.settings)
+            settings = self._reloaded_settings(sf.scene, sf.settings)
             if sf.scene.exactness == IMPLICIT and settings.get("method", "enhanced") in DISTANCE_METHODS:
                 settings.update(method="newton", ao=False)
             Settings.build(**settings)
-        except SdfglError as exc:
-            self._set_error(str(exc))
+        except Exception as exc:  # noqa: BLE001 - a scene file may raise anything: show it, keep the window
+            self._set_error(describe_error(exc, f"reload of '{self.path}'"))
             return
-        self._request(sf.scene, settings, "reload")  # shown when compiled: a GLSL error keeps the old scene
+        self._request(sf.scene, settings, "reload", file_settings=sf.settings)  # shown when compiled: a GLSL error keeps the old scene
+
+    def _reloaded_settings(self, scene: Node, file_settings: dict[str, Any]) -> dict[str, Any]:
+        """Settings after a reload: what the file changed applies, key toggles of the rest stay,
+        and what the caller gave explicitly wins."""
+        new = dict(self.wanted_settings)
+        base = self._base(scene)
+        for k in set(self._file_settings) - set(file_settings):  # removed from the file: back to the default
+            if k in base:
+                new[k] = base[k]
+            else:
+                new.pop(k, None)
+        new.update({k: v for k, v in file_settings.items() if k not in self._file_settings
+                    or self._file_settings[k] != v})
+        new.update(self._explicit)
+        return new
+
+    def _safe_frame(self) -> None:
+        """Draw a frame; on any error show it and go back to the last program, scene and settings that drew."""
+        try:
+            self.frame()
+            self._good = (self._shown, self.scene, dict(self.state.settings))
+        except Exception as exc:  # noqa: BLE001 - the window never dies from a scene
+            self._set_error(describe_error(exc, "render"))
+            good = self._good
+            if good is not None and (good[0] is not self._shown or good[1] is not self.scene
+                                     or good[2] != self.state.settings):
+                self._shown, self.scene, self.state.settings = good[0], good[1], dict(good[2])
+                self._mark()
+                return
+            self._dirty = False  # nothing to go back to: show the error until something changes
+            try:
+                self._present(self._targets["accum"], 1.0 / max(1, self.state.samples))
+            except Exception:  # noqa: BLE001 - the title and state file still carry the error
+                pass
 
     def _write_state(self) -> None:
         if self.state_file is None:
@@ -564,7 +658,7 @@ class Viewer:
             while not glfw.window_should_close(self.window):
                 self._poll_compiles()
                 if self._dirty:
-                    self.frame()
+                    self._safe_frame()
                     self._write_state()
                     glfw.poll_events()
                 elif self._ui_frames > 0:

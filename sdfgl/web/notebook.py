@@ -17,7 +17,10 @@ def set_preview(enabled: bool = True, size: tuple[int, int] | None = None) -> No
         raise SdfglError(f"set_preview: 'enabled' must be True or False, got {enabled!r}")
     _preview["enabled"] = enabled
     if size is not None:
-        w, h = (int(x) for x in size)
+        try:
+            w, h = (int(x) for x in size)
+        except (TypeError, ValueError):
+            raise SdfglError(f"set_preview: 'size' must be two integers in 16..2048, got {size!r}") from None
         if not (16 <= w <= 2048 and 16 <= h <= 2048):
             raise SdfglError(f"set_preview: 'size' must be two integers in 16..2048, got {size!r}")
         _preview["size"] = (w, h)

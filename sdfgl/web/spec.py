@@ -15,6 +15,7 @@ interpolates the frame; with several parameters moved at once, their changes are
 from __future__ import annotations
 
 import base64
+import math
 from dataclasses import replace
 from typing import Any
 
@@ -81,8 +82,9 @@ def _valid(prm: Param, value: Any) -> bool:
 
 
 def slider_range(prm: Param) -> tuple[float, float]:
-    """The slider range of ``prm``: its own, else around its value narrowed to values its nodes accept."""
-    if prm.range is not None:
+    """The slider range of ``prm``: its own, else around its value narrowed to values its nodes (and an
+    open-ended range of its own) accept."""
+    if prm.range is not None and all(math.isfinite(x) for x in prm.range):
         return prm.range
     v = np.asarray(prm.value, dtype=np.float64)
     mag = float(np.max(np.abs(v))) or 1.0
@@ -97,6 +99,8 @@ def slider_range(prm: Param) -> tuple[float, float]:
     while b < len(probes) - 1 and ok[b + 1]:
         b += 1
     if not ok[centre] or a == b:
+        if prm.range is not None:
+            lo, hi = max(lo, prm.range[0]), min(hi, prm.range[1])
         return lo, hi
     return float(probes[a]), float(probes[b])
 

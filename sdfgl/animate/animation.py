@@ -1,0 +1,137 @@
+"""sg.animate(): render a clip frame by frame into a writer, with one shader program for all frames.
+
+Per frame only uniforms change: the clock (every ``sg.time()`` in the scene), the camera
+(from a path) and the live parameters over them. The program cache is keyed by source,
+and the source does not depend on either, so the first frame compiles and the rest draw.
+"""
+from __future__ import annotations
+
+import time as _time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Callable, Sequence
+
+from ..camera import Camera, OrbitCamera
+from ..errors import ParameterError
+from ..nodes.base import Node
+from ..params import Time
+from ..render import Renderer, _check_size, default_renderer
+from .paths import CameraPath
+from .progress import ProgressBar
+from .writers import FrameWriter, open_writer
+
+CameraSpec = Camera | CameraPath | Callable[[float], Camera] | None
+
+
+@dataclass
+class AnimationResult:
+    """What ``animate`` wrote and how long it took."""
+
+    path: Path
+    frames: int
+    fps: float
+    size: tuple[int, int]
+    compiles: int                        # shader programs compiled during the clip (1 at most)
+    seconds: float                       # wall time of the whole clip
+    render_s: list[float] = field(default_factory=list)   # per frame: render() incl. read-back
+    write_s: list[float] = field(default_factory=list)    # per frame: handing the frame to the writer
+
+    @property
+    def frames_per_second(self) -> float:
+        return self.frames / self.seconds if self.seconds > 0 else 0.0
+
+
+def clocks(scene: Node) -> list[Time]:
+    """The ``sg.time()`` parameters the scene reads."""
+    return [p for p in scene.live_params() if isinstance(p, Time)]
+
+
+def set_time(scene_clocks: Sequence[Time], t: float, frame: int | None = None) -> None:
+    """Set every clock to ``t``; a node that refuses the resulting values is named with the frame and time."""
+    for c in scene_clocks:
+        try:
+            c.value = t
+        except ParameterError as exc:
+            where = f"frame {frame} (t = {t:.4g} s)" if frame is not None else f"t = {t:.4g} s"
+            raise ParameterError(f"animate: at {where}: {exc}") from None
+
+
+def camera_at(camera: CameraSpec, t: float, duration: float, scene: Node) -> Camera:
+    """The camera for time ``t`` from a fixed camera, a path, a function of t, or None (framing the scene)."""
+    if camera is None:
+        return OrbitCamera.framing(*scene.bounds)
+    if isinstance(camera, Camera):
+        return camera
+    if isinstance(camera, CameraPath):
+        return camera.camera(t, duration, scene)
+    if callable(camera):
+        cam = camera(t)
+        if not isinstance(cam, Camera):
+            raise ParameterError(f"animate: the camera function returned {type(cam).__name__} at t = {t:g}, "
+                                 "not an sdfgl Camera")
+        return cam
+    raise ParameterError(f"animate: 'camera' must be a Camera, a path (sg.turntable, sg.camera_path) or a "
+                         f"function of time, got {type(camera).__name__}")
+
+
+def animate(scene: Node, output: str | Path | FrameWriter, seconds: float = 4.0, fps: float = 30.0,
+            camera: CameraSpec = None, size: Sequence[int] = (640, 360), start: float = 0.0,
+            frames: int | None = None, progress: bool = False, renderer: Renderer | None = None,
+            crf: int | None = None, **settings: Any) -> AnimationResult:
+    """Render ``scene`` over ``seconds`` at ``fps`` into ``output`` and return an AnimationResult.
+
+    ``output``: ``.mp4`` / ``.webm`` (needs ``sdfgl[video]``), ``.gif``, a PNG pattern such as
+    ``frames/%04d.png`` or a folder, or a FrameWriter. Frame i is drawn at time
+    ``start + i / fps`` (``frames`` overrides ``seconds * fps``). ``camera``: a Camera, a path
+    (``sg.turntable(...)``, ``sg.camera_path(...)``), a function of time, or None (frame the
+    scene). Settings are render()'s (``aa``, ``shadows``, ``ao``, ``ground``, ...). ``crf`` is
+    the video quality (lower is better; x264 default 18, VP9 32). Every time is checked
+    against the scene's nodes before the first frame is drawn.
+    """
+    if not isinstance(scene, Node):
+        raise ParameterError(f"animate: 'scene' must be an sdfgl node, got {type(scene).__name__}")
+    wh = _check_size(size)
+    if not (isinstance(fps, (int, float)) and 0 < fps <= 1000):
+        raise ParameterError(f"animate: 'fps' must be a number in (0, 1000], got {fps!r}")
+    n = frames if frames is not None else round(float(seconds) * fps)
+    if not isinstance(n, int) or n < 1:
+        raise ParameterError(f"animate: the clip must have at least one frame (seconds={seconds!r}, fps={fps!r}, "
+                             f"frames={frames!r})")
+    duration = n / fps
+    times = [start + i / fps for i in range(n)]
+    scene_clocks = clocks(scene)
+    if scene_clocks:  # check every frame's values now, not after minutes of rendering
+        old = [c.value for c in scene_clocks]
+        try:
+            for i, t in enumerate(times):
+                set_time(scene_clocks, t, i)
+        finally:
+            for c, v in zip(scene_clocks, old):
+                c.value = v
+    for t in (times[0], times[-1]):
+        camera_at(camera, t - start, duration, scene)  # a bad camera fails before any work
+
+    r = renderer or default_renderer()
+    compiles0 = r.programs.compiles
+    writer = output if isinstance(output, FrameWriter) else open_writer(
+        output, wh, fps, **({"crf": crf} if crf is not None else {}))
+    bar = ProgressBar(n) if progress else None
+    result = AnimationResult(writer.path, n, fps, wh, 0, 0.0)
+    t0 = _time.perf_counter()
+    with writer:
+        for i, t in enumerate(times):
+            set_time(scene_clocks, t, i)
+            cam = camera_at(camera, t - start, duration, scene)
+            t1 = _time.perf_counter()
+            res = r.render(scene, cam, wh, **settings)
+            t2 = _time.perf_counter()
+            writer.append(res.color)
+            result.render_s.append(t2 - t1)
+            result.write_s.append(_time.perf_counter() - t2)
+            if bar:
+                bar.update(i + 1)
+    if bar:
+        bar.close()
+    result.seconds = _time.perf_counter() - t0
+    result.compiles = r.programs.compiles - compiles0
+    return result

@@ -1,0 +1,57 @@
+"""Data textures (big unions kept as data), uploaded once per source and kept in an LRU."""
+from __future__ import annotations
+
+from typing import Callable
+
+import moderngl
+import numpy as np
+
+from ..codegen import ShaderSource
+from .cache import LRU, MB, CacheBudget
+
+
+def _release(entry: tuple[ShaderSource, list[moderngl.Texture]]) -> None:
+    for t in entry[1]:
+        t.release()
+
+
+class DataTextures:
+    """The textures each shader source samples, least recently used released beyond ``budget().data_mb``.
+
+    Keyed by the source object: a source is immutable, and the entry keeps it alive, so an
+    id is never reused while its entry exists."""
+
+    def __init__(self, budget: Callable[[], CacheBudget]) -> None:
+        self._budget = budget
+        self._lru: LRU[tuple[ShaderSource, list[moderngl.Texture]]] = LRU(_release)
+
+    def textures(self, ctx: moderngl.Context, source: ShaderSource) -> list[moderngl.Texture]:
+        """The uploaded textures of ``source.data``; call on the context's thread."""
+        entry = self._lru.get(id(source))
+        if entry is None or entry[0] is not source:
+            texs, nbytes = [], 0
+            for _, arr in source.data:
+                data = np.ascontiguousarray(arr, dtype=np.float32)
+                tex = ctx.texture((arr.shape[1], arr.shape[0]), 4, data.tobytes(), dtype="f4")
+                tex.filter = (moderngl.NEAREST, moderngl.NEAREST)
+                texs.append(tex)
+                nbytes += data.nbytes
+            entry = (source, texs)
+            self._lru.put(id(source), entry, nbytes)
+            mb = self._budget().data_mb
+            self._lru.trim(max_bytes=None if mb is None else mb * MB)
+        return entry[1]
+
+    def forget(self) -> None:
+        self._lru.forget()
+
+    def clear(self) -> None:
+        """Release every texture."""
+        self._lru.clear()
+
+    @property
+    def bytes(self) -> int:
+        return self._lru.bytes
+
+    def __len__(self) -> int:
+        return len(self._lru)

@@ -1,0 +1,104 @@
+"""GLSL of the look: the shadow functions the lights use, each light's code, ambient
+light and the background. Only lights that exist have code, and only the shadow kinds
+they cast are included (each shadow file with its function renamed, so a hard-shadowed
+and a soft-shadowed light can share one shader)."""
+from __future__ import annotations
+
+from typing import Any, Callable
+
+from .. import shaderlib
+from .background import Background
+from .lights import DEFAULT_AMBIENT, DEFAULT_LIGHTS, Light
+
+SHADOW_FUNCTIONS = {"hard": "shadowHard", "soft": "shadowSoft", "march": "shadowMarch"}
+
+Fmt = Callable[[float], str]
+
+
+def _vec3(c: Any, f: Fmt) -> str:
+    return f"vec3({', '.join(f(x) for x in c)})"
+
+
+def shadow_kinds(lights: tuple[Light, ...], setting: Any, implicit: bool) -> list[str]:
+    """The shadow kinds (in SHADOW_FUNCTIONS) the lights cast, in a stable order."""
+    kinds = []
+    for lt in lights:
+        k = lt.shadow_kind(setting)
+        if k:
+            k = "march" if implicit else k
+            if k not in kinds:
+                kinds.append(k)
+    return sorted(kinds)
+
+
+def _light_block(i: int, lt: Light, kind: Any, f: Fmt) -> str:
+    rad = _vec3(lt.radiance(), f)
+    if lt.kind == "directional":
+        head = f"        vec3 L = {_vec3(lt.vector, f)};\n        float atten = 1.0;\n        float tmax = 1e30;\n"
+    else:
+        fall = "1.0" if lt.range is None else f"1.0 / (1.0 + dist * dist * {f(1.0 / lt.range ** 2)})"
+        head = (f"        vec3 toLight = {_vec3(lt.vector, f)} - pos;\n"
+                f"        float dist = max(length(toLight), 1e-20);\n"
+                f"        vec3 L = toLight / dist;\n        float atten = {fall};\n        float tmax = dist;\n")
+    if kind:
+        vis = f"dif > 0.0 ? {SHADOW_FUNCTIONS[kind]}Visibility(pos, nor, t, L, tmax) : 0.0"
+    else:
+        vis = "occ" if lt.fill else "1.0"
+    body = (f"    {{  // light {i}: {lt.kind}{', fill' if lt.fill else ''}, shadow {kind or 'none'}\n{head}"
+            f"        float dif = clamp(dot(nor, L), 0.0, 1.0);\n"
+            f"        float vis = {vis};\n"
+            f"        vec3 c = {rad} * (atten * dif * vis);\n"
+            f"        diffuse += c;\n")
+    if not lt.fill:
+        body += "        highlight += c * pow(clamp(dot(nor, normalize(L - rd)), 0.0, 1.0), s.shininess);\n"
+    return body + "    }\n"
+
+
+def shade_function(lights: tuple[Light, ...] | None, ambient: Any, setting: Any, implicit: bool, f: Fmt,
+                   metals: bool = False) -> str:
+    """GLSL of ``vec3 shadeSurface(pos, nor, rd, Surface s, t)`` for these lights; with
+    ``metals`` (some node sets surface fields), metallic surfaces reflect the background
+    along the mirror direction in place of the ambient light."""
+    rig = DEFAULT_LIGHTS if lights is None else lights
+    sky, ground = DEFAULT_AMBIENT if ambient is None else ambient
+    out = ["vec3 shadeSurface(vec3 pos, vec3 nor, vec3 rd, Surface s, float t) {",
+           "    float occ = occlusion(pos, nor);",
+           "    vec3 diffuse = vec3(0.0);",
+           "    vec3 highlight = vec3(0.0);",
+           "    vec3 ambient = vec3(0.0);"]
+    for i, lt in enumerate(rig):
+        k = lt.shadow_kind(setting)
+        out.append(_light_block(i, lt, ("march" if implicit else k) if k else False, f).rstrip("\n"))
+    if any(sky):
+        out.append(f"    ambient += {_vec3(sky, f)} * ((0.5 + 0.5 * nor.y) * occ);")
+    if any(ground):
+        out.append(f"    ambient += {_vec3(ground, f)} * ((0.5 - 0.5 * nor.y) * occ);")
+    if metals:
+        out.append("    ambient = mix(ambient, background(reflect(rd, nor)) * occ, s.metallic);")
+    out += ["    return combineLight(s, diffuse, ambient, highlight);", "}"]
+    return "\n".join(out)
+
+
+def shadow_code(kinds: list[str]) -> list[tuple[str, str]]:
+    """(code, owner) of the shadow functions and their light-visibility wrappers."""
+    files = {"hard": "shadow_hard", "soft": "shadow_soft", "march": "shadow_march"}
+    out = []
+    for k in kinds:
+        fn = SHADOW_FUNCTIONS[k]
+        out.append((f"#define shadow {fn}", "(look)"))
+        out.append((shaderlib.read(files[k]), f"shaders/{files[k]}.glsl"))
+        out.append(("#undef shadow", "(look)"))
+        out.append((shaderlib.read("light_visibility").replace("SHADOWFN", fn), "shaders/light_visibility.glsl"))
+    return out
+
+
+def background_code(bg: Background, f: Fmt) -> tuple[str, str]:
+    """(code, owner) of ``vec3 background(vec3 rd)``."""
+    if bg.kind == "sky":
+        return shaderlib.read("background_sky"), "shaders/background_sky.glsl"
+    if bg.kind == "color":
+        return f"vec3 background(vec3 rd) {{\n    return {_vec3(bg.colors[0], f)};\n}}", "(look: background)"
+    top, bottom = (_vec3(c, f) for c in bg.colors)
+    return (f"// top of the image to bottom\nvec3 background(vec3 rd) {{\n"
+            f"    return mix({bottom}, {top}, clamp(gl_FragCoord.y / uResolution.y, 0.0, 1.0));\n}}",
+            "(look: background)")

@@ -1,0 +1,58 @@
+"""The Mesh object mesh() returns: arrays, save(), report()."""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ..nodes.base import Node
+from .lattice import Lattice
+
+
+@dataclass(eq=False)
+class Mesh:
+    """A triangle mesh of a scene's solid.
+
+    ``vertices`` float64 (N, 3); ``faces`` int64 (M, 3), counter-clockwise seen from outside;
+    ``normals`` float64 (N, 3) unit field gradients at the vertices; ``colors`` float32
+    (N, 3) the scene's colour field at the vertices (0..1) or None.
+    """
+
+    vertices: np.ndarray
+    faces: np.ndarray
+    normals: np.ndarray
+    colors: np.ndarray | None = None
+    scene: Node | None = None
+    lattice: Lattice | None = None
+    mode: str = "mc"
+    timings: dict[str, float] = field(default_factory=dict)
+    samples: int = 0  # lattice samples it took (the dense lattice has lattice.samples)
+
+    def __repr__(self) -> str:
+        return f"Mesh({len(self.vertices)} vertices, {len(self.faces)} triangles, mode={self.mode!r})"
+
+    @property
+    def step(self) -> float:
+        """The lattice cell size the mesh was extracted at."""
+        return self.lattice.step if self.lattice is not None else float("nan")
+
+    def to_trimesh(self) -> Any:
+        """A ``trimesh.Trimesh`` of this mesh (vertex colours included)."""
+        from .deps import require
+        trimesh = require("trimesh")
+        vc = None if self.colors is None else np.clip(np.round(self.colors * 255), 0, 255).astype(np.uint8)
+        return trimesh.Trimesh(self.vertices, self.faces, vertex_normals=self.normals, vertex_colors=vc,
+                               process=False, validate=False)
+
+    def save(self, path: str | Path, **options: Any) -> Path:
+        """Write the mesh; the format comes from the suffix: .stl (binary), .obj (+ .mtl with
+        one material per colour), .ply (vertex colours), .glb / .gltf (vertex colours), .3mf."""
+        from .writers import write
+        return write(self, Path(path), **options)
+
+    def report(self, twin_samples: int = 20000, volume_resolution: int = 128) -> "MeshReport":  # noqa: F821
+        """Accuracy of the mesh against the float64 twin (see :class:`sdfgl.mesh.report.MeshReport`)."""
+        from .report import measure
+        return measure(self, twin_samples, volume_resolution)

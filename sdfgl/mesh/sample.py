@@ -1,0 +1,132 @@
+"""The scene's generated map() on the GPU, as the mesh exporter needs it.
+
+Three draws, all from the same codegen as render() (targets mesh_grid, mesh_gradient, evaluate_color):
+lattice blocks of field values, value + gradient at points, colour at points. The field is
+map() cut by the sampling box (shaders/mesh_clip.glsl), so solids that leave the box close.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from ..codegen import generate
+from ..nodes.base import Node
+from ..render import Renderer, default_renderer, scene_uniforms, shader_origin
+from ..settings import Settings
+
+MAX_TEXELS = 1 << 22  # samples per draw: 16 MiB of float32 read back at a time
+_WIDTH = 4096         # framebuffer width of the lattice draw
+
+
+class GPUField:
+    """Samples one scene's clipped field on the GPU (float32) at lattices and points."""
+
+    def __init__(self, scene: Node, clip_lo: np.ndarray, clip_hi: np.ndarray,
+                 renderer: Renderer | None = None) -> None:
+        self.scene = scene
+        self.r = renderer or default_renderer()
+        centre = (np.asarray(clip_lo, float) + np.asarray(clip_hi, float)) / 2
+        self.origin = shader_origin(scene, centre)
+        self.clip = (np.asarray(clip_lo, float) - self.origin, np.asarray(clip_hi, float) - self.origin)
+        self._progs: dict[str, tuple] = {}
+        self.samples = 0        # lattice samples taken (coarse and fine)
+        self.point_samples = 0  # map() calls for values and gradients at points
+
+    def _program(self, target: str):  # -> (program, source)
+        if target not in self._progs:
+            source = generate(self.scene, Settings(shadows=False, ao=False), self.origin, target=target)
+            prog = self.r.programs.get(source)
+            self._progs[target] = (prog, source)
+        prog, source = self._progs[target]
+        scene_uniforms(prog, source, self.scene, self.origin, self.r.data)
+        for name, v in (("uClipLo", self.clip[0]), ("uClipHi", self.clip[1])):
+            if name in prog:
+                prog[name].value = tuple(float(x) for x in v)
+        return prog
+
+    def _draw(self, prog, w: int, h: int, comps: int, inputs: np.ndarray | None = None,
+              input_width: int = 0) -> np.ndarray:
+        ctx = self.r.ctx
+        tex = None
+        if inputs is not None:
+            iw = input_width
+            ih = -(-len(inputs) // iw)
+            data = np.zeros((ih * iw, 4), np.float32)
+            data[:len(inputs), :3] = inputs
+            tex = ctx.texture((iw, ih), 4, data.tobytes(), dtype="f4")
+            tex.filter = (ctx.NEAREST, ctx.NEAREST)
+        out = ctx.texture((w, h), comps, dtype="f4")
+        fbo = ctx.framebuffer(color_attachments=[out])
+        try:
+            if tex is not None:
+                tex.use(0)
+            fbo.use()
+            ctx.viewport = (0, 0, w, h)
+            self.r.vao(prog).render(vertices=3)
+            return np.frombuffer(out.read(), dtype=np.float32).reshape(-1, comps)
+        finally:
+            fbo.release()
+            out.release()
+            if tex is not None:
+                tex.release()
+
+    def blocks(self, start: np.ndarray, corners: np.ndarray, size: int, step: float) -> np.ndarray:
+        """Field at ``size``^3 lattice points ``start + (corner + (i, j, k)) * step`` for each
+        (M, 3) integer corner: float32 (M, size, size, size), indexed [block, i, j, k].
+        The GL work runs on the renderer's GL thread (see sdfgl.gl.context)."""
+        return self.r.run(self._blocks, start, corners, size, step)
+
+    def _blocks(self, start: np.ndarray, corners: np.ndarray, size: int, step: float) -> np.ndarray:
+        corners = np.asarray(corners, np.int64).reshape(-1, 3)
+        if corners.size and corners.max() + size >= 1 << 24:
+            raise ValueError("lattice coordinates beyond float32's exact integers")
+        per = size ** 3
+        out = np.empty((len(corners), size, size, size), np.float32)
+        batch = max(1, MAX_TEXELS // per)
+        prog = self._program("mesh_grid")
+        prog["uBlock"].value = size
+        prog["uStep"].value = float(step)
+        prog["uStart"].value = tuple(float(x) for x in np.asarray(start, np.float64) - self.origin)
+        prog["uBlocks"].value = 0
+        for s in range(0, len(corners), batch):
+            part = corners[s:s + batch]
+            n = len(part) * per
+            w = min(_WIDTH, n)
+            h = -(-n // w)
+            bw = min(len(part), 4096)
+            prog["uBlocksWidth"].value = bw
+            prog["uWidth"].value = w
+            vals = self._draw(prog, w, h, 1, part.astype(np.float32), bw)
+            out[s:s + len(part)] = vals[:n, 0].reshape(len(part), size, size, size)
+        self.samples += len(corners) * per
+        return out
+
+    def _at_points(self, target: str, points: np.ndarray, comps: int, eps: float = 0.0) -> np.ndarray:
+        return self.r.run(self._at_points_gl, target, points, comps, eps)
+
+    def _at_points_gl(self, target: str, points: np.ndarray, comps: int, eps: float) -> np.ndarray:
+        pts = np.asarray(points, np.float64).reshape(-1, 3)
+        out = np.empty((len(pts), comps), np.float32)
+        if len(pts) == 0:
+            return out
+        prog = self._program(target)
+        if "uEps" in prog:
+            prog["uEps"].value = float(eps)
+        if "uPoints" in prog:
+            prog["uPoints"].value = 0
+        for s in range(0, len(pts), MAX_TEXELS):
+            part = pts[s:s + MAX_TEXELS]
+            w = min(len(part), _WIDTH)
+            h = -(-len(part) // w)
+            out[s:s + len(part)] = self._draw(prog, w, h, comps if comps != 3 else 4, part - self.origin, w)[
+                :len(part), :comps]
+        return out
+
+    def gradient(self, points: np.ndarray, eps: float) -> tuple[np.ndarray, np.ndarray]:
+        """(value (N,), gradient (N, 3)) of the clipped field at points; differences ``eps`` wide."""
+        v = self._at_points("mesh_gradient", points, 4, eps)
+        self.point_samples += 5 * len(v)
+        return v[:, 3].astype(np.float64), v[:, :3].astype(np.float64)
+
+    def colors(self, points: np.ndarray) -> np.ndarray:
+        """The scene's colour field (linear RGB in 0..1, float32 (N, 3)) at points."""
+        return self._at_points("evaluate_color", points, 3)
