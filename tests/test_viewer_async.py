@@ -8,7 +8,8 @@ import time
 
 import pytest
 
-from .xserver import Driver, start_xvfb
+from .test_viewer import display  # noqa: F401 - the Xvfb fixture
+from .xserver import Driver
 
 pytestmark = pytest.mark.window
 
@@ -21,14 +22,6 @@ scene = sg.union(*[sg.sphere(0.08 + 0.06 * rng.random()).translate(tuple(rng.uni
 settings = {"grid": False, "shadows": False, "ao": False}
 camera = sg.OrbitCamera(distance=14, yaw=30, pitch=20)  # small on screen: cheap frames
 """
-
-
-@pytest.fixture(scope="module")
-def display():
-    proc, name = start_xvfb()
-    yield name
-    proc.terminate()
-    proc.wait(10)
 
 
 def open_viewer(display, tmp_path, text, size="64x48", extra=()):

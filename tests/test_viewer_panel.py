@@ -14,7 +14,8 @@ from sdfgl.gl.targets import Targets
 from sdfgl.render import camera_uniforms, default_renderer, scene_uniforms
 from sdfgl.settings import Settings
 
-from .xserver import Driver, start_xvfb
+from .test_viewer import display  # noqa: F401 - the Xvfb fixture
+from .xserver import Driver
 
 pytestmark = pytest.mark.window
 
@@ -26,14 +27,6 @@ settings = {"shadows": False, "ao": False}
 camera = sg.OrbitCamera(distance=6, yaw=0, pitch=0)
 """
 W, H, PANEL = 820, 540, 300
-
-
-@pytest.fixture(scope="module")
-def display():
-    proc, name = start_xvfb()
-    yield name
-    proc.terminate()
-    proc.wait(10)
 
 
 @pytest.fixture()
