@@ -173,6 +173,8 @@ def render_pbr(scene: Node, camera: Camera | None = None, size: tuple[int, int] 
         ((12, 16), 'sdfgrid')
     """
     from .pbr import render_pbr as _render_pbr
+    from .pbr.render import RENDER_OPTIONS, check_options
+    check_options("render_pbr", options, RENDER_OPTIONS)
     return _render_pbr(scene, camera, size, spp, **options)  # type: ignore[arg-type]
 
 

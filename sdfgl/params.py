@@ -286,7 +286,24 @@ class Time(Param):
 
 
 def time(start: float = 0.0) -> Time:
-    """A live parameter holding the animation time in seconds (``start`` until something sets it)."""
+    """The animation clock: a live scalar parameter holding the time in seconds.
+
+    Args:
+        start: the time (seconds) it holds until something sets it; ``sg.animate`` sets
+            ``start + i / fps`` for frame i, and you may set ``.value`` yourself between
+            renders. Must be a finite number.
+
+    Returns a :class:`Time` (a ``Param`` named "time"). Expressions over it
+    (``1 + 0.2 * sg.sin(t)``) become GLSL over one uniform, so the shader is compiled once
+    for a whole clip; every node that reads it checks each new time.
+
+    Example:
+        >>> t = sg.time()
+        >>> s = sg.sphere(1 + 0.5 * t)
+        >>> t.value = 2.0
+        >>> float(s.distance((3, 0, 0)))
+        1.0
+    """
     return Time(start)
 
 
@@ -299,7 +316,7 @@ def _mix(a: Any, b: Any, t: Any) -> Any:
 
 
 def _smoothstep(e0: Any, e1: Any, x: Any) -> Any:
-    t = np.minimum(np.maximum((x - e0) / (e1 - e0), 0.0), 1.0)
+    t = np.minimum(np.maximum(np.divide(np.subtract(x, e0), np.subtract(e1, e0)), 0.0), 1.0)  # e0 == e1: no raise
     return t * t * (3.0 - 2.0 * t)
 
 
@@ -324,7 +341,7 @@ OPS: dict[str, tuple[Callable[..., Any], str]] = {
     "min": (np.minimum, "min({0}, {1})"),
     "max": (np.maximum, "max({0}, {1})"),
     "pow": (np.power, "pow({0}, {1})"),
-    "mod": (lambda x, y: x - y * np.floor(x / y), "mod({0}, {1})"),
+    "mod": (lambda x, y: x - y * np.floor(np.divide(x, y)), "mod({0}, {1})"),
     "step": (lambda e, x: np.where(x < e, 0.0, 1.0), "step({0}, {1})"),
     "clamp": (lambda x, lo, hi: np.minimum(np.maximum(x, lo), hi), "clamp({0}, {1}, {2})"),
     "mix": (_mix, "mix({0}, {1}, {2})"),
@@ -333,8 +350,9 @@ OPS: dict[str, tuple[Callable[..., Any], str]] = {
 FUNCS = frozenset(OPS) - {"add", "sub", "mul", "div", "neg"}  # written as GLSL calls
 
 
-def apply(op: str, *args: Any) -> Any:
-    """``op`` (a name in OPS) of ``args``: a Live expression if any argument is live, else a number now."""
+def apply(op: str, *args: Any, names: tuple[str, ...] = ()) -> Any:
+    """``op`` (a name in OPS) of ``args``: a Live expression if any argument is live, else a number now.
+    ``names`` (the caller's parameter names) label a bad argument in the error."""
     vals = []
     for i, x in enumerate(args):
         if isinstance(x, Live):
@@ -347,7 +365,8 @@ def apply(op: str, *args: Any) -> Any:
         except (TypeError, ValueError):
             arr = None
         if arr is None or arr.shape not in ((), (3,)):
-            raise ParameterError(f"sg.{op}: argument {i + 1} must be a number, 3 numbers or a live value, "
+            label = f"parameter '{names[i]}'" if i < len(names) else f"argument {i + 1}"
+            raise ParameterError(f"sg.{op}: {label} must be a number, 3 numbers or a live value, "
                                  f"got {type(args[i]).__name__} {args[i]!r}")
         vals.append(float(arr) if arr.ndim == 0 else arr)
     if any(isinstance(x, Live) for x in vals):

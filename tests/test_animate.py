@@ -42,7 +42,7 @@ def test_functions_of_numbers_are_numbers_and_bad_arguments_are_named():
     assert sg.sin(0.5) == pytest.approx(np.sin(0.5)) and isinstance(sg.clamp(3, 0, 1), float)
     assert np.allclose(sg.mix((0, 0, 0), (2, 4, 6), 0.5), (1, 2, 3))
     assert sg.mod(-1.0, 3.0) == pytest.approx(2.0)  # GLSL's mod, not C's fmod
-    with pytest.raises(sg.ParameterError, match=r"sg.sin: argument 1 must be a number"):
+    with pytest.raises(sg.ParameterError, match=r"sg.sin: parameter 'x' must be a number"):
         sg.sin("x")
     with pytest.raises(sg.ParameterError, match=r"sg.clamp: takes 3 arguments, got 2"):
         sg.clamp(sg.time(), 1)
@@ -185,3 +185,15 @@ def test_cli_animate_scene_file_turntable(tmp_path, capsys):
                  "--turntable", "--no-progress"]) == 0
     assert "8 frames 64x48" in capsys.readouterr().out
     assert imageio_ffmpeg.count_frames_and_secs(str(out))[0] == 8
+
+
+def test_function_edge_cases_and_bad_keys_give_values_or_named_errors():
+    assert sg.smoothstep(1.0, 1.0, 2.0) == 1.0 and sg.smoothstep(1.0, 1.0, 0.5) == 0.0  # no ZeroDivisionError
+    assert np.isnan(sg.mod(1.0, 0.0)) and float(sg.mod(sg.param(-1.0), 3.0)) == pytest.approx(2.0)
+    assert float(sg.clamp(x=sg.param(2.0), lo=0.0, hi=1.0)) == 1.0  # parameters are named as documented
+    with pytest.raises(sg.ParameterError, match=r"sg.mix: parameter 't' must be a number"):
+        sg.mix(0.0, 1.0, t="half")
+    with pytest.raises(sg.ParameterError, match=r"keyframes: 'keys' must be a dict \{seconds: value\}"):
+        sg.keyframes(None)
+    with pytest.raises(sg.ParameterError, match=r"camera_path: parameter 'fov' must be > 0"):
+        sg.camera_path({0: ((5, 0, 0), (0, 0, 0))}, fov=-1)

@@ -26,7 +26,7 @@ def test_version_and_python_dash_m():
 
 def test_usage_shows_choices():
     r = run("render", "--help")
-    assert "{sphere,relaxed,enhanced,newton,forward_newton,reference}" in r.stdout
+    assert "{auto,sphere,relaxed,enhanced,newton,forward_newton,reference}" in r.stdout
     assert "{off,hard,soft}" in r.stdout and "{1,2,3,4}" in r.stdout
     for flag in ("--yaw", "--pitch", "--distance", "--fov", "--target", "--outputs"):
         assert flag in r.stdout

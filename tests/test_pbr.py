@@ -30,14 +30,18 @@ def edge_pixels(hit: np.ndarray) -> np.ndarray:
 
 
 def test_silhouette_matches_the_egl_render():
+    """Coverage against coverage: the path tracer's alpha (share of a pixel's samples that hit)
+    and the EGL render's alpha at aa 4 (16 samples a pixel) agree within 0.2 on the edge
+    pixels. (Thresholding both at 0.5 flips pixels whose coverage is near 0.5 by sampling
+    noise alone: 96-97 % of edge pixels agree that way.)"""
     size = (160, 120)
     img = sg.render_pbr(CSG, CAM, size, spp=64, quality=2)
-    egl = np.isfinite(sg.render(CSG, CAM, size, outputs=("color", "depth")).depth)
-    edge = edge_pixels(egl)
-    agree = (img.alpha > 0.5) == egl
+    egl = sg.render(CSG, CAM, size, aa=4, alpha=True).color[..., 3] / 255.0
+    edge = edge_pixels(egl > 0.5)
+    close = np.abs(img.alpha - egl) <= 0.2
     assert edge.sum() > 300
-    assert agree[edge].mean() > 0.98, f"edge agreement {agree[edge].mean():.4f}"
-    assert agree.mean() > 0.995
+    assert close[edge].mean() > 0.98, f"edge pixels within 0.2 coverage: {close[edge].mean():.4f}"
+    assert close.mean() > 0.995
     assert np.isfinite(img.rgba).all() and np.isfinite(img.hdr).all()
 
 
@@ -162,3 +166,12 @@ def test_node_materials_and_orthographic_cameras_carry_over():
     egl = np.isfinite(sg.render(sg.box(1.0), cam, size, outputs=("color", "depth")).depth)
     assert img.settings["projection"] == "orthographic"
     assert egl.sum() == 16 * 16 and ((img.alpha > 0.5) != egl).sum() <= 8
+
+
+def test_unknown_options_and_bad_seeds_are_named():
+    with pytest.raises(sg.ParameterError, match=r"render_pbr: unknown option 'colour'; it takes size, spp, .*seed"):
+        sg.render_pbr(sg.sphere(1), size=(8, 8), spp=1, colour=(1, 0, 0))
+    with pytest.raises(sg.ParameterError, match=r"to_mitsuba: unknown option 'seed'"):
+        sg.to_mitsuba(sg.sphere(1), seed=1)
+    with pytest.raises(sg.ParameterError, match=r"render_pbr: 'seed' must be an integer in 0\.\.65535, got 'x'"):
+        sg.render_pbr(sg.sphere(1), size=(8, 8), spp=1, seed="x")

@@ -112,9 +112,9 @@ def test_live_parameters_keep_identity_range_and_checks(tmp_path):
     assert len(doc.scene.live_params()) == 2  # r is one parameter, used twice
     with pytest.raises(sg.ParameterError, match="sphere: parameter 'radius' must be > 0"):
         doc.params["r"].value = -1
-    p = pickle.loads(pickle.dumps(s)).live_params()
+    copy_ = pickle.loads(pickle.dumps(s))  # kept: a node's parameter checks live as long as the node
     with pytest.raises(sg.ParameterError, match="colour components"):
-        next(x for x in p if x.name == "c").value = (2, 0, 0)
+        next(x for x in copy_.live_params() if x.name == "c").value = (2, 0, 0)
 
 
 def test_parameter_ranges_and_expressions_in_documents():
@@ -213,7 +213,7 @@ MALFORMED = [
     ("unknown setting", _doc(SPHERE, settings={"fast": True}), r"^settings: unknown setting\(s\) fast"),
     ("infinity literal", '{"format": "sdfgl-scene", "version": 1, "scene": {"kind": "sphere", "radius": Infinity}}',
      r"Infinity is not allowed"),
-    ("live op unknown", _doc({"kind": "sphere", "radius": {"live": "pow", "args": [1, 2]}}),
+    ("live op unknown", _doc({"kind": "sphere", "radius": {"live": "frobnicate", "args": [1, 2]}}),
      r"^scene\.radius\.args: expected live values|unknown live operation"),
     ("binary junk", b"\xff\xfe\x00junk", r"not (UTF-8|valid JSON)"),
 ]

@@ -94,9 +94,9 @@ def test_unions_as_data_carry_their_textures():
 
 def test_slider_ranges_stay_where_the_nodes_accept_values():
     r = sg.param(1.0, "r")
-    sg.sphere(r)
+    ball = sg.sphere(r)  # a live node: its check (radius > 0) bounds the slider (dropped nodes' checks go with them)
     lo, hi = slider_range(r)
-    assert 0 < lo < 1.0 < hi <= 2.0 and r.value == 1.0  # radius must be > 0; the value is restored
+    assert 0 < lo < 1.0 < hi <= 2.0 and r.value == 1.0 and ball.live_params() == [r]  # radius > 0; value restored
     assert slider_range(sg.param(0.2, range=(0.1, 3))) == (0.1, 3.0)
     with pytest.raises(sg.ParameterError, match="range must be two numbers low < high"):
         sg.param(1.0, "k", range=(2, 1))

@@ -78,15 +78,40 @@ def animate(scene: Node, output: str | Path | FrameWriter, seconds: float = 4.0,
             camera: CameraSpec = None, size: Sequence[int] = (640, 360), start: float = 0.0,
             frames: int | None = None, progress: bool = False, renderer: Renderer | None = None,
             crf: int | None = None, **settings: Any) -> AnimationResult:
-    """Render ``scene`` over ``seconds`` at ``fps`` into ``output`` and return an AnimationResult.
+    """Render ``scene`` frame by frame into a video, GIF or PNG sequence.
 
-    ``output``: ``.mp4`` / ``.webm`` (needs ``sdfgl[video]``), ``.gif``, a PNG pattern such as
-    ``frames/%04d.png`` or a folder, or a FrameWriter. Frame i is drawn at time
-    ``start + i / fps`` (``frames`` overrides ``seconds * fps``). ``camera``: a Camera, a path
-    (``sg.turntable(...)``, ``sg.camera_path(...)``), a function of time, or None (frame the
-    scene). Settings are render()'s (``aa``, ``shadows``, ``ao``, ``ground``, ...). ``crf`` is
-    the video quality (lower is better; x264 default 18, VP9 32). Every time is checked
-    against the scene's nodes before the first frame is drawn.
+    Every ``sg.time()`` the scene reads is set to ``start + i / fps`` for frame i; the
+    shader is compiled once for the clip (times, keyframes and cameras are uniforms). Every
+    frame's time is checked against the scene's nodes, and the camera at the first and last
+    frame is built, before the first frame is drawn, so a bad value fails in milliseconds.
+
+    Args:
+        scene: the sdfgl node to render.
+        output: ``.mp4`` / ``.webm`` (needs ``sdfgl[video]``), ``.gif``, a PNG pattern such
+            as ``frames/%04d.png`` or a folder (PNG frames), or a ``FrameWriter``.
+        seconds: clip length in seconds (frames = round(seconds * fps)).
+        fps: frames per second, in (0, 1000].
+        camera: a Camera, a path (``sg.turntable(...)``, ``sg.camera_path(...)``), a
+            function of the clip time in seconds returning a Camera, or None (frame the scene).
+        size: (width, height) of each frame in pixels.
+        start: the clock's time at frame 0, in seconds (camera paths still start at 0).
+        frames: the frame count, overriding ``seconds * fps`` (at least 1).
+        progress: print a progress bar on stderr.
+        renderer: the ``Renderer`` to draw with (default: the shared one).
+        crf: video quality, lower is better (default: x264 18, VP9 32); videos only.
+        settings: render()'s settings (``aa``, ``shadows``, ``ao``, ``ground``, ...).
+
+    Returns an :class:`AnimationResult`: the path written, frame count, fps, size, shader
+    compiles during the clip (1 at most) and wall times per frame.
+
+    Example:
+        >>> import pathlib, tempfile
+        >>> t = sg.time()
+        >>> with tempfile.TemporaryDirectory() as d:
+        ...     res = sg.animate(sg.sphere(1 + 0.2 * sg.sin(t)), pathlib.Path(d) / "pulse.gif",
+        ...                      seconds=0.5, fps=4, size=(16, 16))
+        >>> res.frames, res.compiles
+        (2, 1)
     """
     if not isinstance(scene, Node):
         raise ParameterError(f"animate: 'scene' must be an sdfgl node, got {type(scene).__name__}")

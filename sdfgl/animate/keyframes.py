@@ -21,7 +21,13 @@ EASES = ("linear", "smooth", "step")
 
 
 def _keys(keys: Mapping[float, Any] | Sequence[tuple[float, Any]], what: str) -> list[tuple[float, Any]]:
-    items = list(keys.items()) if isinstance(keys, Mapping) else list(keys)
+    if isinstance(keys, Mapping):
+        items = list(keys.items())
+    elif isinstance(keys, (Sequence, np.ndarray)) and not isinstance(keys, (str, bytes)):
+        items = list(keys)
+    else:
+        raise ParameterError(f"{what}: 'keys' must be a dict {{seconds: value}} or a list of (seconds, value) pairs, "
+                             f"got {type(keys).__name__} {keys!r}")
     if not items:
         raise ParameterError(f"{what}: needs at least one (time, value) key")
     out: list[tuple[float, Any]] = []
@@ -61,11 +67,26 @@ def _weight(t: Live, t0: float, t1: float, ease: str) -> Live:
 
 def keyframes(keys: Mapping[float, Any] | Sequence[tuple[float, Any]], ease: str = "linear",
               time: Live | None = None) -> Live:
-    """A live value through ``keys`` ({seconds: number or 3-vector}); held before the first and after the last.
+    """A live value through ``keys``, held before the first key and after the last.
 
-    ``ease``: "linear" (constant speed between keys), "smooth" (smoothstep: eases in and out
-    of every key) or "step" (jumps at each key). ``time`` is the clock (default: a new
-    ``sg.time()``, which ``sg.animate`` sets); any live scalar works.
+    Args:
+        keys: ``{seconds: value}`` or a list of ``(seconds, value)`` pairs, times strictly
+            increasing; every value a finite number, or every value 3 finite numbers (a
+            position, size or colour).
+        ease: "linear" (constant speed between keys), "smooth" (smoothstep: eases in and
+            out of every key) or "step" (jumps to each key's value at its time).
+        time: the clock it follows, in seconds (default: a new ``sg.time()``, which
+            ``sg.animate`` sets); any live scalar works, e.g. ``2 * sg.time()``.
+
+    Returns a live expression (closed-form over the clock: one uniform in the shader, no
+    recompile between frames) that nodes take wherever they take a number or 3-vector.
+
+    Example:
+        >>> t = sg.time()
+        >>> r = sg.keyframes({0: 1.0, 2: 2.0, 3: 1.0}, time=t)
+        >>> t.value = 1.0
+        >>> float(r), float(sg.sphere(r).distance((3, 0, 0)))
+        (1.5, 1.5)
     """
     what = "keyframes"
     if ease not in EASES:

@@ -65,12 +65,28 @@ class Turntable(CameraPath):
 
 def turntable(distance: float | None = None, pitch: float = 20.0, target: Sequence[float] | None = None,
               fov: float = 45.0, yaw: float = 30.0, turns: float = 1.0, period: float | None = None) -> Turntable:
-    """A camera orbiting ``target`` at ``distance`` and ``pitch`` (degrees), starting at ``yaw``.
+    """A camera orbiting a target, for ``sg.animate(..., camera=sg.turntable(...))``.
 
-    It makes ``turns`` turns over the animation (frames at i / fps, so a 1-turn clip loops
-    without a repeated frame), or one turn per ``period`` seconds if given. Without
-    ``distance`` / ``target`` it frames the scene's bounds (the target is the centre of the
-    scene's box).
+    Args:
+        distance: eye-to-target distance in scene units, > 0 (default: what frames the
+            scene's bounds at ``fov``).
+        pitch: elevation above the target's horizontal plane in degrees, in [-89.9, 89.9].
+        target: the 3-vector it orbits (default: the centre of the scene's box, or the
+            origin when there is no scene).
+        fov: vertical field of view in degrees.
+        yaw: the starting turn about the Y axis in degrees, as ``OrbitCamera`` (0 looks
+            along -Z from +Z); the turntable adds 360 degrees per turn.
+        turns: full turns over the clip; frames are at ``i / fps``, so a 1-turn clip loops
+            without a repeated frame.
+        period: seconds per turn; when given it replaces ``turns`` (a clip of any length).
+
+    Returns a :class:`Turntable`; ``.camera(t, duration, scene)`` is its ``OrbitCamera``
+    at ``t`` seconds into a clip of ``duration`` seconds.
+
+    Example:
+        >>> tt = sg.turntable(distance=5, pitch=20, yaw=0)
+        >>> tt.camera(1.0, 4.0)  # a quarter of the way through a 4 s clip
+        OrbitCamera(target=(0.0, 0.0, 0.0), distance=5, yaw=90, pitch=20, fov=45)
     """
     return Turntable(distance, pitch, target, fov, yaw, turns, period)
 
@@ -106,6 +122,7 @@ class LookAtPath(CameraPath):
             raise ParameterError(f"{what}: ease must be one of {', '.join(PATH_EASES)}, got {ease!r}")
         self.ease = ease
         self.up = v.vector(what, "up", up, nonzero=True)
+        fov = v.scalar(what, "fov", fov, positive=True)
         rows = []
         for i, (t, key) in enumerate(_keys(keys, what)):
             if isinstance(key, Mapping):
@@ -144,9 +161,25 @@ class LookAtPath(CameraPath):
 
 def camera_path(keys: Mapping[float, Any] | Sequence[tuple[float, Any]], ease: str = "spline",
                 up: Sequence[float] = (0.0, 1.0, 0.0), fov: float = 45.0) -> LookAtPath:
-    """A look-at camera through keyframes ``{seconds: (eye, target)}`` or ``{seconds: {"eye", "target", "fov"}}``.
+    """A look-at camera moving through keyframes, held before the first key and after the last.
 
-    ``ease``: "spline" (Catmull-Rom: passes through every key without stopping), "linear"
-    or "smooth" (eases in and out of every key). Held before the first and after the last key.
+    Args:
+        keys: ``{seconds: (eye, target)}`` or ``{seconds: {"eye": ..., "target": ...,
+            "fov": ...}}`` (target defaults to the origin, fov to ``fov``), or a list of
+            ``(seconds, key)`` pairs; times strictly increasing, eye and target 3-vectors
+            in scene units, each key a valid camera (eye != target).
+        ease: "spline" (Catmull-Rom: passes through every key without stopping), "linear"
+            or "smooth" (eases in and out of every key, stopping at each).
+        up: the world up direction (3-vector, not zero) the cameras keep level to.
+        fov: vertical field of view in degrees for keys that give none, > 0.
+
+    Returns a :class:`LookAtPath`: ``.camera(t)`` is the ``Camera`` at ``t`` seconds,
+    interpolated in float64 on the CPU (the camera is uniforms: moving it never recompiles);
+    ``.duration`` is the time of the last key.
+
+    Example:
+        >>> path = sg.camera_path({0: ((6, 2, 0), (0, 0, 0)), 2: ((0, 2, 6), (0, 0, 0))}, ease="linear")
+        >>> path.camera(1.0).eye.tolist(), path.duration
+        ([3.0, 2.0, 3.0], 2.0)
     """
     return LookAtPath(keys, ease, up, fov)

@@ -159,13 +159,17 @@ class VideoWriter(FrameWriter):
         # yuv420p needs even sizes: macro_block_size=2 lets imageio-ffmpeg round an odd size up
         self._gen = imageio_ffmpeg.write_frames(str(self._tmp), self.size, fps=self.fps, codec=codec, quality=None,
                                                 macro_block_size=2, ffmpeg_log_level="error", output_params=out)
-        self._started = False
+        # Start ffmpeg now, before any frame is drawn: its launch forks, and sdfgl's at-fork
+        # handler replaces the GL context (see sdfgl.gl.context), which would cost the clip's
+        # program a second compile if it came after the first frame.
+        try:
+            self._gen.send(None)
+        except (OSError, RuntimeError) as exc:
+            self.abort()
+            raise SdfglError(f"video '{self.path}': ffmpeg failed to start: {exc}") from exc
 
     def _write(self, frame: np.ndarray) -> None:
         try:
-            if not self._started:
-                self._gen.send(None)
-                self._started = True
             self._gen.send(frame)
         except (OSError, RuntimeError) as exc:
             self.abort()

@@ -29,7 +29,19 @@ MB = 1 << 20
 
 @dataclass(frozen=True)
 class CacheBudget:
-    """Limits of a renderer's GL caches; ``None`` means unbounded."""
+    """Limits of a renderer's GL caches, least recently used entries evicted first.
+
+    Args:
+        programs: compiled shader programs kept (default 32); None: unbounded.
+        data_mb: megabytes of data textures (unions kept as data) kept (default 256).
+        targets_mb: megabytes of render targets (one set per image size and outputs) kept
+            (default 256).
+
+    Example:
+        >>> sg.CacheBudget(programs=8).programs
+        8
+        >>> r = sg.Renderer(budget=sg.CacheBudget(programs=4))
+    """
 
     programs: int | None = 32
     data_mb: float | None = 256.0
@@ -52,7 +64,18 @@ _budget = CacheBudget()
 
 def cache_budget(**limits: int | float | None) -> CacheBudget:
     """Set any of ``programs``, ``data_mb``, ``targets_mb`` for every renderer without a budget of
-    its own; return the budget now in force (call with no arguments to read it)."""
+    its own; return the budget now in force (call with no arguments to read it).
+
+    Args:
+        limits: ``programs`` (count), ``data_mb`` and ``targets_mb`` (megabytes), each a
+            number >= 1 or None (unbounded); see :class:`CacheBudget`.
+
+    Example:
+        >>> old = sg.cache_budget()
+        >>> sg.cache_budget(programs=64).programs
+        64
+        >>> _ = sg.cache_budget(programs=old.programs)
+    """
     global _budget
     names = {f.name for f in fields(CacheBudget)}
     unknown = sorted(set(limits) - names)

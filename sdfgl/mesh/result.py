@@ -3,21 +3,41 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from ..nodes.base import Node
 from .lattice import Lattice
 
+if TYPE_CHECKING:  # pragma: no cover - imported where report() runs
+    from .report import MeshReport
+
 
 @dataclass(eq=False)
 class Mesh:
-    """A triangle mesh of a scene's solid.
+    """A triangle mesh of a scene's solid, as ``sg.mesh(scene, ...)`` returns it.
 
-    ``vertices`` float64 (N, 3); ``faces`` int64 (M, 3), counter-clockwise seen from outside;
-    ``normals`` float64 (N, 3) unit field gradients at the vertices; ``colors`` float32
-    (N, 3) the scene's colour field at the vertices (0..1) or None.
+    Attributes:
+        vertices: float64 (N, 3) positions in scene units, projected onto the surface.
+        faces: int64 (M, 3) vertex indices, counter-clockwise seen from outside.
+        normals: float64 (N, 3) unit field gradients at the vertices.
+        colors: float32 (N, 3) the scene's colour field at the vertices (linear 0..1), or
+            None when meshed with ``colors=False``.
+        scene: the node it was meshed from; lattice: the sampling lattice (``step`` is its
+            cell size); mode: "mc" (marching cubes) or "sharp" (dual contouring).
+        timings: seconds per stage (``extract_s``, ``project_s``, ``total_s``).
+        samples: field samples the extraction took.
+
+    ``save(path)`` writes STL/OBJ/PLY/glTF/3MF by suffix, ``to_trimesh()`` hands it to
+    trimesh, ``report()`` measures it against the field.
+
+    Example:
+        >>> m = sg.mesh(sg.sphere(1), resolution=8)
+        >>> m.faces.shape[1], m.faces.dtype.name, m.vertices.shape == m.normals.shape
+        (3, 'int64', True)
+        >>> bool(abs((m.vertices ** 2).sum(axis=1) ** 0.5 - 1).max() < 1e-3)  # on the unit sphere
+        True
     """
 
     vertices: np.ndarray
@@ -52,7 +72,7 @@ class Mesh:
         from .writers import write
         return write(self, Path(path), **options)
 
-    def report(self, twin_samples: int = 20000, volume_resolution: int = 128) -> "MeshReport":  # noqa: F821
+    def report(self, twin_samples: int = 20000, volume_resolution: int = 128) -> MeshReport:
         """Accuracy of the mesh against the float64 twin (see :class:`sdfgl.mesh.report.MeshReport`)."""
         from .report import measure
         return measure(self, twin_samples, volume_resolution)

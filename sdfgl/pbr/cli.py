@@ -6,11 +6,13 @@ import sys
 import time
 from typing import Callable
 
+from ..cli_common import add_camera_arguments, camera_from_args, require_scene
+
 
 def add_parser(sub: argparse._SubParsersAction, size_type: Callable[[str], tuple[int, int]]) -> None:
     """Register the ``pbr`` subcommand."""
     p = sub.add_parser("pbr", help="path-trace a scene file (or the demo) with Mitsuba 3 (extra sdfgl[pbr])")
-    p.add_argument("scene", nargs="?", help="Python file defining 'scene' (and optionally 'camera')")
+    p.add_argument("scene", nargs="?", help="scene file: Python defining 'scene' (and optionally 'camera'), or .json")
     p.add_argument("--demo", action="store_true", help="render the built-in showcase scene")
     p.add_argument("-o", "--output", default="pbr.png",
                    help="image path: .png/.jpg (8-bit, gamma 2.2), .exr (linear float) or .npy (default pbr.png)")
@@ -25,10 +27,8 @@ def add_parser(sub: argparse._SubParsersAction, size_type: Callable[[str], tuple
     p.add_argument("--exposure", type=float, default=1.0, help="multiply the radiance before encoding (default 1)")
     p.add_argument("--variant", help="Mitsuba variant (default: llvm_ad_rgb when it works here, else scalar_rgb)")
     p.add_argument("--seed", type=int, default=0, help="sampler seed (default 0)")
-    p.add_argument("--yaw", type=float, help="orbit camera yaw in degrees")
-    p.add_argument("--pitch", type=float, help="orbit camera pitch in degrees")
-    p.add_argument("--distance", type=float, help="orbit camera distance")
     p.add_argument("--quiet", action="store_true", help="no progress line")
+    add_camera_arguments(p)
     p.set_defaults(func=cmd_pbr)
 
 
@@ -47,10 +47,11 @@ def _progress_line() -> Callable[[str, float], None]:
 
 def cmd_pbr(a: argparse.Namespace) -> int:
     """Run ``sdfgl pbr``."""
-    from ..cli import _camera, _load
+    from ..cli import _load
     from .render import render_pbr
+    require_scene(a, "pbr")
     scene, camera, is_demo = _load(a)
-    img = render_pbr(scene, _camera(a, scene, camera), a.size, a.spp, resolution=a.resolution, quality=a.quality,
+    img = render_pbr(scene, camera_from_args(a, scene, camera), a.size, a.spp, resolution=a.resolution, quality=a.quality,
                      ground=a.ground or is_demo, max_depth=a.max_depth, seed=a.seed, variant=a.variant,
                      progress=None if a.quiet else _progress_line())
     path = img.save(a.output, exposure=a.exposure, transparent=a.transparent)

@@ -2,12 +2,12 @@
 from __future__ import annotations
 
 import time
-from typing import Any, Callable
+from typing import Any, Callable, Mapping, Sequence
 
 import numpy as np
 
 from ..camera import Camera
-from ..errors import SdfglError
+from ..errors import ParameterError, SdfglError
 from ..nodes.base import Node
 from .backend import mitsuba
 from .field_grid import Progress
@@ -17,6 +17,17 @@ from .materials import Look
 from .scene import build
 
 PASS_SPP = 16  # samples per pixel per pass: progress is reported between passes
+SCENE_OPTIONS = ("resolution", "quality", "bounds", "material", "sky", "sun", "ground", "max_depth", "extra",
+                 "progress", "variant")  # what to_mitsuba takes besides size and spp
+RENDER_OPTIONS = SCENE_OPTIONS + ("seed",)
+
+
+def check_options(func: str, options: Mapping[str, Any], known: Sequence[str]) -> None:
+    """Refuse option names ``func`` does not take, naming them and listing the ones it does."""
+    unknown = sorted(set(options) - set(known))
+    if unknown:
+        raise ParameterError(f"{func}: unknown option{'s' if len(unknown) > 1 else ''} "
+                             f"{', '.join(repr(u) for u in unknown)}; it takes size, spp, {', '.join(known)}")
 
 
 def to_mitsuba(scene: Node, camera: Camera | None = None, size: tuple[int, int] = (640, 480), spp: int = 64,
@@ -26,6 +37,7 @@ def to_mitsuba(scene: Node, camera: Camera | None = None, size: tuple[int, int] 
     ``sdf_0``, ``sdf_1``, ... (one ``sdfgrid`` per cubic tile the surface passes through),
     ``sky``, ``sun`` and ``ground`` when asked for. Takes the same options as render_pbr.
     """
+    check_options("to_mitsuba", options, SCENE_OPTIONS)
     variant = options.pop("variant", None)
     mi, _, _ = mitsuba(variant)
     return build(mi, scene, camera, size, spp, **options).scene
@@ -61,6 +73,8 @@ def render_pbr(scene: Node, camera: Camera | None = None, size: tuple[int, int] 
         img = sg.render_pbr(sg.sphere(1) & sg.box(1.5), size=(320, 240), spp=32)
         img.save("pbr.png")
     """
+    if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or not 0 <= seed < 1 << 16:
+        raise ParameterError(f"render_pbr: 'seed' must be an integer in 0..65535, got {seed!r}")
     tv = time.perf_counter()
     mi, chosen, how = mitsuba(variant)
     t0 = time.perf_counter()
