@@ -121,7 +121,7 @@ def cmd_view(a: argparse.Namespace) -> int:
     from .viewer import Viewer
     settings = _settings(a)
     common = dict(size=a.size, target_ms=a.target_ms, adaptive=not a.no_adaptive, max_samples=a.max_samples,
-                  state_file=a.state_file, screenshot_dir=a.screenshot_dir)
+                  state_file=a.state_file, screenshot_dir=a.screenshot_dir, panel=a.panel)
     if a.scene is None or a.demo:
         scene, camera, _ = _load(a)
         v = Viewer(scene, camera_from_args(a, scene, camera), **common, **{**settings, "ground": True})
@@ -191,6 +191,8 @@ def build_parser(argv: Sequence[str] | None = None) -> argparse.ArgumentParser:
     v.add_argument("--max-samples", type=int, default=16, help="jittered samples accumulated when idle (16)")
     v.add_argument("--screenshot-dir", default=".", help="where P saves screenshots (default: here)")
     v.add_argument("--state-file", help="keep a JSON file with the view's state up to date (for scripts)")
+    v.add_argument("--panel", action=argparse.BooleanOptionalAction, default=None,
+                   help="open with the side panel shown / hidden (default: shown if the window is >= 800 wide)")
     add_camera_arguments(v)
     _add_settings(v)
     v.set_defaults(func=cmd_view)

@@ -122,6 +122,7 @@ class Emitter:
         self.data_min = parent.data_min if parent else DATA_MIN  # constants in one node above which they are data
         self._defining: set = set(parent._defining) if parent else set()
         self.results: dict = {}  # (node id, point, colour) -> (node, result variable), in this function
+        self.highlight: Node | None = parent.highlight if parent else None  # the "select" debug view's subtree
 
     # -- bookkeeping -------------------------------------------------------------------
     def enter(self, node: Node) -> None:
@@ -183,6 +184,12 @@ class Emitter:
         if id(grid) not in self.grids:
             self.grids[id(grid)] = (f"g{len(self.grids)}", grid, self.field("albedo"))
         return self.grids[id(grid)][0]
+
+    def mark(self, node: Node, result: str) -> str:
+        """Record the distance of the highlighted subtree in the global gSel (map() only); return ``result``."""
+        if node is self.highlight and self.mode == "dist" and not self.detail:
+            self.lines.append((f"    gSel = min(gSel, abs({result}));", self.owner))
+        return result
 
     def grid_union(self, grid: Any, p: str) -> str:
         """The union kept as data at point ``p``: its distance, or (vec3, distance) in colour
@@ -482,10 +489,12 @@ def _surface_function(channels: Sequence[str]) -> str:
 
 def _emit_map(scene: Node, mode: str, origin: np.ndarray, params: list[Param], shared: set,
               grids: dict, use_grids: bool, helpers: dict, data: DataPool, data_min: int,
-              detail: bool = False, channel: str = "albedo") -> tuple[Emitter, str]:
+              detail: bool = False, channel: str = "albedo",
+              highlight: Node | None = None) -> tuple[Emitter, str]:
     em = Emitter(mode, params=params, channel=channel)
     em.data = data
     em.data_min = data_min
+    em.highlight = highlight
     em.helpers = helpers
     em.detail = detail
     em.shared_keys = shared
@@ -496,7 +505,8 @@ def _emit_map(scene: Node, mode: str, origin: np.ndarray, params: list[Param], s
 
 
 def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.0, 0.0),
-             target: str = "render", dialect: str = "desktop", projection: str = "perspective") -> ShaderSource:
+             target: str = "render", dialect: str = "desktop", projection: str = "perspective",
+             highlight: Node | None = None) -> ShaderSource:
     """Build the fragment shader for ``scene``.
 
     ``origin`` (float64) is the world point that the shader's coordinates are relative
@@ -507,7 +517,8 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     ``"mesh_grid"`` (a lattice of blocks), ``"mesh_gradient"`` (value and gradient at points);
     ``dialect`` is ``"desktop"`` (GLSL 3.30) or ``"webgl2"`` (GLSL ES 3.00): the same
     code under another header (see :mod:`sdfgl.gl.dialect`); ``projection`` is the
-    camera's ("perspective" or "orthographic": it shapes the rays).
+    camera's ("perspective" or "orthographic": it shapes the rays). ``highlight`` is the
+    subtree the "select" debug view tints.
     """
     header = _dialect(dialect).header()
     if not isinstance(scene, Node):
@@ -523,6 +534,9 @@ def _generate(scene: Node, settings: Settings, origin: Sequence[float], target: 
         raise ParameterError(
             f"{scene.label()} is an implicit field, not a distance bound: method {settings.method!r} would step "
             f"through surfaces. Use method='auto' (the default), 'newton', 'forward_newton' or 'reference'.")
+    if (settings.debug == "select") != (highlight is not None and target == "render"):
+        raise ParameterError("debug view 'select' needs a highlighted subtree (generate(..., highlight=node)), "
+                             "and a highlight needs debug='select'")
     org = np.asarray(origin, dtype=np.float64)
     from .nodes.grid import GRID_MIN
     if settings.grid_min is not None:
@@ -590,7 +604,7 @@ def _generate_once(scene: Node, settings: Settings, org: np.ndarray, target: str
     helpers: dict = {}
     tex = DataPool()
     ems = (org, params, shared, grids, settings.grid, helpers, tex, data_min)
-    dist, dist_result = _emit_map(scene, "dist", *ems)
+    dist, dist_result = _emit_map(scene, "dist", *ems, highlight=highlight if target == "render" else None)
     color, color_result = (_emit_map(scene, "color", *ems)
                            if target == "render" or target in EVALUATE_CHANNELS else (None, ""))
     detail, detail_result = (_emit_map(scene, "dist", *ems, True)
@@ -622,6 +636,8 @@ def _generate_once(scene: Node, settings: Settings, org: np.ndarray, target: str
             for line, owner in code:
                 b.add(line, owner)
     data = tex.texture()
+    if highlight is not None and target == "render":
+        b.add("float gSel = 1e30;  // distance of the highlighted subtree at the last map() call", "(debug select)")
     done: set[str] = set()
     _helpers(b, dist, done)
     _function(b, "float map(vec3 p)", dist, dist_result, "{}")

@@ -13,7 +13,7 @@ METHODS = ("auto", "sphere", "relaxed", "enhanced", "newton", "forward_newton", 
 DISTANCE_METHODS = ("auto", "sphere", "relaxed", "enhanced")
 DEFAULT_OMEGA = {"relaxed": 1.6, "enhanced": 0.9}
 HIT_MODES = ("cone", "relative", "absolute")
-DEBUG_VIEWS = (None, "steps", "normal", "depth")
+DEBUG_VIEWS = (None, "steps", "normal", "depth", "select")
 # Settings become float32 literals and uniforms: magnitudes must stay inside what float32
 # holds (3.4e38) with room for the shader's arithmetic, and below its stand-in for infinity
 # (codegen.GLSL_FAR, 1e30); positive ones must not round to zero (float32's smallest normal is 1.2e-38).
@@ -65,7 +65,8 @@ class Settings:
         marched to the far side of its box, whatever max_dist says).
     outputs: which images the draw writes (color always).
     debug: None, or a debug view shown instead of the shaded image: "steps" (heat map of
-        map() calls), "normal" or "depth".
+        map() calls), "normal", "depth" or "select" (grey, tinted where the subtree given to
+        generate() as ``highlight`` is the nearest surface; the viewer's scene tree uses it).
     grid: keep big unions of simple primitives as data with a cell grid (False writes
         them out as code, to compare).
     analytic: intersect a lone sphere or plane in closed form instead of marching it.
@@ -144,7 +145,8 @@ class Settings:
         for name in ("hit_scale", "max_dist"):
             object.__setattr__(self, name, float32_setting(name, getattr(self, name)))
         if self.debug not in DEBUG_VIEWS:
-            raise ParameterError(f"setting 'debug' must be None, 'steps', 'normal' or 'depth', got {self.debug!r}")
+            raise ParameterError(f"setting 'debug' must be None, 'steps', 'normal', 'depth' or 'select', "
+                                 f"got {self.debug!r}")
         for name, low in (("grid_min", 2), ("code_budget", 1000)):
             val = getattr(self, name)
             if (val is not None or name == "code_budget") and (isinstance(val, bool) or not isinstance(val, int)

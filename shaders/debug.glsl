@@ -11,6 +11,15 @@ vec3 debugView(vec3 ro, vec3 rd) {
     // 0 steps black, then blue -> green -> red on a log scale up to MAX_STEPS
     if (h.steps == 0) return vec3(0.0);
     return pow(heat(log2(float(h.steps)) / log2(float(MAX_STEPS))), vec3(2.2));
+#elif defined(DEBUG_SELECT)
+    // grey, tinted where the highlighted subtree is the surface that was hit
+    if (h.t < 0.0) return vec3(0.0);
+    vec3 nor = hitNormal(ro, rd, h);
+    vec3 grey = vec3(0.12 + 0.5 * max(dot(nor, normalize(vec3(0.5, 0.8, 0.3))), 0.0));
+    if (h.ground) return grey * 0.6;
+    gSel = 1e30;
+    float d = abs(map(ro + rd * h.t));
+    return gSel <= 2.0 * d + 1e-3 * (h.t + SCENE_SCALE) ? grey * vec3(1.0, 0.45, 0.1) * 2.0 : grey;
 #elif defined(DEBUG_NORMAL)
     if (h.t < 0.0) return vec3(0.0);
     return pow(0.5 + 0.5 * hitNormal(ro, rd, h), vec3(2.2));

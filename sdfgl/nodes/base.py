@@ -241,11 +241,11 @@ class Node(Recorded, register=False):
         if self.children and em.shared_keys and self.key in em.shared_keys and self.key not in em._defining:
             # a subtree that occurs more than once in the scene is one GLSL function
             fn = em.function(self)
-            out = em.assign("float" if em.mode == "dist" else "vec4", f"{fn}({em.point(p)})")
+            out = em.mark(self, em.assign("float" if em.mode == "dist" else "vec4", f"{fn}({em.point(p)})"))
         else:
             em.enter(self)
             try:
-                out = self._emit(em, p)
+                out = em.mark(self, self._emit(em, p))
             finally:
                 em.leave()
         em.results[memo] = (self, out)  # the node is held, so its id stays unique
