@@ -523,11 +523,11 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     header = _dialect(dialect).header()
     if not isinstance(scene, Node):
         raise ParameterError(f"scene must be an sdfgl node, got {type(scene).__name__} {scene!r}")
-    return run_deep(scene, lambda: _generate(scene, settings, origin, target, header, projection))
+    return run_deep(scene, lambda: _generate(scene, settings, origin, target, header, projection, highlight))
 
 
 def _generate(scene: Node, settings: Settings, origin: Sequence[float], target: str, header: str,
-              projection: str) -> ShaderSource:
+              projection: str, highlight: Node | None = None) -> ShaderSource:
     """generate(), within the code-size budget."""
     settings = settings.resolved(scene.exactness)
     if scene.exactness == IMPLICIT and target == "render" and settings.method in DISTANCE_METHODS:
@@ -541,14 +541,15 @@ def _generate(scene: Node, settings: Settings, origin: Sequence[float], target: 
     from .nodes.grid import GRID_MIN
     if settings.grid_min is not None:
         _unions_as_data(scene, settings.grid_min)
-    src = _generate_once(scene, settings, org, target, header, projection)
+    src = _generate_once(scene, settings, org, target, header, projection, highlight=highlight)
     src = dataclasses.replace(src, grid_min=settings.grid_min or GRID_MIN)
     if src.code_size <= settings.code_budget or not settings.grid or settings.grid_min is not None:
         return _checked(src)
     # over the budget: every hard union of two or more instances becomes data, and every
     # node with more than a few constant rows keeps them in a texture
     before = _unions_as_data(scene, BUDGET_GRID_MIN)
-    small = _generate_once(scene, settings, org, target, header, projection, data_min=BUDGET_DATA_MIN)
+    small = _generate_once(scene, settings, org, target, header, projection, data_min=BUDGET_DATA_MIN,
+                           highlight=highlight)
     if small.code_size >= src.code_size:  # nothing to gain: the scene stays code
         _restore(scene, before)
         return _checked(src)
@@ -597,7 +598,7 @@ def _checked(src: ShaderSource) -> ShaderSource:
 
 
 def _generate_once(scene: Node, settings: Settings, org: np.ndarray, target: str, header: str,
-                   projection: str, data_min: int = DATA_MIN) -> ShaderSource:
+                   projection: str, data_min: int = DATA_MIN, highlight: Node | None = None) -> ShaderSource:
     params: list[Param] = []
     shared = shared_subtrees(scene, settings.grid)
     grids: dict = {}
