@@ -11,7 +11,7 @@ from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
-from .lattice import BLOCK, Lattice
+from .lattice import Lattice
 
 
 def separate(vol: np.ndarray, step: float) -> None:
@@ -24,10 +24,10 @@ def separate(vol: np.ndarray, step: float) -> None:
 def _chunk(ch, lat: Lattice) -> tuple[np.ndarray, ...]:  # noqa: ANN001
     """One chunk's crossing edges (lower sample, axis, t, lower end inside) and crossing cells
     (lower corner, case)."""
-    B = BLOCK
+    B = ch.block
     f = ch.fine.copy()
     separate(f, lat.step)
-    base = (np.asarray(ch.origin, np.int64) + ch.active) * B  # (K, 3) lower sample of each block
+    base = ch.base  # (K, 3) lower sample of each cube
     inside = (f < 0).view(np.uint8)
     case = np.zeros((len(f), B, B, B), np.uint8)
     for c in range(8):
