@@ -137,7 +137,8 @@ def _chunk(ch, lat: Lattice) -> Part:  # noqa: ANN001
     separate(v0, h)
     separate(v1, h)
     origin = np.asarray(ch.origin, np.int64) * BLOCK
-    p = local[vc] + origin.astype(np.float64)
+    lv = local[vc]
+    p = lv + origin.astype(np.float64)
     p[np.arange(len(va)), va] += v0 / (v0.astype(np.float64) - v1)
     verts = lat.start + p * h
     # triangles: table edges -> entries of the chunk's vertex table
@@ -156,7 +157,6 @@ def _chunk(ch, lat: Lattice) -> Part:  # noqa: ANN001
     ext = np.flatnonzero(faces < 0)  # vertices a cell of the next chunk holds
     e_ext = _STEP_EDGE[steps.reshape(-1)[ext]]
     ext_key = edge_keys(origin + local[ci[ext // 3]] + EDGE_OFFSET[e_ext], EDGE_AXIS[e_ext], lat.cells)
-    lv = local[vc]
     seam_vid = np.flatnonzero(lv[:, 0] * lv[:, 1] * lv[:, 2] == 0)  # vertices on the chunk's lower faces
     seam_key = edge_keys(origin + lv[seam_vid], va[seam_vid], lat.cells)
     cand = np.flatnonzero(_HAS_ON_FACE[cc])
