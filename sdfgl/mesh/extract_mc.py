@@ -8,7 +8,7 @@ crossing cells (the surface), not the volume of the lattice.
 
 Every crossing edge belongs to the cell at its lower end (it is that cell's edge 0, 4 or 8,
 and that cell crosses too), so a chunk numbers its vertices cell by cell and finds the
-vertex of any cell edge through a dense table of its crossing cells: no sort, no search.
+vertex of any cell edge through a dense chunk-sized table of vertex numbers: no sort, no search.
 Only edges owned by a cell of the next chunk (the chunk's upper faces) are matched by key,
 against the vertices the other chunks hold on their lower faces. Chunks are analysed on a
 worker thread while the GPU samples the next ones (numpy releases the GIL in these loops).
@@ -26,7 +26,7 @@ from .crossings import separate
 from .lattice import BLOCK, CHUNK, Lattice
 
 _CELLS = CHUNK * BLOCK  # cells per chunk side
-_S = _CELLS + 1         # side of a chunk's cell table: one layer more, always empty (next chunk)
+_S = _CELLS + 1         # side of a chunk's vertex table: one layer more, always empty (next chunk)
 # the vertices a cell owns: its crossing edges among edges 0, 4, 8 (from corner 0 along x, y, z)
 _OWNS = ((np.arange(256)[:, None] ^ np.arange(256)[:, None] >> np.array([1, 2, 4])) & 1).astype(bool)
 # a chunk's vertex table has entry 3 * cell + axis (cell = (x * _S + y) * _S + z, chunk-local) for
@@ -92,15 +92,20 @@ def _cases(inside: np.ndarray) -> np.ndarray:
     return y[:, :-1] | y[:, 1:] << np.uint8(1)
 
 
-class _Table(threading.local):
-    """A worker thread's chunk-sized vertex table (-1: none), reset after each use at the
-    entries it set (allocating it per chunk would cost more than the chunk)."""
-
-    def __init__(self) -> None:
-        self.verts = np.full(3 * _S ** 3, -1, np.int32)
+_TABLES: list[np.ndarray] = []  # spare vertex tables, all -1 (25 MB each; kept for the next mesh)
+_TABLES_LOCK = threading.Lock()
 
 
-_TABLE = _Table()
+def _take_table() -> np.ndarray:
+    with _TABLES_LOCK:
+        if _TABLES:
+            return _TABLES.pop()
+    return np.full(3 * _S ** 3, -1, np.int32)
+
+
+def _give_table(table: np.ndarray) -> None:
+    with _TABLES_LOCK:
+        _TABLES.append(table)
 
 
 def _cube_lookup(B: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -148,12 +153,11 @@ def _chunk(ch, lat: Lattice) -> Part:  # noqa: ANN001
     row = (_TRI_FIRST[cc] - first)[ci] + np.arange(len(ci), dtype=np.int32)
     steps = _TRI_FLAT[row]                                                 # (M, 3) table offsets
     entry = 3 * cf[vc] + va
-    table = _TABLE.verts
+    table = _take_table()
     table[entry] = np.arange(len(entry), dtype=np.int32)
-    try:
-        faces = table[(3 * cf)[ci][:, None] + steps].reshape(-1)
-    finally:
-        table[entry] = -1
+    faces = table[(3 * cf)[ci][:, None] + steps].reshape(-1)
+    table[entry] = -1  # (a table an exception leaves dirty is not given back)
+    _give_table(table)
     ext = np.flatnonzero(faces < 0)  # vertices a cell of the next chunk holds
     e_ext = _STEP_EDGE[steps.reshape(-1)[ext]]
     ext_key = edge_keys(origin + local[ci[ext // 3]] + EDGE_OFFSET[e_ext], EDGE_AXIS[e_ext], lat.cells)

@@ -4,8 +4,10 @@ A cube of n^3 cells lies inside a ball of radius r = n * step * sqrt(3) / 2 abou
 centre c. With a Lipschitz factor L, |f(c)| > L * r means no point of the cube is on the
 surface, and every sample of it has the sign of f(c). One draw tests the centres of the
 BLOCK^3-cell blocks of a chunk; a second tests the 8 FINE^3-cell sub-blocks of each block
-kept; only the sub-blocks kept then are sampled finely (the band of kept sub-blocks is about
-half as thick as the band of blocks, so this takes about 40 % fewer fine samples at 2^22).
+kept; only the sub-blocks kept then are sampled finely. The band of kept sub-blocks is about
+half as thick as the band of blocks; with their shared faces sampled twice this takes a
+quarter fewer samples on fogleman's CSG example at 2^22 (1.89 M, was 2.54 M) and 30 % fewer
+at 1024^3 (8.1e7, was 1.15e8).
 Fields without a bound (L = inf: implicit fields) keep every block, sampled as whole blocks.
 """
 from __future__ import annotations
