@@ -94,6 +94,13 @@ def test_gpu_lattice_matches_the_twin():
     for b, c in enumerate(corners):
         p = -1.1 + (c + np.stack(np.meshgrid(i, i, i, indexing="ij"), -1)) * 0.07
         assert np.abs(v[b] - s.distance(p)).max() < 1e-5
+    # more blocks than one texture row holds (4096), 5^3 samples each (not a multiple of 4 a texel)
+    corners = np.random.default_rng(1).integers(0, 40, (5000, 3))
+    v = f.blocks(np.full(3, -1.1), corners, 5, 0.05)
+    i = np.arange(5)
+    grid = np.stack(np.meshgrid(i, i, i, indexing="ij"), -1)
+    p = -1.1 + (corners[:, None, None, None, :] + grid) * 0.05
+    assert np.abs(v - s.distance(p.reshape(-1, 3)).reshape(v.shape)).max() < 1e-5
     pts = np.array([[0.8, 0.6, 0.1], [0.2, -0.1, 0.3]])
     val, grad = f.gradient(pts, 1e-3)
     assert np.allclose(val, s.distance(pts), atol=1e-5)

@@ -11,12 +11,11 @@ and that cell crosses too), so a chunk numbers its vertices cell by cell and fin
 vertex of any cell edge through a dense chunk-sized table of vertex numbers: no sort, no search.
 Only edges owned by a cell of the next chunk (the chunk's upper faces) are matched by key,
 against the vertices the other chunks hold on their lower faces. Chunks are analysed on a
-worker thread while the GPU samples the next ones (numpy releases the GIL in these loops).
+worker thread while the GPU samples the next ones (sdfgl.mesh.sparse.analysed).
 """
 from __future__ import annotations
 
 import threading
-from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
 import numpy as np
@@ -24,6 +23,7 @@ import numpy as np
 from .cells import EDGE_AXIS, EDGE_OFFSET, TRIANGLES
 from .crossings import separate
 from .lattice import BLOCK, CHUNK, Lattice
+from .sparse import analysed
 
 _CELLS = CHUNK * BLOCK  # cells per chunk side
 _S = _CELLS + 1         # side of a chunk's vertex table: one layer more, always empty (next chunk)
@@ -207,16 +207,9 @@ def _first_copies(faces: np.ndarray, candidates: np.ndarray) -> np.ndarray:
 
 def march(chunks, lat: Lattice) -> tuple[np.ndarray, np.ndarray]:  # noqa: ANN001
     """(vertices (N, 3) world, triangles (M, 3) int64, wound counter-clockwise seen from
-    outside; no degenerate or repeated triangles, every vertex used)."""
-    parts: list[Part] = []
-    pending: list = []
-    with ThreadPoolExecutor(max_workers=1) as pool:
-        for ch in chunks:
-            pending.append(pool.submit(_chunk, ch, lat))
-            while len(pending) > 2:  # bounded memory: at most a few chunks in flight
-                parts.append(pending.pop(0).result())
-        parts += [p.result() for p in pending]
-    parts = [p for p in parts if len(p.verts)]
+    outside; no degenerate or repeated triangles, every vertex used unless a crossing edge
+    lies in a block the skip test dropped, whose triangles are then left out)."""
+    parts = [p for p in analysed(chunks, _chunk, lat) if len(p.verts)]
     if not parts:
         return np.zeros((0, 3)), np.zeros((0, 3), np.int64)
     return _merge(parts)

@@ -15,13 +15,15 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass
-from typing import Callable, Iterator
+from concurrent.futures import ThreadPoolExecutor
+from typing import Callable, Iterable, Iterator, TypeVar
 
 import numpy as np
 
 from .lattice import BLOCK, CHUNK, Lattice
 from .sample import GPUField
 
+T = TypeVar("T")
 MARGIN = 1.05  # head-room on the bound for float32 evaluation
 FINE = 4       # cells per side of the sub-blocks sampled finely (BLOCK is a multiple of it)
 
@@ -84,6 +86,20 @@ def chunks(field: GPUField, lat: Lattice, lipschitz: float,
             continue
         fine = field.blocks(lat.start, o * BLOCK + act, side + 1, h)
         yield Chunk(tuple(int(x) for x in o), side, act, fine)  # type: ignore[arg-type]
+
+
+def analysed(parts: Iterable[Chunk], work: Callable[..., T], *args: object, workers: int = 1) -> list[T]:
+    """[work(chunk, *args) for each chunk], run on worker threads while the GPU samples the
+    next chunks (numpy releases the GIL in these loops); at most a few chunks wait in memory."""
+    out: list[T] = []
+    pending: list = []
+    with ThreadPoolExecutor(max_workers=workers) as pool:
+        for ch in parts:
+            pending.append(pool.submit(work, ch, *args))
+            while len(pending) > workers + 1:
+                out.append(pending.pop(0).result())
+        out += [p.result() for p in pending]
+    return out
 
 
 class Progress:
