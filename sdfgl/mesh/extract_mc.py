@@ -126,7 +126,8 @@ def _chunk(ch, lat: Lattice) -> Part:  # noqa: ANN001
     case = _cases((f < 0).view(np.uint8))
     flat = np.flatnonzero((case - np.uint8(1)) < 254).astype(np.int32)   # cases 1..254: crossing cells
     cc = case.reshape(-1)[flat]
-    kb, r = np.divmod(flat, np.int32(B ** 3))
+    shift = (B ** 3).bit_length() - 1                                     # cubes are 4^3 or 8^3 cells
+    kb, r = flat >> shift, flat & np.int32(B ** 3 - 1)
     ijk, sample_off, cell_off = _CUBES[B]
     active = ch.active.astype(np.int32)
     local = active[kb] + ijk[r]                                            # chunk-local cell
