@@ -49,7 +49,8 @@ def mesh(scene: Node, step: float | None = None, resolution: int | None = None, 
         verts, faces = dual_contour(parts, lat, field)
     t1 = time.perf_counter()
     verts, normals = project(field, verts, lat.step)
-    verts, faces, normals = clean(verts, faces, normals)
+    if mode != "mc":  # march() leaves no degenerate or repeated triangles and no unused vertex
+        verts, faces, normals = clean(verts, faces, normals)
     rgb = field.colors(verts) if colors and len(verts) else None
     t2 = time.perf_counter()
     timings = {"extract_s": t1 - t0, "project_s": t2 - t1, "total_s": t2 - t0}

@@ -7,11 +7,10 @@ samples give equal signs, so the cells on both sides agree).
 """
 from __future__ import annotations
 
-from concurrent.futures import ThreadPoolExecutor
-
 import numpy as np
 
-from .lattice import BLOCK, Lattice
+from .lattice import Lattice
+from .sparse import analysed
 
 
 def separate(vol: np.ndarray, step: float) -> None:
@@ -24,10 +23,10 @@ def separate(vol: np.ndarray, step: float) -> None:
 def _chunk(ch, lat: Lattice) -> tuple[np.ndarray, ...]:  # noqa: ANN001
     """One chunk's crossing edges (lower sample, axis, t, lower end inside) and crossing cells
     (lower corner, case)."""
-    B = BLOCK
+    B = ch.block
     f = ch.fine.copy()
     separate(f, lat.step)
-    base = (np.asarray(ch.origin, np.int64) + ch.active) * B  # (K, 3) lower sample of each block
+    base = ch.base  # (K, 3) lower sample of each cube
     inside = (f < 0).view(np.uint8)
     case = np.zeros((len(f), B, B, B), np.uint8)
     for c in range(8):
@@ -52,16 +51,8 @@ def crossings(chunks, lat: Lattice):  # noqa: ANN001, ANN201
     """All crossing edges, each once: (lower sample (E, 3) int64, axis (E,), t in (0, 1),
     lower end inside (E,) bool), and the cells they touch, sorted by key: (keys, cases
     (0..255), lower corners (C, 3)). Chunks are analysed on a worker thread while the GPU
-    samples the next ones (numpy releases the GIL in these loops)."""
-    parts = []
-    pending: list = []
-    with ThreadPoolExecutor(max_workers=2) as pool:
-        for ch in chunks:
-            pending.append(pool.submit(_chunk, ch, lat))
-            while len(pending) > 3:  # bounded memory: at most a few chunks in flight
-                parts.append(pending.pop(0).result())
-        parts += [p.result() for p in pending]
-    parts = [p for p in parts if len(p[0])]
+    samples the next ones (sdfgl.mesh.sparse.analysed)."""
+    parts = [p for p in analysed(chunks, _chunk, lat, workers=2) if len(p[0])]
     if not parts:
         return None
     low, axis, t, ins, g, cs = (np.concatenate(x) for x in zip(*parts))

@@ -90,13 +90,14 @@ class GPUField:
         for s in range(0, len(corners), batch):
             part = corners[s:s + batch]
             n = len(part) * per
-            w = min(_WIDTH, n)
-            h = -(-n // w)
+            texels = -(-n // 4)  # four samples a texel
+            w = min(_WIDTH, texels)
+            h = -(-texels // w)
             bw = min(len(part), 4096)
             prog["uBlocksWidth"].value = bw
             prog["uWidth"].value = w
-            vals = self._draw(prog, w, h, 1, part.astype(np.float32), bw)
-            out[s:s + len(part)] = vals[:n, 0].reshape(len(part), size, size, size)
+            vals = self._draw(prog, w, h, 4, part.astype(np.float32), bw)
+            out[s:s + len(part)] = vals.reshape(-1)[:n].reshape(len(part), size, size, size)
         self.samples += len(corners) * per
         return out
 
