@@ -112,21 +112,8 @@ def _nested(value: Any) -> list["Recorded"]:
 def _postorder(root: "Recorded") -> list["Recorded"]:
     """Every recorded object reachable through constructor arguments, each after those it
     was built from (iterative)."""
-    order: list[Recorded] = []
-    seen = {id(root)}
-    stack: list[tuple[Recorded, bool]] = [(root, False)]
-    while stack:
-        node, expanded = stack.pop()
-        if expanded:
-            order.append(node)
-            continue
-        stack.append((node, True))
-        _, args, kwargs = node.constructor
-        for child in _nested((args, kwargs)):
-            if id(child) not in seen:
-                seen.add(id(child))
-                stack.append((child, False))
-    return order
+    from .traverse import walk
+    return walk(root, lambda n: _nested(n.constructor[1:]))[0]
 
 
 def _to_refs(value: Any, index: dict[int, int]) -> Any:

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import sys
 import threading
-from typing import TYPE_CHECKING, Any, Callable, Iterator, TypeVar
+from typing import TYPE_CHECKING, Any, Callable, Iterator, Sequence, TypeVar
 
 if TYPE_CHECKING:  # pragma: no cover
     from .base import Node
@@ -20,26 +20,53 @@ MAX_DEPTH = 1_000_000    # nesting deeper than this is refused with a message
 _STACK_BYTES = 1 << 30   # per level: a few Python frames of a few hundred bytes each
 
 
-def postorder(root: "Node", skip: Callable[["Node"], bool] = lambda n: False) -> Iterator["Node"]:
-    """Each distinct node under ``root`` once, children before parents; the subtree of a
-    node for which ``skip`` is true is not entered (nor is the node yielded)."""
-    seen: set[int] = set()
-    if skip(root):
+def _children(node: Any) -> Sequence[Any]:
+    return node.children
+
+
+def postorder(root: "Node", skip: Callable[["Node"], bool] | None = None,
+              kids: Callable[[Any], Sequence[Any]] = _children) -> Iterator["Node"]:
+    """Each distinct node under ``root`` once, children before parents (in their order); the
+    subtree of a node for which ``skip`` is true is not entered (nor is the node yielded).
+    ``kids`` gives a node's children (default: ``node.children``; pickling and scene
+    documents walk the nodes in constructor arguments)."""
+    if skip is not None and skip(root):
         return
-    stack: list[tuple["Node", int]] = [(root, 0)]
-    seen.add(id(root))
+    seen = {id(root)}
+    stack: list[tuple[Any, Iterator[Any]]] = [(root, iter(kids(root)))]
     while stack:
-        node, i = stack[-1]
-        kids = node.children
-        if i < len(kids):
-            stack[-1] = (node, i + 1)
-            c = kids[i]
-            if id(c) not in seen and not skip(c):
+        node, it = stack[-1]
+        for c in it:
+            if id(c) not in seen and (skip is None or not skip(c)):
                 seen.add(id(c))
-                stack.append((c, 0))
-            continue
-        stack.pop()
-        yield node
+                stack.append((c, iter(kids(c))))
+                break
+        else:
+            stack.pop()
+            yield node
+
+
+def walk(root: Any, kids: Callable[[Any], Sequence[Any]] = _children) -> tuple[list[Any], dict[int, int]]:
+    """(every distinct node under ``root`` children first, uses): ``uses[id(n)]`` counts the
+    references to ``n`` from its parents (a child listed twice counts twice; the root
+    counts one). ``kids`` is called once per distinct node."""
+    order: list[Any] = []
+    uses = {id(root): 1}
+    stack: list[tuple[Any, Iterator[Any]]] = [(root, iter(kids(root)))]
+    while stack:
+        node, it = stack[-1]
+        for c in it:
+            k = id(c)
+            if k in uses:
+                uses[k] += 1
+                continue
+            uses[k] = 1
+            stack.append((c, iter(kids(c))))
+            break
+        else:
+            stack.pop()
+            order.append(node)
+    return order, uses
 
 
 def cached(node: "Node", name: str, compute: Callable[["Node"], T]) -> T:
