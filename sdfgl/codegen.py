@@ -20,7 +20,7 @@ from . import shaderlib
 from .errors import ParameterError
 from .gl.dialect import dialect as _dialect
 from .nodes.base import IMPLICIT, Node
-from .nodes.traverse import run_deep
+from .nodes.traverse import FACTS, fact, run_deep
 from .params import Live, Param
 from .look.lights import DEFAULT_LIGHTS
 from .look.shading import background_code, shade_function, shadow_code, shadow_kinds
@@ -465,18 +465,21 @@ def shared_subtrees(scene: Node, use_grids: bool = True) -> set:
 def material_channels(scene: Node) -> list[str]:
     """The colour passes the scene needs besides albedo: "surface" where some node sets
     specular, shininess or metallic, "emission" where some node sets an emission."""
-    from .nodes.transforms import Material
-    names: set[str] = set()
-    stack, seen = [scene], set()
-    while stack:
-        n = stack.pop()
-        if id(n) in seen:
-            continue
-        seen.add(id(n))
-        if isinstance(n, Material):
-            names.update(n.fields)
-        stack.extend(n.children)
+    names = fact(scene, "_fields")
     return [ch for ch in ("surface", "emission") if any(f in names for f in CHANNELS[ch])]
+
+
+def _material_fields(n: Node) -> frozenset:
+    """The material fields some Material at or under ``n`` sets (children's cached values);
+    a Material (and only a Material) has a ``fields`` dict."""
+    fields = n.__dict__.get("fields")
+    own = frozenset(fields) if fields else _NONE
+    kids = [f for c in n.children if (f := c.__dict__["_fields"])]
+    return own.union(*kids) if kids else own
+
+
+_NONE: frozenset = frozenset()
+FACTS["_fields"] = _material_fields
 
 
 def _surface_function(channels: Sequence[str]) -> str:

@@ -14,7 +14,7 @@ import numpy as np
 from ..errors import ParameterError
 from ..params import Live, Param, owns_checks
 from .record import Recorded
-from .traverse import SHALLOW, cached, depth, postorder, run_deep
+from .traverse import FACTS, SHALLOW, cached, depth, fact, postorder, run_deep
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..codegen import Emitter
@@ -98,6 +98,35 @@ def _memo_distance(fn: Callable[["Node", np.ndarray], np.ndarray]) -> Callable[[
         return out
     dist.__wrapped__ = fn  # type: ignore[attr-defined]
     return dist
+
+
+def box_of(node: "Node") -> np.ndarray:
+    """``node.bounds`` without the defensive copies: a read-only (2, 3) array (lo, hi).
+
+    Computed once per node without live parameters, children first; a graph deeper than
+    SHALLOW fills its cache bottom-up (no recursion). The cache is one array, not a tuple,
+    so a 10^5-node scene leaves no extra objects for the cyclic garbage collector."""
+    d = node.__dict__
+    hit = d.get("_bounds_cache")
+    if hit is not None:
+        return hit
+    live = d.get("_live_cache")
+    if live is None:
+        live = fact(node, "_live_cache")
+    kids = node.children
+    if kids and not live and depth(node) > SHALLOW and not all("_bounds_cache" in c.__dict__ for c in kids):
+        for n in postorder(node, skip=lambda n: "_bounds_cache" in n.__dict__):
+            if n is not node:
+                box_of(n)
+    b = node._bounds
+    out = np.array(b, dtype=np.float64) if type(b) is np.ndarray else None
+    if out is None or out.shape != (2, 3):
+        out = np.empty((2, 3))
+        out[0], out[1] = _vec3(b[0]), _vec3(b[1])
+    out.flags.writeable = False
+    if not live:
+        d["_bounds_cache"] = out
+    return out
 
 
 class Node(Recorded, register=False):
@@ -295,19 +324,8 @@ class Node(Recorded, register=False):
         """Conservative axis-aligned box (lo, hi) holding the solid; components may be inf.
 
         With live parameters, the box for their current values; without, it is computed once."""
-        hit = self.__dict__.get("_bounds_cache")
-        if hit is None and depth(self) > SHALLOW and not self.live_params():
-            # children first, bottom-up, so deep graphs need no recursion
-            for n in postorder(self, skip=lambda n: "_bounds_cache" in n.__dict__):
-                if n is not self:
-                    n.bounds  # noqa: B018 - fills the cache
-        cached = hit if hit is not None else self.__dict__.get("_bounds_cache")
-        if cached is None:
-            lo, hi = self._bounds
-            cached = (_vec3(lo), _vec3(hi))
-            if not self.live_params():
-                self.__dict__["_bounds_cache"] = cached
-        return cached[0].copy(), cached[1].copy()
+        lo, hi = box_of(self)
+        return lo.copy(), hi.copy()
 
     @property
     def _bounds(self) -> tuple[Any, Any]:
@@ -316,7 +334,7 @@ class Node(Recorded, register=False):
     @property
     def has_detail(self) -> bool:
         """True if some node shades with a more detailed field than it marches (see Displace)."""
-        return cached(self, "_detail", lambda n: n._detail_here() or any(c.__dict__["_detail"] for c in n.children))
+        return fact(self, "_detail")
 
     def _detail_here(self) -> bool:
         """True if this node itself shades with more detail than it marches."""
@@ -324,16 +342,17 @@ class Node(Recorded, register=False):
 
     def live_params(self) -> list["Param"]:
         """The live parameters anywhere in this subtree (the tree is immutable: found once)."""
-        return list(cached(self, "_live_cache", Node._find_live_params))
+        hit = self.__dict__.get("_live_cache")
+        return list(hit if hit is not None else fact(self, "_live_cache"))
 
-    def _find_live_params(self) -> list["Param"]:
+    def _find_live_params(self) -> tuple["Param", ...]:
         out: list[Param] = []
         for v in self.params.values():
             if isinstance(v, Live):
                 out += [p for p in v.roots() if p not in out]
         for c in self.children:
             out += [p for p in c.__dict__["_live_cache"] if p not in out]
-        return out
+        return tuple(out)  # () for most nodes: no object for the garbage collector to track
 
     # -- modelling API (fogleman/sdf style) ---------------------------------------------
     def save(self, path: str, **mesh_options: Any) -> Any:
@@ -488,7 +507,20 @@ class Node(Recorded, register=False):
 
 
 _CACHES = ("_m_", "_key", "_token", "_depth", "_bounds_cache", "_live_cache", "_detail", "_dag", "_grid", "_kids",
-           "_seq")
+           "_seq", "_fields", "_facts")
+
+
+def _detail_below(n: Node) -> bool:
+    """has_detail of ``n`` from its children's (cached) values."""
+    if n._detail_here():
+        return True
+    for c in n.children:
+        if c.__dict__["_detail"]:
+            return True
+    return False
+
+
+FACTS.update({"_live_cache": Node._find_live_params, "_detail": _detail_below})
 
 
 def _with_memo(memo: dict, fn: Callable[[], np.ndarray]) -> np.ndarray:

@@ -13,7 +13,7 @@ import numpy as np
 from ..errors import ParameterError
 from ..params import Live
 from . import validate as v
-from .base import BOUND, EXACT, IMPLICIT, Node
+from .base import BOUND, EXACT, IMPLICIT, Node, box_of
 from .grid import GRID_MIN
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -241,7 +241,7 @@ class Union(_Boolean):
 
     @property
     def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
-        boxes = np.array([c.bounds for c in self.children])
+        boxes = np.array([box_of(c) for c in self.children])
         lo, hi = boxes[:, 0].min(axis=0), boxes[:, 1].max(axis=0)
         grow = float(self.k) * BLEND_REACH[self.blend]  # how far the blend lowers the field
         return lo - grow, hi + grow
@@ -435,5 +435,7 @@ def difference(*nodes: Node, k: float = 0.0, blend: str = "quadratic") -> Node:
 
 
 def _all_2d(nodes: tuple) -> bool:
+    if not nodes or isinstance(nodes[0], Node):  # the common case, without the import
+        return False
     from .shapes2d import Shape2D
-    return bool(nodes) and all(isinstance(n, Shape2D) for n in nodes)
+    return all(isinstance(n, Shape2D) for n in nodes)

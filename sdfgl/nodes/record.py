@@ -35,11 +35,14 @@ class Recorded:
     kind: ClassVar[str] = "recorded"
     serializable: ClassVar[bool] = True
     unsaved_reason: ClassVar[str] = ""  # why a class with serializable = False cannot be saved
-    _ctor: tuple[tuple, dict]
+    _ctor: tuple  # the positional arguments; keyword arguments, if any, in _ctor_kw
 
     def __new__(cls, *args: Any, **kwargs: Any) -> "Recorded":
         self = super().__new__(cls)
-        self.__dict__["_ctor"] = (args, kwargs)
+        d = self.__dict__
+        d["_ctor"] = args  # no (args, kwargs) pair: one object less per node for the garbage collector
+        if kwargs:
+            d["_ctor_kw"] = kwargs
         return self
 
     def __init_subclass__(cls, register: bool = True, **kw: Any) -> None:
@@ -56,8 +59,8 @@ class Recorded:
     @property
     def constructor(self) -> tuple[type, tuple, dict]:
         """(class, args, kwargs) of the call that built this object."""
-        args, kwargs = self.__dict__.get("_ctor", ((), {}))
-        return type(self), args, kwargs
+        d = self.__dict__
+        return type(self), d.get("_ctor", ()), d.get("_ctor_kw", {})
 
     def __reduce__(self) -> tuple:
         """Pickle the graph as a flat table of constructor calls, children first: no

@@ -9,7 +9,7 @@ import numpy as np
 from ..errors import ParameterError
 from . import validate as v
 from ..params import Live
-from .base import BOUND, IMPLICIT, Node, Unary
+from .base import BOUND, IMPLICIT, Node, Unary, box_of
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..codegen import Emitter
@@ -34,9 +34,8 @@ class Translate(Unary):
         return self.child._distance(p - self.offset)
 
     @property
-    def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
-        lo, hi = self.child.bounds
-        return lo + self.offset, hi + self.offset
+    def _bounds(self) -> np.ndarray:
+        return box_of(self.child) + self.offset  # (lo, hi) rows
 
 
 _EYE = np.eye(3)
@@ -115,7 +114,7 @@ class Rotate(Unary):
 
     @property
     def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
-        lo, hi = self.child.bounds
+        lo, hi = box_of(self.child)
         finite = np.isfinite(lo) & np.isfinite(hi)
         lo_f, hi_f = np.where(finite, lo, 0.0), np.where(finite, hi, 0.0)
         centre = (lo_f + hi_f) / 2
@@ -147,7 +146,7 @@ class Scale(Unary):
 
     @property
     def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
-        lo, hi = self.child.bounds
+        lo, hi = box_of(self.child)
         return lo * self.s, hi * self.s
 
 
@@ -180,7 +179,7 @@ class ScaleAxes(Unary):
 
     @property
     def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
-        lo, hi = self.child.bounds
+        lo, hi = box_of(self.child)
         return lo * self.s, hi * self.s
 
 
@@ -217,7 +216,7 @@ class Material(Unary):
 
     @property
     def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
-        return self.child.bounds
+        return box_of(self.child)
 
 
 def _baked(node: Node) -> bool:
