@@ -469,6 +469,10 @@ def material_channels(scene: Node) -> list[str]:
     return [ch for ch in ("surface", "emission") if any(f in names for f in CHANNELS[ch])]
 
 
+def _vec3_literal(v: Sequence[float]) -> str:
+    return f"vec3({', '.join(glsl_float(float(x)) for x in v)})"
+
+
 def _material_fields(n: Node) -> frozenset:
     """The material fields some Material at or under ``n`` sets (children's cached values);
     a Material (and only a Material) has a ``fields`` dict."""
@@ -609,8 +613,11 @@ def _generate_once(scene: Node, settings: Settings, org: np.ndarray, target: str
     tex = DataPool()
     ems = (org, params, shared, grids, settings.grid, helpers, tex, data_min)
     dist, dist_result = _emit_map(scene, "dist", *ems, highlight=highlight if target == "render" else None)
+    # a scene without any material node has one colour: mapColor() is that constant, not
+    # another copy of the scene's code (which the driver would compile and llvmpipe JIT)
+    one_color = not fact(scene, "_fields") and highlight is None
     color, color_result = (_emit_map(scene, "color", *ems)
-                           if target == "render" or target in EVALUATE_CHANNELS else (None, ""))
+                           if (target == "render" or target in EVALUATE_CHANNELS) and not one_color else (None, ""))
     detail, detail_result = (_emit_map(scene, "dist", *ems, True)
                              if target == "render" and scene.has_detail else (None, ""))
     channels = (material_channels(scene) if target == "render" else
@@ -654,9 +661,12 @@ def _generate_once(scene: Node, settings: Settings, org: np.ndarray, target: str
         b.add_file("mesh_clip")
         b.add_file(f"{target}_main")
         return _sized(b.build(params, live, data), size, grids)
-    assert color is not None
-    _helpers(b, color, done)
-    _function(b, "vec3 mapColor(vec3 p)", color, color_result, "{}.rgb")
+    if color is None:
+        b.add(f"vec3 mapColor(vec3 p) {{\n    return {_vec3_literal(DEFAULT_COLOR)};  // no material node: one colour\n}}",
+              "(codegen: one colour)")
+    else:
+        _helpers(b, color, done)
+        _function(b, "vec3 mapColor(vec3 p)", color, color_result, "{}.rgb")
     for ch, (em, result) in passes.items():
         _helpers(b, em, done)
         _function(b, f"vec3 map{ch.capitalize()}(vec3 p)", em, result, "{}.rgb")

@@ -138,3 +138,18 @@ def test_over_the_code_budget_unions_become_data(renderer):
     assert _parity(s, renderer, pts) < 1e-5
     with pytest.raises(sg.ParameterError, match="code_budget"):
         sg.compile(s, code_budget=10)
+
+
+def test_a_scene_without_material_nodes_has_a_constant_map_color(renderer):
+    plain, cam = bench_big.growth(GRID_MIN + 8)
+    src = sg.compile(plain, shadows=False, ao=False)
+    body = src[src.index("vec3 mapColor(vec3 p)"):]
+    body = body[:body.index("}")]
+    assert "g0Color" not in src and "map" not in body.split("{", 1)[1]  # no second copy of the scene
+    colored = sg.union(*plain.children[:-1], plain.children[-1].color(0.9, 0.1, 0.1))
+    assert "g0Color" in sg.compile(colored, shadows=False, ao=False)
+    # the same colour through the colour pass: the same image
+    from sdfgl.codegen import DEFAULT_COLOR
+    a = renderer.render(plain, cam, (48, 36), shadows=False, ao=False).color
+    b = renderer.render(plain.color(*DEFAULT_COLOR), cam, (48, 36), shadows=False, ao=False).color
+    assert a.std() > 0 and np.abs(a.astype(int) - b.astype(int)).max() <= 1
