@@ -19,7 +19,7 @@ import numpy as np
 from . import shaderlib
 from .errors import ParameterError
 from .gl.dialect import dialect as _dialect
-from .nodes.base import IMPLICIT, Node
+from .nodes.base import IMPLICIT, Node, grid_min_as
 from .nodes.traverse import FACTS, fact, run_deep
 from .params import Live, Param
 from .look.lights import DEFAULT_LIGHTS
@@ -547,52 +547,27 @@ def _generate(scene: Node, settings: Settings, origin: Sequence[float], target: 
     org = np.asarray(origin, dtype=np.float64)
     from .nodes.grid import GRID_MIN
     if settings.grid_min is not None:
-        _unions_as_data(scene, settings.grid_min)
-    src = _generate_once(scene, settings, org, target, header, projection, highlight=highlight)
-    src = dataclasses.replace(src, grid_min=settings.grid_min or GRID_MIN)
-    if src.code_size <= settings.code_budget or not settings.grid or settings.grid_min is not None:
+        with grid_min_as(settings.grid_min):
+            src = _generate_once(scene, settings, org, target, header, projection, highlight=highlight)
+        scene.__dict__["_data_min"] = settings.grid_min  # the twin of this scene follows its last compile
+        return _checked(dataclasses.replace(src, grid_min=settings.grid_min))
+    src = dataclasses.replace(_generate_once(scene, settings, org, target, header, projection, highlight=highlight),
+                              grid_min=GRID_MIN)
+    scene.__dict__.pop("_data_min", None)
+    if src.code_size <= settings.code_budget or not settings.grid:
         return _checked(src)
-    # over the budget: every hard union of two or more instances becomes data, and every
-    # node with more than a few constant rows keeps them in a texture
-    before = _unions_as_data(scene, BUDGET_GRID_MIN)
-    small = _generate_once(scene, settings, org, target, header, projection, data_min=BUDGET_DATA_MIN,
-                           highlight=highlight)
+    # over the budget: every hard union of BUDGET_GRID_MIN or more instances becomes data,
+    # and every node with more than a few constant rows keeps them in a texture
+    with grid_min_as(BUDGET_GRID_MIN):
+        small = _generate_once(scene, settings, org, target, header, projection, data_min=BUDGET_DATA_MIN,
+                               highlight=highlight)
     if small.code_size >= src.code_size:  # nothing to gain: the scene stays code
-        _restore(scene, before)
         return _checked(src)
+    scene.__dict__["_data_min"] = BUDGET_GRID_MIN
     return _checked(dataclasses.replace(
         small, grid_min=BUDGET_GRID_MIN,
         choice=f"data (scene code of {src.code_size} characters was over the code budget of "
                f"{settings.code_budget}; as data {small.code_size})"))
-
-
-def _unions_as_data(scene: Node, least: int) -> dict:
-    """Keep every hard union of ``least`` or more instances as data (the twin follows);
-    return what _restore needs to undo it."""
-    from .nodes.booleans import Union
-    from .nodes.traverse import postorder
-    nodes = list(postorder(scene))
-    before = {id(n): (n, n.__dict__.get("_grid_min")) for n in nodes if isinstance(n, Union)}
-    if any([n.as_data(least) for n, _ in before.values()]):
-        _forget_exactness(nodes)
-    return before
-
-
-def _restore(scene: Node, before: dict) -> None:
-    from .nodes.traverse import postorder
-    for n, old in before.values():
-        if n.__dict__.get("_grid_min") != old:
-            n.__dict__.pop("_grid_min", None)
-            if old is not None:
-                n.__dict__["_grid_min"] = old
-            n.__dict__.pop("_grid", None)
-    _forget_exactness(list(postorder(scene)))
-
-
-def _forget_exactness(nodes: list) -> None:
-    for n in nodes:  # exactness may have changed (a grid's cap makes a bound)
-        for k in ("_m_exactness", "_m_lipschitz"):
-            n.__dict__.pop(k, None)
 
 
 def _checked(src: ShaderSource) -> ShaderSource:

@@ -140,6 +140,30 @@ def test_over_the_code_budget_unions_become_data(renderer):
         sg.compile(s, code_budget=10)
 
 
+
+def test_a_compile_leaves_no_state_on_nodes_shared_into_other_scenes(renderer):
+    rng = np.random.default_rng(7)
+    groups = [sg.union(*[sg.sphere(0.1).translate(rng.uniform(-1, 1, 3)) for _ in range(20)]).rotate(20 * i, (0, 1, 0))
+              for i in range(6)]
+    s = sg.union(*groups)
+    pts = rng.uniform(-2, 2, (1000, 3))
+    exact = s.distance(pts)
+    assert renderer.render(s, size=(16, 12), shadows=False, ao=False, code_budget=1000).source.data_unions == 6
+    assert np.abs(s.distance(pts) - exact).max() > 1e-3  # the twin follows its compile: grids with caps
+    other = groups[0] | sg.box(0.2)  # a group of s, shared into another scene: compiled on its own terms
+    src = renderer.render(other, size=(16, 12), shadows=False, ao=False).source
+    assert src.choice == "code" and src.data_unions == 0
+    np.testing.assert_array_equal(groups[0].distance(pts), groups[0].child.distance(pts @ groups[0].m))
+    assert other.exactness == sg.EXACT
+    again = renderer.render(s, size=(16, 12), shadows=False, ao=False, code_budget=10 ** 7).source
+    assert again.choice == "code" and again.data_unions == 0  # a later compile of s is not changed either
+    np.testing.assert_array_equal(s.distance(pts), exact)
+    assert _parity(s, renderer, pts) < 1e-5
+    # an explicit grid_min is the fewest instances kept as data, above the default too
+    assert renderer.render(s, size=(16, 12), shadows=False, ao=False, grid_min=20).source.data_unions == 6
+    assert renderer.render(s, size=(16, 12), shadows=False, ao=False, grid_min=21).source.data_unions == 0
+
+
 def test_a_scene_without_material_nodes_has_a_constant_map_color(renderer):
     plain, cam = bench_big.growth(GRID_MIN + 8)
     src = sg.compile(plain, shadows=False, ao=False)

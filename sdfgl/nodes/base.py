@@ -5,9 +5,10 @@ the numpy reference cannot drift apart unnoticed (the parity tests hold them equ
 """
 from __future__ import annotations
 
+import contextlib
 import threading
 import weakref
-from typing import TYPE_CHECKING, Any, Callable, ClassVar, Sequence
+from typing import TYPE_CHECKING, Any, Callable, ClassVar, Iterator, Sequence
 
 import numpy as np
 
@@ -52,12 +53,37 @@ _TOKENS: "weakref.WeakValueDictionary[tuple, _Token]" = weakref.WeakValueDiction
 _TWIN = threading.local()  # the per-call memo of the float64 twin over a DAG
 
 
+_GRID_MIN = threading.local()  # the fewest instances a union keeps as data, in this compile
+
+
+def grid_min_now() -> int | None:
+    """The grid_min in force on this thread (None: the default, nodes.grid.GRID_MIN): set by
+    generate() for the scene it compiles and by distance() for the scene it evaluates."""
+    return getattr(_GRID_MIN, "least", None)
+
+
+@contextlib.contextmanager
+def grid_min_as(least: int | None) -> Iterator[None]:
+    """Evaluate and compile with unions of ``least`` or more instances as data. The choice
+    belongs to the compile (or to the root node whose last compile made it), never to the
+    nodes: a union shared into another scene is not changed by this one's compile."""
+    old = getattr(_GRID_MIN, "least", None)
+    _GRID_MIN.least = least
+    try:
+        yield
+    finally:
+        _GRID_MIN.least = old
+
+
 def _memo_property(name: str, fget: Callable[["Node"], Any]) -> property:
-    """A node property computed once per node, bottom-up (no recursion, a DAG costs once)."""
-    slot, busy = f"_m_{name}", f"_busy_{name}"
+    """A node property computed once per node, bottom-up (no recursion, a DAG costs once);
+    memoised per grid_min (a union kept as data has a grid's cap: a bound, not exact)."""
+    base_slot, busy = f"_m_{name}", f"_busy_{name}"
 
     def get(self: "Node") -> Any:
         d = self.__dict__
+        least = getattr(_GRID_MIN, "least", None)
+        slot = base_slot if least is None else f"{base_slot}@{least}"
         if slot in d:
             return d[slot]
         if d.get(busy):  # a super() call while this node is being computed
@@ -286,11 +312,16 @@ class Node(Recorded, register=False):
     def distance(self, points: object) -> np.ndarray:
         """The float64 twin of the generated map(): field values at (..., 3) points."""
         p = as_points(points)
+        least = self.__dict__.get("_data_min")  # the choice of this scene's last compile (see generate)
+
+        def twin() -> np.ndarray:
+            with grid_min_as(least):
+                return self._distance(p)
         if not self.is_dag:
-            return run_deep(self, lambda: self._distance(p))
+            return run_deep(self, twin)
         _TWIN.memo = {}
         try:
-            return run_deep(self, lambda: _with_memo(_TWIN.memo, lambda: self._distance(p)))
+            return run_deep(self, lambda: _with_memo(_TWIN.memo, twin))
         finally:
             _TWIN.memo = None
 
@@ -507,6 +538,7 @@ class Node(Recorded, register=False):
 
 
 _CACHES = ("_m_", "_key", "_token", "_depth", "_bounds_cache", "_live_cache", "_detail", "_dag", "_grid", "_kids",
+           "_data_min",
            "_seq", "_fields", "_facts")
 
 

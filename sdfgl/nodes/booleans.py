@@ -13,8 +13,7 @@ import numpy as np
 from ..errors import ParameterError
 from ..params import Live
 from . import validate as v
-from .base import BOUND, EXACT, IMPLICIT, Node, box_of
-from .grid import GRID_MIN
+from .base import BOUND, EXACT, IMPLICIT, Node, box_of, grid_min_now
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..codegen import Emitter
@@ -163,22 +162,15 @@ class Union(_Boolean):
 
     @property
     def grid(self) -> "Grid | None":
-        if "_grid" not in self.__dict__:
+        """The grid of this union's instances under the grid_min in force (see
+        base.grid_min_as), or None where it stays code."""
+        least = grid_min_now()
+        name = "_grid" if least is None else f"_grid@{least}"
+        d = self.__dict__
+        if name not in d:
             from .grid import build
-            self.__dict__["_grid"] = (build(list(self.children), self.__dict__.get("_grid_min"))
-                                      if self._hard else None)
-        return self.__dict__["_grid"]
-
-    def as_data(self, min_children: int) -> bool:
-        """Keep this union as data from ``min_children`` instances on (the code-size budget
-        lowers it); True if that changes the node's field (it then has a grid's cap)."""
-        if not self._hard or self.__dict__.get("_grid_min", GRID_MIN) <= min_children:
-            return False
-        had = self.grid
-        self.__dict__["_grid_min"] = min_children
-        for k in ("_grid", "_m_exactness", "_m_lipschitz"):
-            self.__dict__.pop(k, None)
-        return self.grid is not had
+            d[name] = build(list(self.children), least) if self._hard else None
+        return d[name]
 
     def _emit(self, em: "Emitter", p: str) -> str:
         grid = self.grid if em.use_grids else None
