@@ -26,6 +26,22 @@ def test_chains_of_one_operator_stay_flat():
     for i in range(DEEP):
         s = s | sg.sphere(0.01).translate((i * 1e-3, 0, 0))
     assert isinstance(s, sg.nodes.booleans.Union) and len(s.children) == DEEP + 1
+    r = sg.sphere(0.1)  # right-deep: x | s (hard union and intersection only: min and max are associative)
+    for i in range(DEEP):
+        r = sg.sphere(0.01).translate((i * 1e-3, 0, 0)) | r
+    assert isinstance(r, sg.nodes.booleans.Union) and len(r.children) == DEEP + 1
+    assert repr(r.children[-1]) == "sphere(radius=0.1, center=(0, 0, 0))"
+    pts = np.random.default_rng(0).uniform(-1, 1, (200, 3))
+    np.testing.assert_array_equal(r.distance(pts), s.distance(pts))
+    c = sg.sphere(1).color(0.9, 0.1, 0.1)  # colours: the innermost wins, so an outer one over it is dropped
+    for i in range(DEEP):
+        c = c.color(0.1, (i % 10) / 10, 0.1)
+    assert repr(c) == "color(rgb=(0.9, 0.1, 0.1))[sphere(radius=1, center=(0, 0, 0))]"
+    assert sg.sphere(1).color("red").material(specular=0.5).kind == "material"  # sets a field the inner does not
+    i = sg.box(1) & (sg.sphere(1.2) & sg.cylinder(0.5, 2))
+    assert len(i.children) == 3
+    smooth = sg.box(1) | sg.union(sg.sphere(1), sg.box(0.5), k=0.1)  # not associative: stays nested
+    assert len(smooth.children) == 2 and (sg.box(1) - (sg.sphere(1) - sg.box(0.5))).children[1].kind == "difference"
     t = sg.box(1)
     for _ in range(DEEP):
         t = t.translate((1e-3, 0, 0)).rotate(0.1, (0, 1, 0)).scale(1.0001)

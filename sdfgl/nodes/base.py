@@ -518,9 +518,9 @@ class Node(Recorded, register=False):
 
     def color(self, r: float | Sequence[float], g: float | None = None, b: float | None = None) -> "Node":
         """Give every part of this node that has no colour of its own the colour (r, g, b)."""
-        from .transforms import Material
+        from .transforms import Material, fold_material
         rgb = r if g is None and b is None else (r, g, b)
-        return Material(self, rgb)
+        return fold_material(Material(self, rgb))
 
     def material(self, color: object = None, *, specular: object = None, roughness: object = None,
                  shininess: object = None, metallic: object = None, emission: object = None) -> "Node":
@@ -533,8 +533,9 @@ class Node(Recorded, register=False):
         left out keep what an outer node (or the default) says.
         """
         from .material import SurfaceMaterial
-        return SurfaceMaterial(self, color, specular=specular, roughness=roughness, shininess=shininess,
-                               metallic=metallic, emission=emission)
+        from .transforms import fold_material
+        return fold_material(SurfaceMaterial(self, color, specular=specular, roughness=roughness, shininess=shininess,
+                                             metallic=metallic, emission=emission))
 
 
 _CACHES = ("_m_", "_key", "_token", "_depth", "_bounds_cache", "_live_cache", "_detail", "_dag", "_grid", "_kids",

@@ -65,33 +65,42 @@ class _Boolean(Node):
         super().__init__(children, **params)
         self.k = kk
 
-    # children are kept in a list shared along a chain built by ``s = s | x`` (each step
-    # appends: O(1)); the tuple is made when first read
+    # children are kept in lists shared along a chain built by ``s = s | x`` (each step
+    # appends to the back: O(1)) or, for hard unions and intersections, ``s = x | s``
+    # (appends to the front list, read reversed); the tuple is made when first read
     @property  # type: ignore[override]
     def children(self) -> tuple[Node, ...]:
         kids = self.__dict__.get("_kids")
         if kids is None:
-            seq, n = self.__dict__["_seq"]
-            kids = self.__dict__["_kids"] = tuple(seq[:n])
+            back, n, front, m = self.__dict__["_seq"]
+            kids = tuple(back[:n]) if not m else tuple(front[m - 1::-1]) + tuple(back[:n])
+            self.__dict__["_kids"] = kids
         return kids
 
     @children.setter
     def children(self, value: tuple[Node, ...]) -> None:
         self.__dict__["_kids"] = tuple(value)
 
-    def _chained(self, right: Node) -> "_Boolean":
-        """This n-ary node with ``right`` appended (the left fold of one more operand)."""
-        seq, n = self.__dict__.get("_seq") or (list(self.children), len(self.children))
-        self.__dict__["_seq"] = (seq, n)
-        if len(seq) != n:  # another chain already grew from this node: branch off a copy
-            seq = seq[:n]
-        seq.append(right)
-        node = type(self).__new__(type(self))
+    def _chained(self, node: Node, front: bool = False) -> "_Boolean":
+        """This n-ary node with ``node`` appended (the left fold of one more operand), or
+        put first (``front``: only for operators where the order does not change the field)."""
+        seq = self.__dict__.get("_seq") or (list(self.children), len(self.children), [], 0)
+        self.__dict__["_seq"] = seq
+        back, n, fr, m = seq
+        if front:
+            fr = fr if len(fr) == m else fr[:m]  # another chain already grew from this node: branch off a copy
+            fr.append(node)
+            m += 1
+        else:
+            back = back if len(back) == n else back[:n]
+            back.append(node)
+            n += 1
+        out = type(self).__new__(type(self))
         from .base import _CACHES
-        node.__dict__.update({k: v for k, v in self.__dict__.items()
-                              if not k.startswith(_CACHES) and k not in ("_kids", "_seq")})
-        node.__dict__["_seq"] = (seq, n + 1)
-        return node
+        out.__dict__.update({k: v for k, v in self.__dict__.items()
+                             if not k.startswith(_CACHES) and k not in ("_kids", "_seq")})
+        out.__dict__["_seq"] = (back, n, fr, m)
+        return out
 
     @property
     def constructor(self) -> tuple[type, tuple, dict]:
@@ -362,6 +371,11 @@ def _build(cls: type, nodes: tuple, k: object, blend: str) -> Node:
         for n in nodes[1:]:
             out = out._chained(n)
         return out
+    last = nodes[-1] if len(nodes) == 2 else None
+    if (isinstance(last, _Boolean) and cls is not Difference and last._same_op(cls, k, blend) and last._hard
+            and isinstance(first, Node) and first is not last):
+        # x | s (a right-deep chain): min and max are associative, so x joins s's operands first
+        return last._chained(first, front=True)
     return cls(*nodes, k=k, blend=blend)
 
 

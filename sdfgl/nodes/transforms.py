@@ -257,6 +257,16 @@ def rotate(node: Node, angle: float | Live, axis: Sequence[float]) -> Node:
     return fold(_rotate(node, _axis_angle_matrix(ax, deg)))  # a rotation by construction
 
 
+def fold_material(node: Node) -> Node:
+    """A colour or material node over one that already sets every field it sets is that
+    inner node (the innermost setting wins): ``s = s.color(...)`` in a loop stays one node.
+    Live values stay (their parameters keep their uniforms)."""
+    inner = node.child if isinstance(node, Material) else None
+    if isinstance(inner, Material) and _baked(node) and node.fields.keys() <= inner.fields.keys():
+        return inner
+    return node
+
+
 def fold(node: Node) -> Node:
     """A new rigid transform or uniform scale merged with the ones directly under it, into
     the order translate(rotate(scale(x))): a chain of 10^5 moves stays three nodes deep.
@@ -282,4 +292,4 @@ def fold(node: Node) -> Node:
     return _rotate(fold(_scale(inner.child, s)), inner.m)  # scaling commutes with rotating
 
 
-__all__ = ["Translate", "Rotate", "Scale", "ScaleAxes", "Material", "scale", "fold", "rotate"]
+__all__ = ["Translate", "Rotate", "Scale", "ScaleAxes", "Material", "scale", "fold", "fold_material", "rotate"]
