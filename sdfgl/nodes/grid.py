@@ -273,16 +273,10 @@ class Grid:
         if t.slots is not None:
             pos = slots_at
             for name, size in zip(t.slots, sizes):
-                values = [u[0].__dict__[name] for u in peeled]
-                out[:, pos:pos + size] = (np.fromiter(values, np.float64, len(values))[:, None] if size == 1
-                                          else np.array(values, dtype=np.float64).reshape(-1, size))
+                out[:, pos:pos + size] = np.array([np.ravel(u[0].__dict__[name]) for u in peeled], dtype=np.float64)
                 pos += size
         if t.color_in_code is None:
-            colors = [u[4] for u in peeled]
-            if any(c is not None for c in colors):
-                out[:, color_at:color_at + 3] = [default_color if c is None else c for c in colors]
-            else:
-                out[:, color_at:color_at + 3] = default_color
+            out[:, color_at:color_at + 3] = [u[4] if u[4] is not None else default_color for u in peeled]
         return out.astype(np.float32).reshape(len(t.members), texels, 4)
 
     def textures(self, default_color: tuple[float, float, float]) -> dict[str, np.ndarray]:

@@ -42,11 +42,15 @@ _EYE = np.eye(3)
 
 
 def _axis_angle_matrix(axis: np.ndarray, degrees: float) -> np.ndarray:
-    a = axis / math.sqrt(float(axis @ axis))
+    """I cos + K sin + (1 - cos) a a^T (Rodrigues), in Python floats: one array made, not
+    six (a 10^5-step rotate loop pays this per step); the same floats as the matrix sum."""
+    x, y, z = (axis / math.sqrt(float(axis @ axis))).tolist()
     t = math.radians(degrees)
     c, s = math.cos(t), math.sin(t)
-    k = np.array([[0, -a[2], a[1]], [a[2], 0, -a[0]], [-a[1], a[0], 0]])
-    return _EYE * c + s * k + (1 - c) * np.outer(a, a)
+    C = 1 - c
+    return np.array([[c + C * (x * x), -s * z + C * (x * y), s * y + C * (x * z)],
+                     [s * z + C * (y * x), c + C * (y * y), -s * x + C * (y * z)],
+                     [-s * y + C * (z * x), s * x + C * (z * y), c + C * (z * z)]])
 
 
 class Rotate(Unary):
