@@ -145,7 +145,9 @@ def box_of(node: "Node") -> np.ndarray:
             if n is not node:
                 box_of(n)
     b = node._bounds
-    out = np.array(b, dtype=np.float64) if type(b) is np.ndarray else None
+    # a (2, 3) float64 array made by _bounds (Translate's) is kept as it is; else one array is made
+    out = (b if b.shape == (2, 3) and b.dtype == np.float64 and b.flags.owndata else np.array(b, dtype=np.float64)) \
+        if type(b) is np.ndarray else None
     if out is None or out.shape != (2, 3):
         out = np.empty((2, 3))
         out[0], out[1] = _vec3(b[0]), _vec3(b[1])
