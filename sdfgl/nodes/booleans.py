@@ -13,7 +13,7 @@ import numpy as np
 from ..errors import ParameterError
 from ..params import Live
 from . import validate as v
-from .base import BOUND, EXACT, IMPLICIT, Node, box_of, grid_min_now
+from .base import _CACHES, BOUND, EXACT, IMPLICIT, Node, box_of, grid_min_now
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..codegen import Emitter
@@ -96,7 +96,6 @@ class _Boolean(Node):
             back.append(node)
             n += 1
         out = type(self).__new__(type(self))
-        from .base import _CACHES
         out.__dict__.update({k: v for k, v in self.__dict__.items()
                              if not k.startswith(_CACHES) and k not in ("_kids", "_seq")})
         out.__dict__["_seq"] = (back, n, fr, m)
