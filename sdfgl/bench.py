@@ -385,8 +385,9 @@ def run(quick: bool, size: tuple[int, int] | None, out: Path, progress: bool = T
     from .mesh.bench import run_mesh
     mesh_md, mesh_data = run_mesh(2 ** 18 if quick else 2 ** 22, 1 if quick else 3, None if quick else 1024)
 
-    from .bench_big import run_big
+    from .bench_big import run_big, run_phases
     big = run_big(quick, (160, 120) if quick else (320, 240))
+    big += "\n\n" + run_phases(quick, (160, 120) if quick else (320, 240))
 
     out.mkdir(parents=True, exist_ok=True)
     md = "\n\n".join([

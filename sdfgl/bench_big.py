@@ -84,6 +84,9 @@ def chain(kind: str, n: int) -> tuple[Node, Camera]:
     if kind == "union":
         for i in range(n):
             s = s | primitives.sphere(0.02).translate((math.cos(i * 0.01) * 2, (i / n) * 2 - 1, math.sin(i * 0.01) * 2))
+    elif kind == "union_right":  # s = x | s: joins the same n-ary node from the front
+        for i in range(n):
+            s = primitives.sphere(0.02).translate((math.cos(i * 0.01) * 2, (i / n) * 2 - 1, math.sin(i * 0.01) * 2)) | s
     elif kind == "translate":
         for _ in range(n):
             s = s.translate((1e-5, 0, 0))
@@ -113,6 +116,45 @@ def polygon(n: int) -> tuple[Node, Camera]:
     r = 1 + 0.3 * np.cos(12 * a)
     pts = np.stack([r * np.cos(a), r * np.sin(a)], axis=1)
     return shapes2d.extrude(shapes2d.polygon(pts), 0.5), OrbitCamera(distance=4, yaw=30, pitch=40)
+
+
+def run_phases(quick: bool, size: tuple[int, int] = (320, 240)) -> str:
+    """Where the time of a 10^5-deep chain goes, phase by phase, each in wall and process
+    CPU seconds (CPU is what a loaded machine disturbs least): the Python loop that builds
+    it, bounds, code generation (with the grid build), the driver's compile and link, and
+    the first frame (llvmpipe's code generation); return the markdown table."""
+    import gc
+
+    from .render import Renderer
+    n = 2000 if quick else 10 ** 5
+    cases: list[tuple[str, Callable[[], tuple[Node, Camera]]]] = [
+        (f"chain of {n} unions, left-deep (s = s OR x)", lambda: chain("union", n)),
+        (f"chain of {n} unions, right-deep (s = x OR s)", lambda: chain("union_right", n)),
+        (f"chain of {n} translates", lambda: chain("translate", n)),
+        (f"chain of {n} rotates", lambda: chain("rotate", n)),
+        ("one node as both operands, 30 levels (2^30 paths)", lambda: dag(30))]
+    rows = ["| scene | build s (CPU) | bounds s (CPU) | codegen s | link s | first frame s | render CPU s | "
+            "total s (CPU) | frame ms |", "|---|---|---|---|---|---|---|---|---|"]
+    renderer = Renderer()
+    renderer.render(primitives.sphere(1), size=(8, 8))  # the context, outside the figures
+    for name, make in cases:
+        gc.collect()
+        w0, c0 = time.perf_counter(), time.process_time()
+        scene, cam = make()
+        w1, c1 = time.perf_counter(), time.process_time()
+        scene.bounds  # noqa: B018 - the phase being timed
+        w2, c2 = time.perf_counter(), time.process_time()
+        res = renderer.render(scene, cam, size, **NO_SHADING)
+        w3, c3 = time.perf_counter(), time.process_time()
+        t = res.timings
+        frame = renderer.render(scene, cam, size, **NO_SHADING).timings["draw_s"]
+        rows.append(f"| {name} | {w1 - w0:.2f} ({c1 - c0:.2f}) | {w2 - w1:.2f} ({c2 - c1:.2f}) | "
+                    f"{t['codegen_s']:.2f} | {t['compile_s']:.2f} | {t['draw_s']:.2f} | {c3 - c2:.2f} | "
+                    f"{w3 - w0:.2f} ({c3 - c0:.2f}) | {1000 * frame:.1f} |")
+        del scene, res
+    return (f"Build and compile phases of deep chains, {size[0]}x{size[1]}, shadows and AO off, one run each "
+            "in a fresh scene: wall seconds, process CPU seconds in brackets ('render CPU' covers codegen, "
+            "link and first frame; llvmpipe's threads count).\n\n" + "\n".join(rows))
 
 
 def _timed(fn: Callable[[], object]) -> tuple[object, float]:

@@ -19,8 +19,8 @@ import numpy as np
 from . import shaderlib
 from .errors import ParameterError
 from .gl.dialect import dialect as _dialect
-from .nodes.base import IMPLICIT, Node
-from .nodes.traverse import run_deep
+from .nodes.base import IMPLICIT, Node, grid_min_as
+from .nodes.traverse import FACTS, fact, run_deep
 from .params import Live, Param
 from .look.lights import DEFAULT_LIGHTS
 from .look.shading import background_code, shade_function, shadow_code, shadow_kinds
@@ -465,18 +465,25 @@ def shared_subtrees(scene: Node, use_grids: bool = True) -> set:
 def material_channels(scene: Node) -> list[str]:
     """The colour passes the scene needs besides albedo: "surface" where some node sets
     specular, shininess or metallic, "emission" where some node sets an emission."""
-    from .nodes.transforms import Material
-    names: set[str] = set()
-    stack, seen = [scene], set()
-    while stack:
-        n = stack.pop()
-        if id(n) in seen:
-            continue
-        seen.add(id(n))
-        if isinstance(n, Material):
-            names.update(n.fields)
-        stack.extend(n.children)
+    names = fact(scene, "_fields")
     return [ch for ch in ("surface", "emission") if any(f in names for f in CHANNELS[ch])]
+
+
+def _vec3_literal(v: Sequence[float]) -> str:
+    return f"vec3({', '.join(glsl_float(float(x)) for x in v)})"
+
+
+def _material_fields(n: Node) -> frozenset:
+    """The material fields some Material at or under ``n`` sets (children's cached values);
+    a Material (and only a Material) has a ``fields`` dict."""
+    fields = n.__dict__.get("fields")
+    own = frozenset(fields) if fields else _NONE
+    kids = [f for c in n.children if (f := c.__dict__["_fields"])]
+    return own.union(*kids) if kids else own
+
+
+_NONE: frozenset = frozenset()
+FACTS["_fields"] = _material_fields
 
 
 def _surface_function(channels: Sequence[str]) -> str:
@@ -540,52 +547,27 @@ def _generate(scene: Node, settings: Settings, origin: Sequence[float], target: 
     org = np.asarray(origin, dtype=np.float64)
     from .nodes.grid import GRID_MIN
     if settings.grid_min is not None:
-        _unions_as_data(scene, settings.grid_min)
-    src = _generate_once(scene, settings, org, target, header, projection, highlight=highlight)
-    src = dataclasses.replace(src, grid_min=settings.grid_min or GRID_MIN)
-    if src.code_size <= settings.code_budget or not settings.grid or settings.grid_min is not None:
+        with grid_min_as(settings.grid_min):
+            src = _generate_once(scene, settings, org, target, header, projection, highlight=highlight)
+        scene.__dict__["_data_min"] = settings.grid_min  # the twin of this scene follows its last compile
+        return _checked(dataclasses.replace(src, grid_min=settings.grid_min))
+    src = dataclasses.replace(_generate_once(scene, settings, org, target, header, projection, highlight=highlight),
+                              grid_min=GRID_MIN)
+    scene.__dict__.pop("_data_min", None)
+    if src.code_size <= settings.code_budget or not settings.grid:
         return _checked(src)
-    # over the budget: every hard union of two or more instances becomes data, and every
-    # node with more than a few constant rows keeps them in a texture
-    before = _unions_as_data(scene, BUDGET_GRID_MIN)
-    small = _generate_once(scene, settings, org, target, header, projection, data_min=BUDGET_DATA_MIN,
-                           highlight=highlight)
+    # over the budget: every hard union of BUDGET_GRID_MIN or more instances becomes data,
+    # and every node with more than a few constant rows keeps them in a texture
+    with grid_min_as(BUDGET_GRID_MIN):
+        small = _generate_once(scene, settings, org, target, header, projection, data_min=BUDGET_DATA_MIN,
+                               highlight=highlight)
     if small.code_size >= src.code_size:  # nothing to gain: the scene stays code
-        _restore(scene, before)
         return _checked(src)
+    scene.__dict__["_data_min"] = BUDGET_GRID_MIN
     return _checked(dataclasses.replace(
         small, grid_min=BUDGET_GRID_MIN,
         choice=f"data (scene code of {src.code_size} characters was over the code budget of "
                f"{settings.code_budget}; as data {small.code_size})"))
-
-
-def _unions_as_data(scene: Node, least: int) -> dict:
-    """Keep every hard union of ``least`` or more instances as data (the twin follows);
-    return what _restore needs to undo it."""
-    from .nodes.booleans import Union
-    from .nodes.traverse import postorder
-    nodes = list(postorder(scene))
-    before = {id(n): (n, n.__dict__.get("_grid_min")) for n in nodes if isinstance(n, Union)}
-    if any([n.as_data(least) for n, _ in before.values()]):
-        _forget_exactness(nodes)
-    return before
-
-
-def _restore(scene: Node, before: dict) -> None:
-    from .nodes.traverse import postorder
-    for n, old in before.values():
-        if n.__dict__.get("_grid_min") != old:
-            n.__dict__.pop("_grid_min", None)
-            if old is not None:
-                n.__dict__["_grid_min"] = old
-            n.__dict__.pop("_grid", None)
-    _forget_exactness(list(postorder(scene)))
-
-
-def _forget_exactness(nodes: list) -> None:
-    for n in nodes:  # exactness may have changed (a grid's cap makes a bound)
-        for k in ("_m_exactness", "_m_lipschitz"):
-            n.__dict__.pop(k, None)
 
 
 def _checked(src: ShaderSource) -> ShaderSource:
@@ -606,8 +588,11 @@ def _generate_once(scene: Node, settings: Settings, org: np.ndarray, target: str
     tex = DataPool()
     ems = (org, params, shared, grids, settings.grid, helpers, tex, data_min)
     dist, dist_result = _emit_map(scene, "dist", *ems, highlight=highlight if target == "render" else None)
+    # a scene without any material node has one colour: mapColor() is that constant, not
+    # another copy of the scene's code (which the driver would compile and llvmpipe JIT)
+    one_color = not fact(scene, "_fields") and highlight is None
     color, color_result = (_emit_map(scene, "color", *ems)
-                           if target == "render" or target in EVALUATE_CHANNELS else (None, ""))
+                           if (target == "render" or target in EVALUATE_CHANNELS) and not one_color else (None, ""))
     detail, detail_result = (_emit_map(scene, "dist", *ems, True)
                              if target == "render" and scene.has_detail else (None, ""))
     channels = (material_channels(scene) if target == "render" else
@@ -651,9 +636,12 @@ def _generate_once(scene: Node, settings: Settings, org: np.ndarray, target: str
         b.add_file("mesh_clip")
         b.add_file(f"{target}_main")
         return _sized(b.build(params, live, data), size, grids)
-    assert color is not None
-    _helpers(b, color, done)
-    _function(b, "vec3 mapColor(vec3 p)", color, color_result, "{}.rgb")
+    if color is None:
+        b.add(f"vec3 mapColor(vec3 p) {{\n    return {_vec3_literal(DEFAULT_COLOR)};  // no material node: one colour\n}}",
+              "(codegen: one colour)")
+    else:
+        _helpers(b, color, done)
+        _function(b, "vec3 mapColor(vec3 p)", color, color_result, "{}.rgb")
     for ch, (em, result) in passes.items():
         _helpers(b, em, done)
         _function(b, f"vec3 map{ch.capitalize()}(vec3 p)", em, result, "{}.rgb")

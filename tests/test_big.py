@@ -26,6 +26,22 @@ def test_chains_of_one_operator_stay_flat():
     for i in range(DEEP):
         s = s | sg.sphere(0.01).translate((i * 1e-3, 0, 0))
     assert isinstance(s, sg.nodes.booleans.Union) and len(s.children) == DEEP + 1
+    r = sg.sphere(0.1)  # right-deep: x | s (hard union and intersection only: min and max are associative)
+    for i in range(DEEP):
+        r = sg.sphere(0.01).translate((i * 1e-3, 0, 0)) | r
+    assert isinstance(r, sg.nodes.booleans.Union) and len(r.children) == DEEP + 1
+    assert repr(r.children[-1]) == "sphere(radius=0.1, center=(0, 0, 0))"
+    pts = np.random.default_rng(0).uniform(-1, 1, (200, 3))
+    np.testing.assert_array_equal(r.distance(pts), s.distance(pts))
+    c = sg.sphere(1).color(0.9, 0.1, 0.1)  # colours: the innermost wins, so an outer one over it is dropped
+    for i in range(DEEP):
+        c = c.color(0.1, (i % 10) / 10, 0.1)
+    assert repr(c) == "color(rgb=(0.9, 0.1, 0.1))[sphere(radius=1, center=(0, 0, 0))]"
+    assert sg.sphere(1).color("red").material(specular=0.5).kind == "material"  # sets a field the inner does not
+    i = sg.box(1) & (sg.sphere(1.2) & sg.cylinder(0.5, 2))
+    assert len(i.children) == 3
+    smooth = sg.box(1) | sg.union(sg.sphere(1), sg.box(0.5), k=0.1)  # not associative: stays nested
+    assert len(smooth.children) == 2 and (sg.box(1) - (sg.sphere(1) - sg.box(0.5))).children[1].kind == "difference"
     t = sg.box(1)
     for _ in range(DEEP):
         t = t.translate((1e-3, 0, 0)).rotate(0.1, (0, 1, 0)).scale(1.0001)
@@ -138,3 +154,42 @@ def test_over_the_code_budget_unions_become_data(renderer):
     assert _parity(s, renderer, pts) < 1e-5
     with pytest.raises(sg.ParameterError, match="code_budget"):
         sg.compile(s, code_budget=10)
+
+
+
+def test_a_compile_leaves_no_state_on_nodes_shared_into_other_scenes(renderer):
+    rng = np.random.default_rng(7)
+    groups = [sg.union(*[sg.sphere(0.1).translate(rng.uniform(-1, 1, 3)) for _ in range(20)]).rotate(20 * i, (0, 1, 0))
+              for i in range(6)]
+    s = sg.union(*groups)
+    pts = rng.uniform(-2, 2, (1000, 3))
+    exact = s.distance(pts)
+    assert renderer.render(s, size=(16, 12), shadows=False, ao=False, code_budget=1000).source.data_unions == 6
+    assert np.abs(s.distance(pts) - exact).max() > 1e-3  # the twin follows its compile: grids with caps
+    other = groups[0] | sg.box(0.2)  # a group of s, shared into another scene: compiled on its own terms
+    src = renderer.render(other, size=(16, 12), shadows=False, ao=False).source
+    assert src.choice == "code" and src.data_unions == 0
+    np.testing.assert_array_equal(groups[0].distance(pts), groups[0].child.distance(pts @ groups[0].m))
+    assert other.exactness == sg.EXACT
+    again = renderer.render(s, size=(16, 12), shadows=False, ao=False, code_budget=10 ** 7).source
+    assert again.choice == "code" and again.data_unions == 0  # a later compile of s is not changed either
+    np.testing.assert_array_equal(s.distance(pts), exact)
+    assert _parity(s, renderer, pts) < 1e-5
+    # an explicit grid_min is the fewest instances kept as data, above the default too
+    assert renderer.render(s, size=(16, 12), shadows=False, ao=False, grid_min=20).source.data_unions == 6
+    assert renderer.render(s, size=(16, 12), shadows=False, ao=False, grid_min=21).source.data_unions == 0
+
+
+def test_a_scene_without_material_nodes_has_a_constant_map_color(renderer):
+    plain, cam = bench_big.growth(GRID_MIN + 8)
+    src = sg.compile(plain, shadows=False, ao=False)
+    body = src[src.index("vec3 mapColor(vec3 p)"):]
+    body = body[:body.index("}")]
+    assert "g0Color" not in src and "map" not in body.split("{", 1)[1]  # no second copy of the scene
+    colored = sg.union(*plain.children[:-1], plain.children[-1].color(0.9, 0.1, 0.1))
+    assert "g0Color" in sg.compile(colored, shadows=False, ao=False)
+    # the same colour through the colour pass: the same image
+    from sdfgl.codegen import DEFAULT_COLOR
+    a = renderer.render(plain, cam, (48, 36), shadows=False, ao=False).color
+    b = renderer.render(plain.color(*DEFAULT_COLOR), cam, (48, 36), shadows=False, ao=False).color
+    assert a.std() > 0 and np.abs(a.astype(int) - b.astype(int)).max() <= 1

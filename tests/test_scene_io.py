@@ -163,6 +163,21 @@ def test_deep_scene_is_written_shallow_and_read_without_recursion():
     assert count == 3000
 
 
+
+@pytest.mark.parametrize("shared_first", [True, False])
+def test_a_node_shared_directly_and_through_a_sibling_saves_and_pickles(shared_first):
+    # the shared sphere is an operand of the union and the child of its other operand:
+    # the one walk (nodes/traverse.walk) lists it before both, whichever operand comes first
+    a = sg.sphere(1)
+    b = a.translate((1, 0, 0))
+    s = sg.union(a, b, k=0.1) if shared_first else sg.union(b, a, k=0.1)
+    doc = s.to_dict()
+    assert list(doc["nodes"]) == ["n1"] and doc["nodes"]["n1"]["kind"] == "sphere"
+    for back in (sg.from_dict(doc), pickle.loads(pickle.dumps(s))):
+        assert repr(back) == repr(s)
+        assert back.children[1 if shared_first else 0].child is back.children[0 if shared_first else 1]
+
+
 def _doc(scene, **extra):
     return json.dumps({"format": "sdfgl-scene", "version": 1, "scene": scene, **extra})
 

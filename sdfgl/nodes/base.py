@@ -5,16 +5,17 @@ the numpy reference cannot drift apart unnoticed (the parity tests hold them equ
 """
 from __future__ import annotations
 
+import contextlib
 import threading
 import weakref
-from typing import TYPE_CHECKING, Any, Callable, ClassVar, Sequence
+from typing import TYPE_CHECKING, Any, Callable, ClassVar, Iterator, Sequence
 
 import numpy as np
 
 from ..errors import ParameterError
 from ..params import Live, Param, owns_checks
 from .record import Recorded
-from .traverse import SHALLOW, cached, depth, postorder, run_deep
+from .traverse import FACTS, SHALLOW, cached, depth, fact, postorder, run_deep
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..codegen import Emitter
@@ -52,12 +53,37 @@ _TOKENS: "weakref.WeakValueDictionary[tuple, _Token]" = weakref.WeakValueDiction
 _TWIN = threading.local()  # the per-call memo of the float64 twin over a DAG
 
 
+_GRID_MIN = threading.local()  # the fewest instances a union keeps as data, in this compile
+
+
+def grid_min_now() -> int | None:
+    """The grid_min in force on this thread (None: the default, nodes.grid.GRID_MIN): set by
+    generate() for the scene it compiles and by distance() for the scene it evaluates."""
+    return getattr(_GRID_MIN, "least", None)
+
+
+@contextlib.contextmanager
+def grid_min_as(least: int | None) -> Iterator[None]:
+    """Evaluate and compile with unions of ``least`` or more instances as data. The choice
+    belongs to the compile (or to the root node whose last compile made it), never to the
+    nodes: a union shared into another scene is not changed by this one's compile."""
+    old = getattr(_GRID_MIN, "least", None)
+    _GRID_MIN.least = least
+    try:
+        yield
+    finally:
+        _GRID_MIN.least = old
+
+
 def _memo_property(name: str, fget: Callable[["Node"], Any]) -> property:
-    """A node property computed once per node, bottom-up (no recursion, a DAG costs once)."""
-    slot, busy = f"_m_{name}", f"_busy_{name}"
+    """A node property computed once per node, bottom-up (no recursion, a DAG costs once);
+    memoised per grid_min (a union kept as data has a grid's cap: a bound, not exact)."""
+    base_slot, busy = f"_m_{name}", f"_busy_{name}"
 
     def get(self: "Node") -> Any:
         d = self.__dict__
+        least = getattr(_GRID_MIN, "least", None)
+        slot = base_slot if least is None else f"{base_slot}@{least}"
         if slot in d:
             return d[slot]
         if d.get(busy):  # a super() call while this node is being computed
@@ -98,6 +124,37 @@ def _memo_distance(fn: Callable[["Node", np.ndarray], np.ndarray]) -> Callable[[
         return out
     dist.__wrapped__ = fn  # type: ignore[attr-defined]
     return dist
+
+
+def box_of(node: "Node") -> np.ndarray:
+    """``node.bounds`` without the defensive copies: a read-only (2, 3) array (lo, hi).
+
+    Computed once per node without live parameters, children first; a graph deeper than
+    SHALLOW fills its cache bottom-up (no recursion). The cache is one array, not a tuple,
+    so a 10^5-node scene leaves no extra objects for the cyclic garbage collector."""
+    d = node.__dict__
+    hit = d.get("_bounds_cache")
+    if hit is not None:
+        return hit
+    live = d.get("_live_cache")
+    if live is None:
+        live = fact(node, "_live_cache")
+    kids = node.children
+    if kids and not live and depth(node) > SHALLOW and not all("_bounds_cache" in c.__dict__ for c in kids):
+        for n in postorder(node, skip=lambda n: "_bounds_cache" in n.__dict__):
+            if n is not node:
+                box_of(n)
+    b = node._bounds
+    # a (2, 3) float64 array made by _bounds (Translate's) is kept as it is; else one array is made
+    out = (b if b.shape == (2, 3) and b.dtype == np.float64 and b.flags.owndata else np.array(b, dtype=np.float64)) \
+        if type(b) is np.ndarray else None
+    if out is None or out.shape != (2, 3):
+        out = np.empty((2, 3))
+        out[0], out[1] = _vec3(b[0]), _vec3(b[1])
+    out.flags.writeable = False
+    if not live:
+        d["_bounds_cache"] = out
+    return out
 
 
 class Node(Recorded, register=False):
@@ -257,11 +314,16 @@ class Node(Recorded, register=False):
     def distance(self, points: object) -> np.ndarray:
         """The float64 twin of the generated map(): field values at (..., 3) points."""
         p = as_points(points)
+        least = self.__dict__.get("_data_min")  # the choice of this scene's last compile (see generate)
+
+        def twin() -> np.ndarray:
+            with grid_min_as(least):
+                return self._distance(p)
         if not self.is_dag:
-            return run_deep(self, lambda: self._distance(p))
+            return run_deep(self, twin)
         _TWIN.memo = {}
         try:
-            return run_deep(self, lambda: _with_memo(_TWIN.memo, lambda: self._distance(p)))
+            return run_deep(self, lambda: _with_memo(_TWIN.memo, twin))
         finally:
             _TWIN.memo = None
 
@@ -295,19 +357,8 @@ class Node(Recorded, register=False):
         """Conservative axis-aligned box (lo, hi) holding the solid; components may be inf.
 
         With live parameters, the box for their current values; without, it is computed once."""
-        hit = self.__dict__.get("_bounds_cache")
-        if hit is None and depth(self) > SHALLOW and not self.live_params():
-            # children first, bottom-up, so deep graphs need no recursion
-            for n in postorder(self, skip=lambda n: "_bounds_cache" in n.__dict__):
-                if n is not self:
-                    n.bounds  # noqa: B018 - fills the cache
-        cached = hit if hit is not None else self.__dict__.get("_bounds_cache")
-        if cached is None:
-            lo, hi = self._bounds
-            cached = (_vec3(lo), _vec3(hi))
-            if not self.live_params():
-                self.__dict__["_bounds_cache"] = cached
-        return cached[0].copy(), cached[1].copy()
+        lo, hi = box_of(self)
+        return lo.copy(), hi.copy()
 
     @property
     def _bounds(self) -> tuple[Any, Any]:
@@ -316,7 +367,7 @@ class Node(Recorded, register=False):
     @property
     def has_detail(self) -> bool:
         """True if some node shades with a more detailed field than it marches (see Displace)."""
-        return cached(self, "_detail", lambda n: n._detail_here() or any(c.__dict__["_detail"] for c in n.children))
+        return fact(self, "_detail")
 
     def _detail_here(self) -> bool:
         """True if this node itself shades with more detail than it marches."""
@@ -324,16 +375,17 @@ class Node(Recorded, register=False):
 
     def live_params(self) -> list["Param"]:
         """The live parameters anywhere in this subtree (the tree is immutable: found once)."""
-        return list(cached(self, "_live_cache", Node._find_live_params))
+        hit = self.__dict__.get("_live_cache")
+        return list(hit if hit is not None else fact(self, "_live_cache"))
 
-    def _find_live_params(self) -> list["Param"]:
+    def _find_live_params(self) -> tuple["Param", ...]:
         out: list[Param] = []
         for v in self.params.values():
             if isinstance(v, Live):
                 out += [p for p in v.roots() if p not in out]
         for c in self.children:
             out += [p for p in c.__dict__["_live_cache"] if p not in out]
-        return out
+        return tuple(out)  # () for most nodes: no object for the garbage collector to track
 
     # -- modelling API (fogleman/sdf style) ---------------------------------------------
     def save(self, path: str, **mesh_options: Any) -> Any:
@@ -468,9 +520,9 @@ class Node(Recorded, register=False):
 
     def color(self, r: float | Sequence[float], g: float | None = None, b: float | None = None) -> "Node":
         """Give every part of this node that has no colour of its own the colour (r, g, b)."""
-        from .transforms import Material
+        from .transforms import Material, fold_material
         rgb = r if g is None and b is None else (r, g, b)
-        return Material(self, rgb)
+        return fold_material(Material(self, rgb))
 
     def material(self, color: object = None, *, specular: object = None, roughness: object = None,
                  shininess: object = None, metallic: object = None, emission: object = None) -> "Node":
@@ -483,12 +535,27 @@ class Node(Recorded, register=False):
         left out keep what an outer node (or the default) says.
         """
         from .material import SurfaceMaterial
-        return SurfaceMaterial(self, color, specular=specular, roughness=roughness, shininess=shininess,
-                               metallic=metallic, emission=emission)
+        from .transforms import fold_material
+        return fold_material(SurfaceMaterial(self, color, specular=specular, roughness=roughness, shininess=shininess,
+                                             metallic=metallic, emission=emission))
 
 
 _CACHES = ("_m_", "_key", "_token", "_depth", "_bounds_cache", "_live_cache", "_detail", "_dag", "_grid", "_kids",
-           "_seq")
+           "_data_min",
+           "_seq", "_fields", "_facts")
+
+
+def _detail_below(n: Node) -> bool:
+    """has_detail of ``n`` from its children's (cached) values."""
+    if n._detail_here():
+        return True
+    for c in n.children:
+        if c.__dict__["_detail"]:
+            return True
+    return False
+
+
+FACTS.update({"_live_cache": Node._find_live_params, "_detail": _detail_below})
 
 
 def _with_memo(memo: dict, fn: Callable[[], np.ndarray]) -> np.ndarray:

@@ -13,8 +13,7 @@ import numpy as np
 from ..errors import ParameterError
 from ..params import Live
 from . import validate as v
-from .base import BOUND, EXACT, IMPLICIT, Node
-from .grid import GRID_MIN
+from .base import _CACHES, BOUND, EXACT, IMPLICIT, Node, box_of, grid_min_now
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..codegen import Emitter
@@ -66,33 +65,41 @@ class _Boolean(Node):
         super().__init__(children, **params)
         self.k = kk
 
-    # children are kept in a list shared along a chain built by ``s = s | x`` (each step
-    # appends: O(1)); the tuple is made when first read
+    # children are kept in lists shared along a chain built by ``s = s | x`` (each step
+    # appends to the back: O(1)) or, for hard unions and intersections, ``s = x | s``
+    # (appends to the front list, read reversed); the tuple is made when first read
     @property  # type: ignore[override]
     def children(self) -> tuple[Node, ...]:
         kids = self.__dict__.get("_kids")
         if kids is None:
-            seq, n = self.__dict__["_seq"]
-            kids = self.__dict__["_kids"] = tuple(seq[:n])
+            back, n, front, m = self.__dict__["_seq"]
+            kids = tuple(back[:n]) if not m else tuple(front[m - 1::-1]) + tuple(back[:n])
+            self.__dict__["_kids"] = kids
         return kids
 
     @children.setter
     def children(self, value: tuple[Node, ...]) -> None:
         self.__dict__["_kids"] = tuple(value)
 
-    def _chained(self, right: Node) -> "_Boolean":
-        """This n-ary node with ``right`` appended (the left fold of one more operand)."""
-        seq, n = self.__dict__.get("_seq") or (list(self.children), len(self.children))
-        self.__dict__["_seq"] = (seq, n)
-        if len(seq) != n:  # another chain already grew from this node: branch off a copy
-            seq = seq[:n]
-        seq.append(right)
-        node = type(self).__new__(type(self))
-        from .base import _CACHES
-        node.__dict__.update({k: v for k, v in self.__dict__.items()
-                              if not k.startswith(_CACHES) and k not in ("_kids", "_seq")})
-        node.__dict__["_seq"] = (seq, n + 1)
-        return node
+    def _chained(self, node: Node, front: bool = False) -> "_Boolean":
+        """This n-ary node with ``node`` appended (the left fold of one more operand), or
+        put first (``front``: only for operators where the order does not change the field)."""
+        seq = self.__dict__.get("_seq") or (list(self.children), len(self.children), [], 0)
+        self.__dict__["_seq"] = seq
+        back, n, fr, m = seq
+        if front:
+            fr = fr if len(fr) == m else fr[:m]  # another chain already grew from this node: branch off a copy
+            fr.append(node)
+            m += 1
+        else:
+            back = back if len(back) == n else back[:n]
+            back.append(node)
+            n += 1
+        out = type(self).__new__(type(self))
+        out.__dict__.update({k: v for k, v in self.__dict__.items()
+                             if not k.startswith(_CACHES) and k not in ("_kids", "_seq")})
+        out.__dict__["_seq"] = (back, n, fr, m)
+        return out
 
     @property
     def constructor(self) -> tuple[type, tuple, dict]:
@@ -163,22 +170,15 @@ class Union(_Boolean):
 
     @property
     def grid(self) -> "Grid | None":
-        if "_grid" not in self.__dict__:
+        """The grid of this union's instances under the grid_min in force (see
+        base.grid_min_as), or None where it stays code."""
+        least = grid_min_now()
+        name = "_grid" if least is None else f"_grid@{least}"
+        d = self.__dict__
+        if name not in d:
             from .grid import build
-            self.__dict__["_grid"] = (build(list(self.children), self.__dict__.get("_grid_min"))
-                                      if self._hard else None)
-        return self.__dict__["_grid"]
-
-    def as_data(self, min_children: int) -> bool:
-        """Keep this union as data from ``min_children`` instances on (the code-size budget
-        lowers it); True if that changes the node's field (it then has a grid's cap)."""
-        if not self._hard or self.__dict__.get("_grid_min", GRID_MIN) <= min_children:
-            return False
-        had = self.grid
-        self.__dict__["_grid_min"] = min_children
-        for k in ("_grid", "_m_exactness", "_m_lipschitz"):
-            self.__dict__.pop(k, None)
-        return self.grid is not had
+            d[name] = build(list(self.children), least) if self._hard else None
+        return d[name]
 
     def _emit(self, em: "Emitter", p: str) -> str:
         grid = self.grid if em.use_grids else None
@@ -241,7 +241,7 @@ class Union(_Boolean):
 
     @property
     def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
-        boxes = np.array([c.bounds for c in self.children])
+        boxes = np.array([box_of(c) for c in self.children])
         lo, hi = boxes[:, 0].min(axis=0), boxes[:, 1].max(axis=0)
         grow = float(self.k) * BLEND_REACH[self.blend]  # how far the blend lowers the field
         return lo - grow, hi + grow
@@ -370,6 +370,11 @@ def _build(cls: type, nodes: tuple, k: object, blend: str) -> Node:
         for n in nodes[1:]:
             out = out._chained(n)
         return out
+    last = nodes[-1] if len(nodes) == 2 else None
+    if (isinstance(last, _Boolean) and cls is not Difference and last._same_op(cls, k, blend) and last._hard
+            and isinstance(first, Node) and first is not last):
+        # x | s (a right-deep chain): min and max are associative, so x joins s's operands first
+        return last._chained(first, front=True)
     return cls(*nodes, k=k, blend=blend)
 
 
@@ -435,5 +440,7 @@ def difference(*nodes: Node, k: float = 0.0, blend: str = "quadratic") -> Node:
 
 
 def _all_2d(nodes: tuple) -> bool:
+    if not nodes or isinstance(nodes[0], Node):  # the common case, without the import
+        return False
     from .shapes2d import Shape2D
-    return bool(nodes) and all(isinstance(n, Shape2D) for n in nodes)
+    return all(isinstance(n, Shape2D) for n in nodes)

@@ -185,12 +185,15 @@ def _small(node: Node) -> bool:
 class Grid:
     """The instances of one union, their types and the cell lists over their bounds."""
 
-    def __init__(self, children: list[Node], peeled: list[tuple], types: list[_Type], single_cell: bool = False) -> None:
+    def __init__(self, children: list[Node], peeled: list[tuple], types: list[_Type], single_cell: bool = False,
+                 boxes: np.ndarray | None = None) -> None:
         """``single_cell`` makes one cell list every instance: a plain data-driven loop
-        (the uber-shader the benchmark compares against)."""
+        (the uber-shader the benchmark compares against); ``boxes`` (n, 2, 3) are the
+        children's bounds when the caller has them."""
         self.children, self.types = children, types
         self.peeled = peeled  # (inner, t, R, s, colour) per child
-        boxes = np.array([_bounds_of(c) for c in children])
+        if boxes is None:
+            boxes = np.array([_bounds_of(c) for c in children])
         los, his = boxes[:, 0], boxes[:, 1]
         lo, hi = los.min(axis=0), his.max(axis=0)
         extent = np.maximum(hi - lo, 1e-9)
@@ -428,10 +431,10 @@ def _template(prim: Node, slots: list[str], at: int) -> Node:
     return tpl
 
 
-def _bounds_of(node: Node) -> tuple[np.ndarray, np.ndarray]:
-    """node.bounds without the defensive copies (read only)."""
-    hit = node.__dict__.get("_bounds_cache")
-    return hit if hit is not None else node.bounds
+def _bounds_of(node: Node) -> np.ndarray:
+    """node.bounds without the defensive copies: (lo, hi) rows, read only."""
+    from .base import box_of
+    return box_of(node)
 
 
 def _centred(sph: Node) -> Node:
@@ -457,55 +460,114 @@ def _primitive_slots(prim: Primitive) -> list[str] | None:
     return names
 
 
+def _peel(node: Node, classes: tuple) -> tuple | None:
+    """unwrap() for a node without live parameters (checked by the caller): the same
+    (inner, t, R, s, colour), with R None when nothing rotates."""
+    translate, rotate, scale, material = classes
+    t, r, s, color = None, None, 1.0, None
+    while True:
+        cls = type(node)
+        if cls is translate:
+            off = node.offset if r is None and s == 1.0 else s * ((r if r is not None else _EYE) @ node.offset)
+            t = off if t is None else t + off
+        elif cls is rotate:
+            r = node.m if r is None else r @ node.m
+        elif cls is scale:
+            s = s * float(node.s)
+        elif isinstance(node, material):
+            if node.surface:  # packed primitives carry a colour only, not a full material
+                return None
+            color = node.rgb  # the innermost colour wins, as in code
+        else:
+            return node, _ZERO if t is None else t, r, s, color
+        node = node.child
+
+
+class _ClassInfo:
+    """What build() learns once per primitive class: its data slots and whether it fits."""
+
+    def __init__(self, prim: Primitive) -> None:
+        self.slots = _primitive_slots(prim)
+        self.ok = not (prim.lipschitz > 1.0 or prim.exactness == IMPLICIT)
+        self.public = frozenset(k for k in prim.__dict__ if not k.startswith("_"))
+        self.passed: list[frozenset] = []  # attribute-name sets that passed (a few: caches vary)
+
+    def same_attributes(self, prim: Primitive) -> bool:
+        """True if ``prim`` has the public attributes of the first instance (caches, whose
+        names start with "_", may differ): then it has the same data slots."""
+        keys = prim.__dict__.keys()
+        for ok in self.passed:
+            if keys == ok:
+                return True
+        if frozenset(k for k in keys if not k.startswith("_")) != self.public:
+            return False
+        if len(self.passed) < 8:
+            self.passed.append(frozenset(keys))
+        return True
+
+
 def build(children: list[Node], min_children: int | None = None, single_cell: bool = False) -> Grid | None:
     """A grid for a union's children if at least ``min_children`` (default GRID_MIN) of
-    them are instances (those that are not stay code beside it)."""
+    them are instances (those that are not stay code beside it).
+
+    One pass over the children, no per-node property calls beyond the cached bounds and
+    live-parameter lists: each child is peeled into (inner node, translation, rotation,
+    scale, colour) and sorted into a type; Grid packs the gathered values with numpy."""
     least = GRID_MIN if min_children is None else min_children
     if len(children) < least:
         return None
+    from .base import box_of
+    from .primitives import Sphere
+    from .transforms import Material, Rotate, Scale, Translate
+    classes = (Translate, Rotate, Scale, Material)
+    boxes = np.array([box_of(c) for c in children])  # (n, 2, 3)
+    finite = np.isfinite(boxes).all(axis=(1, 2))
     types: dict[tuple, _Type] = {}
-    slot_cache: dict[type, list[str] | None] = {}
-    attrs: dict[type, Any] = {}  # attribute names of the first instance of each class
-    lipschitz_ok: dict[type, bool] = {}
+    info: dict[type, _ClassInfo] = {}
+    subtree: dict[int, tuple[bool, tuple | None]] = {}  # id(inner) -> (usable, colour in code)
     kept: list[Node] = []
     peeled: list[tuple] = []
-    from .primitives import Sphere
-    for c in children:
-        lo, hi = _bounds_of(c)
-        if not (np.isfinite(lo).all() and np.isfinite(hi).all()):
+    rows: list[int] = []
+    for i, c in enumerate(children):
+        if not finite[i]:
             continue
-        u = unwrap(c)
+        live = c.__dict__.get("_live_cache")
+        if live is None:
+            live = c.live_params()
+        if live:
+            continue
+        u = _peel(c, classes)
         if u is None:
             continue
-        inner = u[0]
-        if isinstance(inner, Sphere) and not inner.live_params() and np.any(inner.c):
-            # the centre joins the translation: a sphere is one texel (centre, radius)
-            u = (_centred(inner), u[1] + u[3] * (u[2] @ inner.c), u[2], u[3], u[4])
-            inner = u[0]
-        if isinstance(inner, Primitive):
-            if any(isinstance(v, Live) for v in inner.params.values()):
-                continue
-        elif inner.live_params() or inner.exactness == IMPLICIT or inner.lipschitz > 1.0:
-            continue
+        inner, tr, r, sc, color = u
         if isinstance(inner, Primitive):
             cls = type(inner)
-            if cls not in slot_cache:
-                slot_cache[cls] = _primitive_slots(inner)
-                if inner.lipschitz > 1.0 or inner.exactness == IMPLICIT:
-                    lipschitz_ok[cls] = False
-            if not lipschitz_ok.get(cls, True):
+            ci = info.get(cls)
+            if ci is None:
+                ci = info[cls] = _ClassInfo(inner)
+            if not ci.ok:
                 continue
-            slots = slot_cache[cls]
-            if slots is not None and inner.__dict__.keys() != attrs.setdefault(cls, inner.__dict__.keys()) \
-                    and [n for n, _ in _slot_values(inner)] != slots:
+            slots = ci.slots
+            if slots is not None and not ci.same_attributes(inner) and [n for n, _ in _slot_values(inner)] != slots:
                 slots = None
-            key = ("prim", cls) if slots is not None else ("node", inner.key)
+            if cls is Sphere and (inner.c[0] or inner.c[1] or inner.c[2]):
+                # the centre joins the translation: a sphere is one texel (centre, radius)
+                tr = tr + sc * (inner.c if r is None else r @ inner.c)
+                inner = _centred(inner) if slots is None or ("prim", cls) not in types else inner
+            key: tuple = ("prim", cls) if slots is not None else ("node", inner.key)
             color_in_code = None
         else:
-            if not _small(inner):
+            usable, color_in_code = subtree.get(id(inner), (None, None))
+            if usable is None:
+                usable = not (inner.live_params() or inner.exactness == IMPLICIT or inner.lipschitz > 1.0) \
+                    and _small(inner)
+                color_in_code = ("has colours",) if usable and _has_color(inner) else None
+                subtree[id(inner)] = (usable, color_in_code)
+            if not usable:
                 continue
+            if color_in_code is not None:
+                color_in_code = color or ("default",)
             slots = None
-            color_in_code = (u[4] or ("default",)) if _has_color(inner) else None
             key = ("node", inner.key, color_in_code)
         t = types.get(key)
         if t is None:
@@ -513,16 +575,16 @@ def build(children: list[Node], min_children: int | None = None, single_cell: bo
                 continue
             t = types[key] = _Type(key, inner, slots, color_in_code)
         t.members.append(len(kept))
-        _, tr, r, s, _ = u
-        if s != 1.0:
+        if sc != 1.0:
             t.scaled = t.affine = True
-        if r is not _EYE and not np.array_equal(r, _EYE):
+        if r is not None and not t.affine and not np.array_equal(r, _EYE):
             t.affine = True
         kept.append(c)
-        peeled.append(u)
+        peeled.append((inner, tr, _EYE if r is None else r, sc, color))
+        rows.append(i)
     if len(kept) < least:
         return None
-    return Grid(kept, peeled, list(types.values()), single_cell)
+    return Grid(kept, peeled, list(types.values()), single_cell, boxes[rows])
 
 
 __all__ = ["GRID_MIN", "Grid", "build", "pack", "unwrap"]

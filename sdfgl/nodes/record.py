@@ -35,11 +35,14 @@ class Recorded:
     kind: ClassVar[str] = "recorded"
     serializable: ClassVar[bool] = True
     unsaved_reason: ClassVar[str] = ""  # why a class with serializable = False cannot be saved
-    _ctor: tuple[tuple, dict]
+    _ctor: tuple  # the positional arguments; keyword arguments, if any, in _ctor_kw
 
     def __new__(cls, *args: Any, **kwargs: Any) -> "Recorded":
         self = super().__new__(cls)
-        self.__dict__["_ctor"] = (args, kwargs)
+        d = self.__dict__
+        d["_ctor"] = args  # no (args, kwargs) pair: one object less per node for the garbage collector
+        if kwargs:
+            d["_ctor_kw"] = kwargs
         return self
 
     def __init_subclass__(cls, register: bool = True, **kw: Any) -> None:
@@ -56,8 +59,8 @@ class Recorded:
     @property
     def constructor(self) -> tuple[type, tuple, dict]:
         """(class, args, kwargs) of the call that built this object."""
-        args, kwargs = self.__dict__.get("_ctor", ((), {}))
-        return type(self), args, kwargs
+        d = self.__dict__
+        return type(self), d.get("_ctor", ()), d.get("_ctor_kw", {})
 
     def __reduce__(self) -> tuple:
         """Pickle the graph as a flat table of constructor calls, children first: no
@@ -112,21 +115,8 @@ def _nested(value: Any) -> list["Recorded"]:
 def _postorder(root: "Recorded") -> list["Recorded"]:
     """Every recorded object reachable through constructor arguments, each after those it
     was built from (iterative)."""
-    order: list[Recorded] = []
-    seen = {id(root)}
-    stack: list[tuple[Recorded, bool]] = [(root, False)]
-    while stack:
-        node, expanded = stack.pop()
-        if expanded:
-            order.append(node)
-            continue
-        stack.append((node, True))
-        _, args, kwargs = node.constructor
-        for child in _nested((args, kwargs)):
-            if id(child) not in seen:
-                seen.add(id(child))
-                stack.append((child, False))
-    return order
+    from .traverse import walk
+    return walk(root, lambda n: _nested(n.constructor[1:]))[0]
 
 
 def _to_refs(value: Any, index: dict[int, int]) -> Any:

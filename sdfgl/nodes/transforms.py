@@ -9,7 +9,7 @@ import numpy as np
 from ..errors import ParameterError
 from . import validate as v
 from ..params import Live
-from .base import BOUND, IMPLICIT, Node, Unary
+from .base import BOUND, IMPLICIT, Node, Unary, box_of
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..codegen import Emitter
@@ -34,20 +34,23 @@ class Translate(Unary):
         return self.child._distance(p - self.offset)
 
     @property
-    def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
-        lo, hi = self.child.bounds
-        return lo + self.offset, hi + self.offset
+    def _bounds(self) -> np.ndarray:
+        return box_of(self.child) + self.offset  # (lo, hi) rows
 
 
 _EYE = np.eye(3)
 
 
 def _axis_angle_matrix(axis: np.ndarray, degrees: float) -> np.ndarray:
-    a = axis / math.sqrt(float(axis @ axis))
+    """I cos + K sin + (1 - cos) a a^T (Rodrigues), in Python floats: one array made, not
+    six (a 10^5-step rotate loop pays this per step); the same floats as the matrix sum."""
+    x, y, z = (axis / math.sqrt(float(axis @ axis))).tolist()
     t = math.radians(degrees)
     c, s = math.cos(t), math.sin(t)
-    k = np.array([[0, -a[2], a[1]], [a[2], 0, -a[0]], [-a[1], a[0], 0]])
-    return _EYE * c + s * k + (1 - c) * np.outer(a, a)
+    C = 1 - c
+    return np.array([[c + C * (x * x), -s * z + C * (x * y), s * y + C * (x * z)],
+                     [s * z + C * (y * x), c + C * (y * y), -s * x + C * (y * z)],
+                     [-s * y + C * (z * x), s * x + C * (z * y), c + C * (z * z)]])
 
 
 class Rotate(Unary):
@@ -115,7 +118,7 @@ class Rotate(Unary):
 
     @property
     def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
-        lo, hi = self.child.bounds
+        lo, hi = box_of(self.child)
         finite = np.isfinite(lo) & np.isfinite(hi)
         lo_f, hi_f = np.where(finite, lo, 0.0), np.where(finite, hi, 0.0)
         centre = (lo_f + hi_f) / 2
@@ -147,7 +150,7 @@ class Scale(Unary):
 
     @property
     def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
-        lo, hi = self.child.bounds
+        lo, hi = box_of(self.child)
         return lo * self.s, hi * self.s
 
 
@@ -180,7 +183,7 @@ class ScaleAxes(Unary):
 
     @property
     def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
-        lo, hi = self.child.bounds
+        lo, hi = box_of(self.child)
         return lo * self.s, hi * self.s
 
 
@@ -217,7 +220,7 @@ class Material(Unary):
 
     @property
     def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
-        return self.child.bounds
+        return box_of(self.child)
 
 
 def _baked(node: Node) -> bool:
@@ -258,6 +261,16 @@ def rotate(node: Node, angle: float | Live, axis: Sequence[float]) -> Node:
     return fold(_rotate(node, _axis_angle_matrix(ax, deg)))  # a rotation by construction
 
 
+def fold_material(node: Node) -> Node:
+    """A colour or material node over one that already sets every field it sets is that
+    inner node (the innermost setting wins): ``s = s.color(...)`` in a loop stays one node.
+    Live values stay (their parameters keep their uniforms)."""
+    inner = node.child if isinstance(node, Material) else None
+    if isinstance(inner, Material) and _baked(node) and node.fields.keys() <= inner.fields.keys():
+        return inner
+    return node
+
+
 def fold(node: Node) -> Node:
     """A new rigid transform or uniform scale merged with the ones directly under it, into
     the order translate(rotate(scale(x))): a chain of 10^5 moves stays three nodes deep.
@@ -283,4 +296,4 @@ def fold(node: Node) -> Node:
     return _rotate(fold(_scale(inner.child, s)), inner.m)  # scaling commutes with rotating
 
 
-__all__ = ["Translate", "Rotate", "Scale", "ScaleAxes", "Material", "scale", "fold", "rotate"]
+__all__ = ["Translate", "Rotate", "Scale", "ScaleAxes", "Material", "scale", "fold", "fold_material", "rotate"]

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import sys
 import threading
-from typing import TYPE_CHECKING, Any, Callable, Iterator, TypeVar
+from typing import TYPE_CHECKING, Any, Callable, Iterator, Sequence, TypeVar
 
 if TYPE_CHECKING:  # pragma: no cover
     from .base import Node
@@ -20,26 +20,53 @@ MAX_DEPTH = 1_000_000    # nesting deeper than this is refused with a message
 _STACK_BYTES = 1 << 30   # per level: a few Python frames of a few hundred bytes each
 
 
-def postorder(root: "Node", skip: Callable[["Node"], bool] = lambda n: False) -> Iterator["Node"]:
-    """Each distinct node under ``root`` once, children before parents; the subtree of a
-    node for which ``skip`` is true is not entered (nor is the node yielded)."""
-    seen: set[int] = set()
-    if skip(root):
+def _children(node: Any) -> Sequence[Any]:
+    return node.children
+
+
+def postorder(root: "Node", skip: Callable[["Node"], bool] | None = None,
+              kids: Callable[[Any], Sequence[Any]] = _children) -> Iterator["Node"]:
+    """Each distinct node under ``root`` once, children before parents (in their order); the
+    subtree of a node for which ``skip`` is true is not entered (nor is the node yielded).
+    ``kids`` gives a node's children (default: ``node.children``; pickling and scene
+    documents walk the nodes in constructor arguments)."""
+    if skip is not None and skip(root):
         return
-    stack: list[tuple["Node", int]] = [(root, 0)]
-    seen.add(id(root))
+    seen = {id(root)}
+    stack: list[tuple[Any, Iterator[Any]]] = [(root, iter(kids(root)))]
     while stack:
-        node, i = stack[-1]
-        kids = node.children
-        if i < len(kids):
-            stack[-1] = (node, i + 1)
-            c = kids[i]
-            if id(c) not in seen and not skip(c):
+        node, it = stack[-1]
+        for c in it:
+            if id(c) not in seen and (skip is None or not skip(c)):
                 seen.add(id(c))
-                stack.append((c, 0))
-            continue
-        stack.pop()
-        yield node
+                stack.append((c, iter(kids(c))))
+                break
+        else:
+            stack.pop()
+            yield node
+
+
+def walk(root: Any, kids: Callable[[Any], Sequence[Any]] = _children) -> tuple[list[Any], dict[int, int]]:
+    """(every distinct node under ``root`` children first, uses): ``uses[id(n)]`` counts the
+    references to ``n`` from its parents (a child listed twice counts twice; the root
+    counts one). ``kids`` is called once per distinct node."""
+    order: list[Any] = []
+    uses = {id(root): 1}
+    stack: list[tuple[Any, Iterator[Any]]] = [(root, iter(kids(root)))]
+    while stack:
+        node, it = stack[-1]
+        for c in it:
+            k = id(c)
+            if k in uses:
+                uses[k] += 1
+                continue
+            uses[k] = 1
+            stack.append((c, iter(kids(c))))
+            break
+        else:
+            stack.pop()
+            order.append(node)
+    return order, uses
 
 
 def cached(node: "Node", name: str, compute: Callable[["Node"], T]) -> T:
@@ -55,17 +82,56 @@ def cached(node: "Node", name: str, compute: Callable[["Node"], T]) -> T:
             c.__dict__[name] = compute(c)
         value = d[name] = compute(node)
         return value
-    for n in postorder(node, skip=lambda n: name in n.__dict__):
-        n.__dict__[name] = compute(n)
-    return node.__dict__[name]
+    # the walk of postorder(), inlined: a 10^5-node scene pays per node only this loop
+    seen = {id(node)}
+    stack: list[tuple[Any, Iterator[Any]]] = [(node, iter(node.children))]
+    while stack:
+        n, it = stack[-1]
+        for c in it:
+            if id(c) not in seen and name not in c.__dict__:
+                seen.add(id(c))
+                stack.append((c, iter(c.children)))
+                break
+        else:
+            stack.pop()
+            n.__dict__[name] = compute(n)
+    return d[name]
 
 
 _MISSING = object()
 
 
+def _depth_of(n: Any) -> int:
+    return 1 + max([c.__dict__["_depth"] for c in n.children], default=0)
+
+
+# Structural facts of a node, each computed from its children's: all of them are filled
+# in one walk (a 10^5-node scene is walked once, not once per fact). Modules add theirs
+# (nodes.base: live parameters, detail; codegen: material fields).
+FACTS: dict[str, Callable[[Any], Any]] = {"_depth": _depth_of}
+
+
+def _fill_facts(n: Any) -> bool:
+    d = n.__dict__
+    for name, compute in FACTS.items():
+        d[name] = compute(n)
+    return True
+
+
+def fact(node: Any, name: str) -> Any:
+    """The structural fact ``name`` (a key of FACTS) of ``node``; the first call fills every
+    fact of every node under it that lacks them, in one walk."""
+    d = node.__dict__
+    if "_facts" not in d:
+        cached(node, "_facts", _fill_facts)
+    hit = d.get(name, _MISSING)
+    return hit if hit is not _MISSING else cached(node, name, FACTS[name])  # a fact added after the walk
+
+
 def depth(node: "Node") -> int:
     """The number of nodes on the longest path from ``node`` to a leaf."""
-    return cached(node, "_depth", lambda n: 1 + max((c.__dict__["_depth"] for c in n.children), default=0))
+    hit = node.__dict__.get("_depth")
+    return hit if hit is not None else fact(node, "_depth")
 
 
 def run_deep(node: "Node", fn: Callable[[], T]) -> T:

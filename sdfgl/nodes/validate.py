@@ -63,6 +63,9 @@ def _check_vector(node: str, name: str, arr: np.ndarray, positive: bool, nonzero
         raise ParameterError(f"{node}: parameter '{name}' must not be the zero vector")
 
 
+_PLAIN = (float, int)  # exactly these types (bool is not one of them)
+
+
 def vector(node: str, name: str, value: object, n: int = 3, *, positive: bool = False,
            nonzero: bool = False) -> Any:
     """``value`` as a float64 vector of length n (a scalar is broadcast), or a live value."""
@@ -70,6 +73,16 @@ def vector(node: str, name: str, value: object, n: int = 3, *, positive: bool = 
         watch(lambda: _check_vector(node, name, np.broadcast_to(np.asarray(value.value, float), (n,)),
                                     positive, nonzero), value)
         return value
+    if n == 3 and type(value) in (tuple, list) and len(value) == 3:
+        x, y, z = value  # the most common call: three plain Python numbers
+        if type(x) in _PLAIN and type(y) in _PLAIN and type(z) in _PLAIN:
+            try:
+                ok = (math.isfinite(x) and math.isfinite(y) and math.isfinite(z)
+                      and not (positive and min(x, y, z) <= 0) and not (nonzero and not (x or y or z)))
+            except OverflowError:  # an int too big for a float: the checks below name it
+                ok = False
+            if ok:
+                return np.array((x, y, z), dtype=np.float64)
     if isinstance(value, (Real, np.floating, np.integer)) and not isinstance(value, bool):
         value = [value] * n
     if isinstance(value, (tuple, list, np.ndarray)) and len(value) == n:

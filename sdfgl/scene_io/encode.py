@@ -18,6 +18,7 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..nodes.record import Recorded
+from ..nodes.traverse import walk
 from ..params import Live, Param
 from .limits import FORMAT, INLINE_HEIGHT, VERSION
 
@@ -73,24 +74,8 @@ class Encoder:
 
     @staticmethod
     def _postorder(root: Recorded) -> tuple[list[Recorded], dict[int, int]]:
-        order: list[Recorded] = []
-        uses: dict[int, int] = {id(root): 1}
-        seen = {id(root)}
-        stack: list[tuple[Recorded, bool]] = [(root, False)]
-        while stack:
-            node, expanded = stack.pop()
-            if expanded:
-                order.append(node)
-                continue
-            stack.append((node, True))
-            for child in reversed([c for v in bound_arguments(node).values() for c in _recorded_in(v)]):
-                if id(child) in seen:
-                    uses[id(child)] += 1
-                    continue
-                seen.add(id(child))
-                uses[id(child)] = 1
-                stack.append((child, False))
-        return order, uses
+        """Nodes children first (in argument order) and how often each is referenced."""
+        return walk(root, lambda n: [c for v in bound_arguments(n).values() for c in _recorded_in(v)])
 
     def _encode_node(self, node: Recorded, shared: bool) -> None:
         if not node.serializable:
