@@ -27,7 +27,7 @@ import numpy as np
 
 from ..errors import SdfglError
 from ..params import Live
-from . import grid_record
+from . import bvh, grid_record
 from .base import IMPLICIT, Node, Primitive
 from .traverse import postorder
 
@@ -320,42 +320,48 @@ class Grid:
 
     # -- code ------------------------------------------------------------------------
     def emit(self, em: "Emitter", p: str) -> str:
-        """Call this grid's union function at point ``p``: (rgb, d) in colour mode, else d."""
-        from .. import shaderlib
+        """Call this grid's union function at point ``p``: (rgb, d) in colour mode, else d
+        (through the cells, or with setting grid="bvh" the hierarchy of nodes/bvh.py)."""
         gid = em.grid_name(self)
         channel = "Color" if em.channel == "albedo" else em.channel.capitalize()
         fn = f"{gid}{channel if em.mode == 'color' else ('Detail' if em.detail else 'Dist')}"
         key = ("grid", gid, em.mode, em.channel, em.detail)
         if key not in em.functions:
-            default = em.grids[id(self)][2]
-            tex = self.textures(default)
-            em.require("data_table")
-            cells, lists = em.data.add(tex["Cells"]), em.data.add(tex["List"])
-            head = shaderlib.read("grid_union").replace("GRIDID", gid)
-            defs = (f"#define {gid}_LO vec3({', '.join(em.num(x) for x in self.lo - self.centre)})\n"
-                    f"#define {gid}_CELL {em.num(self.cell)}\n"
-                    f"#define {gid}_MARGIN {em.num(self.margin)}\n"
-                    f"#define {gid}_DIMS ivec3({', '.join(str(int(x)) for x in self.dims)})\n"
-                    f"#define {gid}_PER_CELL {-(-len(self.types) // 2)}\n"
-                    f"#define {gid}_CELLS {cells}\n#define {gid}_LIST {lists}")
-            em.helper(f"{gid}_grid", defs + "\n" + head)
             color = em.mode == "color"
             owner = f"union of {len(self.children)} instances ({gid})"
-            body = [(f"    vec4 s{j} = dataFetch({gid}_CELLS + cell + {j});", owner)
-                    for j in range(-(-len(self.types) // 2))]
+            loops = []
             for ti, t in enumerate(self.types):
-                body += self._loop(em, t, ti, color, owner)
-            rtype = "vec4" if color else "float"
-            best = "vec4(0.0, 0.0, 0.0, cap)" if color else "cap"
-            lines = [(f"{rtype} {fn}(vec3 p) {{", owner),
-                     ("    float cap;", owner),
-                     (f"    int cell = {gid}Cell(p, cap) * {gid}_PER_CELL;", owner),
-                     (f"    {rtype} best = {best};", owner),
-                     *body,
-                     ("    return best;", owner), ("}", owner)]
-            em.functions[key] = (fn, lines)
+                loops += self._loop(em, t, ti, color, owner)
+            make = bvh.of(self).emit_function if em.use_grids == "bvh" else self._cell_function
+            em.functions[key] = (fn, make(em, fn, color, loops, owner))
         pt = em.point(em.shift(p, -self.centre))
         return em.assign("vec4" if em.mode == "color" else "float", f"{fn}({pt})")
+
+    def _cell_function(self, em: "Emitter", fn: str, color: bool, loops: list[tuple[str, str]],
+                       owner: str) -> list[tuple[str, str]]:
+        """The union function ``fn``: find p's cell, then run the per-type ``loops`` over its lists."""
+        from .. import shaderlib
+        gid = em.grid_name(self)
+        tex = self.textures(em.grids[id(self)][2])
+        em.require("data_table")
+        cells, lists = em.data.add(tex["Cells"]), em.data.add(tex["List"])
+        head = shaderlib.read("grid_union").replace("GRIDID", gid)
+        defs = (f"#define {gid}_LO vec3({', '.join(em.num(x) for x in self.lo - self.centre)})\n"
+                f"#define {gid}_CELL {em.num(self.cell)}\n"
+                f"#define {gid}_MARGIN {em.num(self.margin)}\n"
+                f"#define {gid}_DIMS ivec3({', '.join(str(int(x)) for x in self.dims)})\n"
+                f"#define {gid}_PER_CELL {-(-len(self.types) // 2)}\n"
+                f"#define {gid}_CELLS {cells}\n#define {gid}_LIST {lists}")
+        em.helper(f"{gid}_grid", defs + "\n" + head)
+        rtype = "vec4" if color else "float"
+        best = "vec4(0.0, 0.0, 0.0, cap)" if color else "cap"
+        fetch = [(f"    vec4 s{j} = dataFetch({gid}_CELLS + cell + {j});", owner) for j in range(-(-len(self.types) // 2))]
+        return [(f"{rtype} {fn}(vec3 p) {{", owner),
+                ("    float cap;", owner),
+                (f"    int cell = {gid}Cell(p, cap) * {gid}_PER_CELL;", owner),
+                (f"    {rtype} best = {best};", owner),
+                *fetch, *loops,
+                ("    return best;", owner), ("}", owner)]
 
     def _loop(self, em: "Emitter", t: _Type, ti: int, color: bool, owner: str) -> list[tuple[str, str]]:
         """The loop over the (cell, type ti) list: fetch, transform, evaluate, keep the min."""
