@@ -178,10 +178,9 @@ def run_structures(quick: bool, size: tuple[int, int] = (320, 240), seeds: tuple
     renderer = Renderer()
     timer = FrameTimer(renderer, size)
     frames, warmup = (2, 1) if quick else (5, 2)
-    sizes = (16, 128) if quick else (16, 256, 1024, 4096)
-    n_mixed = 100 if quick else 5000
+    sizes = (16, 64) if quick else (16, 256, 1024, 4096)
     scenes = [("growth", n, seed, lambda n=n, seed=seed: growth(n, seed)) for seed in seeds[:1 if quick else None]
-              for n in sizes] + [("mixed", n_mixed, 0, lambda: mixed(n_mixed))]
+              for n in sizes] + ([] if quick else [("mixed", 5000, 0, lambda: mixed(5000))])
     found: dict[tuple, dict] = {}
     vs = []
     for structure in ("grid", "bvh"):
