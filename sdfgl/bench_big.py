@@ -8,6 +8,7 @@ and drawing took, beside the steps per ray; frame times are medians of interleav
 from __future__ import annotations
 
 import math
+import statistics
 import time
 from typing import Callable
 
@@ -205,4 +206,53 @@ def run_big(quick: bool, size: tuple[int, int] = (320, 240)) -> str:
             "that makes the scene, 'link' generating the source plus the driver's compile and link, 'first "
             "frame' adds llvmpipe's code generation; 'ratio' is to the group's first row; 'how' is the "
             "code/data choice in the shader source (grid_min: the fewest instances a union kept as data had "
-            "to have).\n\n" + "\n".join(rows))
+            "to have).\n\n" + "\n".join(rows) + "\n\n" + run_structures(quick, size))
+
+
+def run_structures(quick: bool, size: tuple[int, int] = (320, 240), seeds: tuple[int, ...] = (0, 1, 2)) -> str:
+    """The acceleration structure table: the uniform grid (the default) against the
+    bounding volume hierarchy (setting grid="bvh") on the growth scene kind over
+    ``seeds`` and on the mixed scene, frames interleaved; wall and process CPU time per
+    frame (llvmpipe draws on worker threads of this process; CPU time is the figure that
+    a loaded machine disturbs least); return the markdown section."""
+    from .bench import FrameTimer, Variant
+    from .render import Renderer
+    renderer = Renderer()
+    timer = FrameTimer(renderer, size)
+    frames, warmup = (2, 1) if quick else (5, 2)
+    sizes = (16, 64) if quick else (16, 256, 1024, 4096)
+    scenes = [("growth", n, seed, lambda n=n, seed=seed: growth(n, seed)) for seed in seeds[:1 if quick else None]
+              for n in sizes] + ([] if quick else [("mixed", 5000, 0, lambda: mixed(5000))])
+    found: dict[tuple, dict] = {}
+    vs = []
+    for structure in ("grid", "bvh"):
+        for kind, n, seed, make in scenes:
+            scene, cam = make()
+            v = Variant(kind, f"{n}", {**NO_SHADING, "grid": True if structure == "grid" else "bvh"}, scene, cam)
+            link, first = timer.prepare(v)
+            v.result.update(key=(kind, n, seed, structure), link=link, first=first, wall=[], cpu=[])
+            vs.append(v)
+    for rnd in range(warmup + frames):
+        for v in vs:
+            c0 = time.process_time()
+            dt = timer.draw(v)
+            if rnd >= warmup:
+                v.result["wall"].append(1000 * dt)
+                v.result["cpu"].append(1000 * (time.process_time() - c0))
+    for v in vs:
+        res = renderer.render(v.node, v.camera, size, outputs=("color", "steps"), **v.settings)
+        found[v.result["key"]] = dict(wall=statistics.median(v.result["wall"]), cpu=statistics.median(v.result["cpu"]),
+                                      steps=float(res.steps.mean()), link=v.result["link"], first=v.result["first"])
+    rows = ["| scene | objects | structure | frame ms (wall) | CPU ms / frame | ratio to 16 (CPU) | steps/px | "
+            "link ms | first frame ms |", "|---|---|---|---|---|---|---|---|---|"]
+    for structure in ("grid", "bvh"):
+        for kind, n, seed, _ in scenes:
+            f = found[(kind, n, seed, structure)]
+            base = found.get((kind, sizes[0], seed, structure)) if kind == "growth" else None
+            ratio = f"{f['cpu'] / base['cpu']:.2f}" if base else "-"
+            name = f"growth seed {seed}" if kind == "growth" else "mixed rotated primitives"
+            rows.append(f"| {name} | {n} | {structure} | {f['wall']:.1f} | {f['cpu']:.1f} | {ratio} | {f['steps']:.2f} | "
+                        f"{1000 * f['link']:.0f} | {1000 * f['first']:.0f} |")
+    return (f"Acceleration structures, {size[0]}x{size[1]}, shadows and AO off; frames of every "
+            "row interleaved; medians. The growth scenes of 16 objects are code under both (fewer than "
+            "grid_min). 'CPU' is the process's CPU time per frame (all llvmpipe threads).\n\n" + "\n".join(rows))

@@ -68,7 +68,8 @@ class Settings:
         map() calls), "normal", "depth" or "select" (grey, tinted where the subtree given to
         generate() as ``highlight`` is the nearest surface; the viewer's scene tree uses it).
     grid: keep big unions of simple primitives as data with a cell grid (False writes
-        them out as code, to compare).
+        them out as code, to compare; "bvh" traverses a bounding volume hierarchy instead
+        of the cells: the measured alternative, slower here, see the benchmark).
     analytic: intersect a lone sphere or plane in closed form instead of marching it.
     grid_min: the fewest instances a hard union keeps as data (None: automatic, 32, or 8
         once the scene's code passes code_budget; the result's settings say which).
@@ -121,8 +122,9 @@ class Settings:
         if self.shadows not in SHADOWS:
             raise ParameterError(f"setting 'shadows' must be False, 'hard' or 'soft', got {self.shadows!r}")
         for name in ("ao", "ground", "grid", "analytic", "alpha"):
-            if not isinstance(getattr(self, name), bool):
-                raise ParameterError(f"setting '{name}' must be True or False, got {getattr(self, name)!r}")
+            if not isinstance(getattr(self, name), bool) and (name, getattr(self, name)) != ("grid", "bvh"):
+                also = " or 'bvh'" if name == "grid" else ""
+                raise ParameterError(f"setting '{name}' must be True or False{also}, got {getattr(self, name)!r}")
         if self.method not in METHODS:
             raise ParameterError(f"setting 'method' must be one of {', '.join(METHODS)}, got {self.method!r}")
         if self.omega is not None:

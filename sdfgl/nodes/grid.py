@@ -27,6 +27,7 @@ import numpy as np
 
 from ..errors import SdfglError
 from ..params import Live
+from . import bvh, grid_record
 from .base import IMPLICIT, Node, Primitive
 from .traverse import postorder
 
@@ -153,12 +154,12 @@ class _Type:
         self.slots = slots                  # attribute names read from data (primitive types)
         self.color_in_code = color_in_code  # the subtree's default colour when it has colours of its own
         self.members: list[int] = []        # indices into Grid.children
-        self.affine = False                 # rotated or scaled members: a 3x4 inverse transform
+        self.affine = False                 # rotated or scaled members (a move layout of grid_record)
         self.scaled = False
 
-    def layout(self, slot_sizes: list[int]) -> tuple[int, int, int, int]:
+    def layout(self, slot_sizes: list[int], move: str) -> tuple[int, int, int, int]:
         """(float offset of the scale, of the slots, of the colour, texels per record)."""
-        n = 12 if self.affine else 3
+        n = grid_record.floats(move)
         scale_at = n
         n += 1 if self.scaled else 0
         slots_at = n
@@ -255,19 +256,16 @@ class Grid:
         return cells[order], child[order]
 
     def records(self, t: _Type, default_color: tuple[float, float, float]) -> np.ndarray:
-        """float32 (members, texels, 4): each member's inverse transform, parameters, colour."""
+        """float32 (members, texels, 4): each member's move (grid_record), parameters, colour."""
         sizes = [len(v) for _, v in _slot_values(t.inner)] if t.slots is not None else []
-        scale_at, slots_at, color_at, texels = t.layout(sizes)
-        out = np.zeros((len(t.members), texels * 4), dtype=np.float64)
         peeled = [self.peeled[i] for i in t.members]
+        rot = np.array([u[2] for u in peeled])
+        move = grid_record.kind(t, rot)
+        scale_at, slots_at, color_at, texels = t.layout(sizes, move)
+        out = np.zeros((len(t.members), texels * 4), dtype=np.float64)
         tr = np.array([u[1] for u in peeled]) - self.centre
         s = np.array([u[3] for u in peeled], dtype=np.float64)
-        if t.affine:
-            a = np.array([u[2] for u in peeled]).transpose(0, 2, 1) / s[:, None, None]
-            b = -np.einsum("nij,nj->ni", a, tr)
-            out[:, 0:12] = np.concatenate([a, b[:, :, None]], axis=2).reshape(-1, 12)
-        else:
-            out[:, 0:3] = tr
+        out[:, :grid_record.floats(move)] = grid_record.encode(move, tr, rot, s)
         if t.scaled:
             out[:, scale_at] = s
         if t.slots is not None:
@@ -325,48 +323,55 @@ class Grid:
 
     # -- code ------------------------------------------------------------------------
     def emit(self, em: "Emitter", p: str) -> str:
-        """Call this grid's union function at point ``p``: (rgb, d) in colour mode, else d."""
-        from .. import shaderlib
+        """Call this grid's union function at point ``p``: (rgb, d) in colour mode, else d
+        (through the cells, or with setting grid="bvh" the hierarchy of nodes/bvh.py)."""
         gid = em.grid_name(self)
         channel = "Color" if em.channel == "albedo" else em.channel.capitalize()
         fn = f"{gid}{channel if em.mode == 'color' else ('Detail' if em.detail else 'Dist')}"
         key = ("grid", gid, em.mode, em.channel, em.detail)
         if key not in em.functions:
-            default = em.grids[id(self)][2]
-            tex = self.textures(default)
-            em.require("data_table")
-            cells, lists = em.data.add(tex["Cells"]), em.data.add(tex["List"])
-            head = shaderlib.read("grid_union").replace("GRIDID", gid)
-            defs = (f"#define {gid}_LO vec3({', '.join(em.num(x) for x in self.lo - self.centre)})\n"
-                    f"#define {gid}_CELL {em.num(self.cell)}\n"
-                    f"#define {gid}_MARGIN {em.num(self.margin)}\n"
-                    f"#define {gid}_DIMS ivec3({', '.join(str(int(x)) for x in self.dims)})\n"
-                    f"#define {gid}_PER_CELL {-(-len(self.types) // 2)}\n"
-                    f"#define {gid}_CELLS {cells}\n#define {gid}_LIST {lists}")
-            em.helper(f"{gid}_grid", defs + "\n" + head)
             color = em.mode == "color"
             owner = f"union of {len(self.children)} instances ({gid})"
-            body = [(f"    vec4 s{j} = dataFetch({gid}_CELLS + cell + {j});", owner)
-                    for j in range(-(-len(self.types) // 2))]
+            loops = []
             for ti, t in enumerate(self.types):
-                body += self._loop(em, t, ti, color, owner)
-            rtype = "vec4" if color else "float"
-            best = "vec4(0.0, 0.0, 0.0, cap)" if color else "cap"
-            lines = [(f"{rtype} {fn}(vec3 p) {{", owner),
-                     ("    float cap;", owner),
-                     (f"    int cell = {gid}Cell(p, cap) * {gid}_PER_CELL;", owner),
-                     (f"    {rtype} best = {best};", owner),
-                     *body,
-                     ("    return best;", owner), ("}", owner)]
-            em.functions[key] = (fn, lines)
+                loops += self._loop(em, t, ti, color, owner)
+            make = bvh.of(self).emit_function if em.use_grids == "bvh" else self._cell_function
+            em.functions[key] = (fn, make(em, fn, color, loops, owner))
         pt = em.point(em.shift(p, -self.centre))
         return em.assign("vec4" if em.mode == "color" else "float", f"{fn}({pt})")
+
+    def _cell_function(self, em: "Emitter", fn: str, color: bool, loops: list[tuple[str, str]],
+                       owner: str) -> list[tuple[str, str]]:
+        """The union function ``fn``: find p's cell, then run the per-type ``loops`` over its lists."""
+        from .. import shaderlib
+        gid = em.grid_name(self)
+        tex = self.textures(em.grids[id(self)][2])
+        em.require("data_table")
+        cells, lists = em.data.add(tex["Cells"]), em.data.add(tex["List"])
+        head = shaderlib.read("grid_union").replace("GRIDID", gid)
+        defs = (f"#define {gid}_LO vec3({', '.join(em.num(x) for x in self.lo - self.centre)})\n"
+                f"#define {gid}_CELL {em.num(self.cell)}\n"
+                f"#define {gid}_MARGIN {em.num(self.margin)}\n"
+                f"#define {gid}_DIMS ivec3({', '.join(str(int(x)) for x in self.dims)})\n"
+                f"#define {gid}_PER_CELL {-(-len(self.types) // 2)}\n"
+                f"#define {gid}_CELLS {cells}\n#define {gid}_LIST {lists}")
+        em.helper(f"{gid}_grid", defs + "\n" + head)
+        rtype = "vec4" if color else "float"
+        best = "vec4(0.0, 0.0, 0.0, cap)" if color else "cap"
+        fetch = [(f"    vec4 s{j} = dataFetch({gid}_CELLS + cell + {j});", owner) for j in range(-(-len(self.types) // 2))]
+        return [(f"{rtype} {fn}(vec3 p) {{", owner),
+                ("    float cap;", owner),
+                (f"    int cell = {gid}Cell(p, cap) * {gid}_PER_CELL;", owner),
+                (f"    {rtype} best = {best};", owner),
+                *fetch, *loops,
+                ("    return best;", owner), ("}", owner)]
 
     def _loop(self, em: "Emitter", t: _Type, ti: int, color: bool, owner: str) -> list[tuple[str, str]]:
         """The loop over the (cell, type ti) list: fetch, transform, evaluate, keep the min."""
         from ..codegen import Emitter
         sizes = [len(v) for _, v in _slot_values(t.inner)] if t.slots is not None else []
-        scale_at, slots_at, color_at, texels = t.layout(sizes)
+        move = grid_record.kind(t, np.array([self.peeled[i][2] for i in t.members]))
+        scale_at, slots_at, color_at, texels = t.layout(sizes, move)
         need = texels if color else -(-(color_at if t.color_in_code is None else texels * 4) // 4)
         need = max(need, 1)
         gid = em.grid_name(self)
@@ -379,10 +384,7 @@ class Grid:
         lines.append(f"        int e = {gid}_LIST + first + k * {texels};")
         for j in range(need):
             lines.append(f"        vec4 d{j} = dataFetch(e + {j});")
-        if t.affine:
-            lines.append("        vec3 q = vec3(dot(d0.xyz, p) + d0.w, dot(d1.xyz, p) + d1.w, dot(d2.xyz, p) + d2.w);")
-        else:
-            lines.append("        vec3 q = p - d0.xyz;")
+        lines.append(grid_record.glsl(move, _component(scale_at, 0) if t.scaled else None))
         out = [(line, owner) for line in lines]
         # the type's field at q
         if t.slots is not None:
