@@ -80,7 +80,7 @@ float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
                 rounds = 0;
                 rRound = 3.0e38;
             } else {
-                t += r;  // a thin part may lie in the gap: the safe step, then probe again
+                t += max(r, ms);  // a thin part may lie in the gap: the safe step (never 0), then probe again
                 if (r < 0.9 * rRound) {
                     rRound = r;  // still closing in: not stuck
                     rounds = 0;

@@ -119,9 +119,9 @@ float settle(vec3 ro, vec3 rd, float a, float fa, float b, inout float fb, inout
             }
             continue;
         }
-        if (check && abs(fc) > 0.5 * fa) return -2.0;
-        check = false;
         float tol = SETTLE_TOL * hitEpsilon(c);
+        if (check && abs(fc) > max(0.5 * fa, tol)) return -2.0;  // (within tol of 0 is a root anyway)
+        check = false;
         float sLeft = (fa - fc) / (c - a);
         float sRight = (fc - fb) / (b - c);
         float sMin = min(sLeft, sRight);
