@@ -69,14 +69,18 @@ float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
             rPrev = r;
             over = false;
             haveSlope = true;
-            if (th > -1.5 && nearMiss(t, r, b, fb, ms, rounds)) {
+            if (th < -2.5) {
+                t = settleT;  // the probe's scan saw the field dip: go on from before the dip
+                carry = true;
+                rCarry = settleF;
+            } else if (th > -1.5 && nearMiss(t, r, b, fb, ms, rounds)) {
                 t = b;  // go on from the probe
                 carry = true;
                 rCarry = fb;
                 rounds = 0;
                 rRound = 3.0e38;
             } else {
-                t += r;  // a thin part may lie in the gap: the safe step, then probe again
+                t += max(r, ms);  // a thin part may lie in the gap: the safe step (never 0), then probe again
                 if (r < 0.9 * rRound) {
                     rRound = r;  // still closing in: not stuck
                     rounds = 0;
@@ -97,12 +101,12 @@ float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
             if (th >= 0.0) {
                 return th <= tmax ? th : -1.0;
             }
-            if (th > -1.5 && r + fb >= 0.999 * (b - t)) {
-                tPrev = t;  // the spheres cover the way: go on from the probe
-                rPrev = r;
-                t = b;
+            if (th < -2.5 || (th > -1.5 && r + fb >= 0.999 * (b - t))) {
+                tPrev = t;  // the spheres cover the way: go on from the probe (or from
+                rPrev = r;  // before the dip the probe's scan saw)
+                t = th < -2.5 ? settleT : b;
                 carry = true;
-                rCarry = fb;
+                rCarry = th < -2.5 ? settleF : fb;
                 over = false;
                 if (t > tmax) return -1.0;
                 continue;

@@ -19,6 +19,13 @@
 #define UNSAMPLED 3.0e38
 #define SETTLE_CALLS 24
 #define SETTLE_TOL 0.01
+#define SCAN_POINTS 3      // samples across a long uncovered probe bracket
+#define SCAN_SPACING 4.0   // ... at least this many hit thresholds apart (a footprint by default)
+#define SCAN_DIP 0.7       // a scan sample below this share of the straight line: the field dips
+
+// Where marching goes on after settle() returns -3.0: the last scan sample and f there.
+float settleT;
+float settleF;
 
 // Smallest probe step at t: keeps progress above float32 resolution where r is 0.
 float minProbe(float t, float roLen) {
@@ -55,31 +62,66 @@ bool nearMiss(float t, float r, float b, float fb, float minStep, int rounds) {
 // The root in [a, b] where f(a) = fa >= 0 and fb = f(b) < 0, or, with fb = UNSAMPLED,
 // b is a probe sampled first: then -1.0 when f(b) >= 0, with fb set to f(b). A probe
 // that lands inside with a gap the two spheres do not cover may have jumped an earlier
-// surface (a thin part, a twisted blade); its bracket is kept only if the first secant
-// sample agrees with the straight line (|f| below half of fa there, as on a face seen
-// at a grazing angle), else -2.0: the marcher steps closer in and probes again. All
-// map() calls are in one loop (one copy of map()) and counted in steps.
+// surface (a thin part, a twisted blade the ray skims past). Where that gap is long (more
+// than SCAN_SPACING hit thresholds to the root the straight line from (a, fa) to (b, fb)
+// predicts), up to SCAN_POINTS samples scan it evenly first: a sample inside narrows the
+// bracket to the first one; a sample that dips well below the straight line (something
+// lies near the ray there) returns -3.0 with settleT/settleF set to the last sample before
+// it that did not (marching goes on from there), or -2.0 when that is a itself. After the
+// scan the bracket is kept only if the first secant sample agrees with the straight line
+// (|f| below half of fa there, as on a face seen at a grazing angle), else -2.0: the
+// marcher steps closer in and probes again. All map() calls are in one loop (one copy of
+// map()) and counted in steps.
 float settle(vec3 ro, vec3 rd, float a, float fa, float b, inout float fb, inout int steps) {
     int side = 0;
     bool check = false;
+    int scan = 0;         // scan samples still to take
+    float scanStep = 0.0;
+    float a0 = a;         // the straight line the scan is held to: (a0, fa0) to (c0, 0)
+    float fa0 = fa;
+    float c0 = b;
     for (int i = uZero; i < SETTLE_CALLS; i++) {
         bool probing = fb >= UNSAMPLED;
         float c = b;
-        if (!probing) {
+        if (scan > 0) {
+            c = a + scanStep;
+        } else if (!probing) {
             c = b - fb * (b - a) / (fb - fa);
             c = clamp(c, a + 0.01 * (b - a), b - 0.01 * (b - a));
         }
         float fc = map(ro + rd * c);
         steps++;
+        if (scan > 0) {
+            scan--;
+            if (fc < 0.0) {
+                b = c;  // an earlier surface: the bracket ends at the first sample inside
+                fb = fc;
+                scan = 0;
+                check = false;
+            } else if (fc < SCAN_DIP * fa0 * (c0 - c) / (c0 - a0)) {
+                settleT = a;
+                settleF = fa;
+                return a > a0 ? -3.0 : -2.0;
+            } else {
+                a = c;
+                fa = fc;
+            }
+            continue;
+        }
         if (probing) {
             fb = fc;
             if (fc >= 0.0) return -1.0;
             check = fa - fc < 0.999 * (b - a);
+            if (check) {
+                c0 = a + fa * (b - a) / (fa - fc);
+                scan = min(SCAN_POINTS, int((c0 - a) / (SCAN_SPACING * hitEpsilon(a))));
+                scanStep = (c0 - a) / float(scan + 1);
+            }
             continue;
         }
-        if (check && abs(fc) > 0.5 * fa) return -2.0;
-        check = false;
         float tol = SETTLE_TOL * hitEpsilon(c);
+        if (check && abs(fc) > max(0.5 * fa, tol)) return -2.0;  // (within tol of 0 is a root anyway)
+        check = false;
         float sLeft = (fa - fc) / (c - a);
         float sRight = (fc - fb) / (b - c);
         float sMin = min(sLeft, sRight);

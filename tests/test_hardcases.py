@@ -46,3 +46,11 @@ def test_tunnel_pixel_cone_needs_fewer_steps_than_fixed_epsilon():
     # (the shallow-angle probe now finds these planes in a few steps either way)
     assert res_cone.steps.mean() < 0.85 * res_fixed.steps.mean()
     assert cone.depth_px_median < 1e-3
+
+
+def test_no_lost_hits_on_a_crease_or_an_implicit_field_at_128x96():
+    # a ray whose f(t) rounds to exactly 0 in float32 (the k = 1e-6 crease, the product
+    # field) once looped in the probe's straight-line check until it ran out of steps
+    for name in ("smooth_k_tiny", "product_union"):
+        err, _ = run_case(next(c for c in CASES if c.name == name), (128, 96))
+        assert err.lost_hits == 0 and err.false_hits == 0, (name, err)
