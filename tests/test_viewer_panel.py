@@ -5,7 +5,7 @@ import time
 
 import numpy as np
 import pytest
-from PIL import ImageGrab
+from PIL import Image, ImageGrab
 
 import sdfgl as sg
 from sdfgl.camera import OrbitCamera
@@ -35,13 +35,14 @@ def viewer(display, tmp_path):
     state = tmp_path / "state.json"
     drv = Driver(display, state)
     proc = subprocess.Popen([sys.executable, "-m", "sdfgl.cli", "view", str(tmp_path / "scene.py"),
-                             "--size", f"{W}x{H}", "--state-file", str(state), "--max-samples", "2"],
+                             "--size", f"{W}x{H}", "--state-file", str(state), "--max-samples", "2",
+                             "--screenshot-dir", str(tmp_path / "shots")],
                             env=drv.env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     try:
         drv.find_window(timeout=60)
         drv.wait_for(lambda s: s["samples"] >= 2 and not s["compiling"] and s["panel"].get("rects"),
                      timeout=60, what="the first image with the panel")
-        yield drv, display
+        yield drv, display, tmp_path
     finally:
         if proc.poll() is None:
             proc.kill()
@@ -59,7 +60,7 @@ def still(drv, pred=lambda s: True, what="a still image"):
 
 
 def test_slider_drag_changes_value_and_image_without_a_new_program(viewer):
-    drv, display = viewer
+    drv, display, _ = viewer
     s0 = still(drv)
     before = grab(drv, display)
     x0, y0, x1, y1 = s0["panel"]["rects"]["radius"]
@@ -78,7 +79,8 @@ def test_slider_drag_changes_value_and_image_without_a_new_program(viewer):
 
 
 def test_tree_selection_tints_the_subtree(viewer):
-    drv, display = viewer
+    """The box's row tints the pixels where the box is the surface hit, in the window and in a P screenshot."""
+    drv, display, tmp = viewer
     s0 = still(drv)
     rects = s0["panel"]["rects"]
     box_row = next(k for k in rects if k.startswith("tree:translate(offset=(1"))
@@ -86,8 +88,15 @@ def test_tree_selection_tints_the_subtree(viewer):
     drv.xdo("mousemove", "--window", drv.window, str(int(x0) + 60), str(int((y0 + y1) / 2)), "click", "1")
     st = still(drv, lambda s: s["settings"].get("debug") == "select" and s["panel"]["selected"], "the tint")
     assert st["error"] == "" and st["compiles"] == s0["compiles"] + 1
+    assert st["view"] == [PANEL, 0, W - PANEL, H]  # the image lies right of the panel
     img = grab(drv, display)
     tint = (img[..., 0] > img[..., 2] + 60)[:, PANEL:]
+    drv.key("p")  # a screenshot of the select view: what the window shows, without panel and overlay
+    shot = drv.wait_for(lambda s: len(s["screenshots"]) == 1, what="the screenshot")
+    assert shot["error"] == ""
+    png = np.asarray(Image.open(shot["screenshots"][0]).convert("RGB")).astype(np.int16)
+    assert png.shape == (H, W - PANEL, 3)
+    shot_tint = png[..., 0] > png[..., 2] + 60
     # the same view rendered headless: where the box is the surface hit
     scene = sg.sphere(0.6).translate((-1, 0, 0)) | sg.box(1.2).translate((1, 0, 0))
     box = scene.children[1]
@@ -95,23 +104,26 @@ def test_tree_selection_tints_the_subtree(viewer):
     r = default_renderer()
     cam = OrbitCamera(target=tuple(st["target"]), distance=st["distance"], yaw=st["yaw"], pitch=st["pitch"])
 
+    size = (W - PANEL, H)
+
     def draw():  # on the renderer's GL thread, which owns its context
         prog, vao = r.programs.entry(src)
-        t = Targets(r.ctx, (W, H), ("color",))
-        camera_uniforms(prog, cam, (W, H), np.zeros(3))
+        t = Targets(r.ctx, size, ("color",))
+        camera_uniforms(prog, cam, size, np.zeros(3))
         scene_uniforms(prog, src, scene, np.zeros(3))
         t.fbo.use()
-        r.ctx.viewport = (0, 0, W, H)
+        r.ctx.viewport = (0, 0, *size)
         vao.render(vertices=3)
         out = t.read("color")
         t.release()
         return out
 
     ref = r.run(draw)[..., :3].astype(np.int16)
-    want = (ref[..., 0] > ref[..., 2] + 60)[:, PANEL:]
+    want = ref[..., 0] > ref[..., 2] + 60
     assert want.sum() > 500
-    iou = (tint & want).sum() / (tint | want).sum()
-    assert iou > 0.9, iou
+    for got in (tint, shot_tint):
+        iou = (got & want).sum() / (got | want).sum()
+        assert iou > 0.9, iou
 
 
 def test_select_view_needs_a_highlight_and_values_print_as_python():
@@ -137,7 +149,7 @@ def test_select_view_needs_a_highlight_and_values_print_as_python():
 
 
 def test_panel_key_hint_and_help(viewer):
-    drv, _ = viewer
+    drv, _, _ = viewer
     s0 = still(drv)
     assert s0["panel"]["visible"] and s0["overlay"] == "H: help"
     drv.key("n")

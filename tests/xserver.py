@@ -14,7 +14,10 @@ import pytest
 def start_xvfb() -> tuple[subprocess.Popen, str]:
     if shutil.which("Xvfb") is None or shutil.which("xdotool") is None:
         pytest.fail("window tests need Xvfb and xdotool: run ./install.sh --test (apt-get install xvfb xdotool)")
-    for n in range(90, 140):
+    # start where other test runs sharing /tmp (possibly from other PID namespaces, where Xvfb takes a
+    # live lock for a stale one) are unlikely to look
+    first = 300 + (os.getpid() * 7) % 600
+    for n in range(first, first + 50):
         if not Path(f"/tmp/.X11-unix/X{n}").exists() and not Path(f"/tmp/.X{n}-lock").exists():
             proc = subprocess.Popen(["Xvfb", f":{n}", "-screen", "0", "1600x900x24", "-nolisten", "tcp"],
                                     stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
@@ -30,7 +33,7 @@ def start_xvfb() -> tuple[subprocess.Popen, str]:
             if proc.poll() is None:
                 proc.kill()
             proc.wait(5)
-    pytest.fail("could not start Xvfb on any display :90..:139")
+    pytest.fail(f"could not start Xvfb on any display :{first}..:{first + 49}")
 
 
 class Driver:

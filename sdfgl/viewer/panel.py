@@ -93,6 +93,7 @@ class Panel:
         self.wants_mouse = False
         self.wants_keyboard = False
         self.rects: dict[str, tuple[float, float, float, float]] = {}  # widget -> (x0, y0, x1, y1), for scripts
+        self.readout: dict[str, float] = {}  # the live figures the panel shows, for scripts
 
     # -- input: called by the window's callbacks, before its own handling -------------
     def on_cursor(self, x: float, y: float) -> bool:
@@ -147,7 +148,11 @@ class Panel:
     def _status(self) -> None:
         imgui, v = self.imgui, self.viewer
         st = v.state
-        imgui.text(f"{st.last_frame_ms:.1f} ms/frame  {v.fb_size[0]}x{v.fb_size[1]}")
+        w, h = st.view[2:]
+        self.readout = {"frame_ms": round(st.last_frame_ms, 2), "mean_steps": round(st.mean_steps, 2),
+                        "samples": st.samples}
+        imgui.text(f"{st.last_frame_ms:.1f} ms/frame  {w}x{h}{' (moving)' if st.moving else ''}")
+        imgui.text(f"{st.mean_steps:.1f} steps/pixel (mean of map() calls)")
         imgui.text(f"samples {st.samples}/{v.max_samples}   programs {st.compiles}")
         if st.compile_log:
             imgui.text(f"last compile {st.compile_log[-1]['s']:.2f} s (in the background)")
