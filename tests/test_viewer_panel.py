@@ -10,11 +10,10 @@ from PIL import Image, ImageGrab
 import sdfgl as sg
 from sdfgl.camera import OrbitCamera
 from sdfgl.codegen import generate
-from sdfgl.gl.targets import Targets
-from sdfgl.render import camera_uniforms, default_renderer, scene_uniforms
 from sdfgl.settings import Settings
 
 from .test_viewer import display  # noqa: F401 - the Xvfb fixture
+from .test_viewer_select import select_image
 from .xserver import Driver
 
 pytestmark = pytest.mark.window
@@ -99,26 +98,8 @@ def test_tree_selection_tints_the_subtree(viewer):
     shot_tint = png[..., 0] > png[..., 2] + 60
     # the same view rendered headless: where the box is the surface hit
     scene = sg.sphere(0.6).translate((-1, 0, 0)) | sg.box(1.2).translate((1, 0, 0))
-    box = scene.children[1]
-    src = generate(scene, Settings.build(debug="select", shadows=False, ao=False), highlight=box)
-    r = default_renderer()
     cam = OrbitCamera(target=tuple(st["target"]), distance=st["distance"], yaw=st["yaw"], pitch=st["pitch"])
-
-    size = (W - PANEL, H)
-
-    def draw():  # on the renderer's GL thread, which owns its context
-        prog, vao = r.programs.entry(src)
-        t = Targets(r.ctx, size, ("color",))
-        camera_uniforms(prog, cam, size, np.zeros(3))
-        scene_uniforms(prog, src, scene, np.zeros(3))
-        t.fbo.use()
-        r.ctx.viewport = (0, 0, *size)
-        vao.render(vertices=3)
-        out = t.read("color")
-        t.release()
-        return out
-
-    ref = r.run(draw)[..., :3].astype(np.int16)
+    ref, _ = select_image(scene, scene.children[1], cam, (W - PANEL, H))
     want = ref[..., 0] > ref[..., 2] + 60
     assert want.sum() > 500
     for got in (tint, shot_tint):

@@ -74,6 +74,18 @@ def slider_range(p: Param) -> tuple[float, float]:
     return default_range(p)
 
 
+def control(p: Param, colours: set[int]) -> tuple[str, float, float]:
+    """The control a parameter gets: ("slider" | "colour" | "vector", low, high).
+
+    A scalar gets a slider over its range (and a typed entry), a whole colour a colour picker
+    (0..1), any other vector a 3-slider over its range."""
+    if np.ndim(p.value) == 0:
+        return ("slider", *slider_range(p))
+    if id(p) in colours:
+        return "colour", 0.0, 1.0
+    return ("vector", *slider_range(p))
+
+
 class Panel:
     """Dear ImGui drawn over the window's left edge; input goes to it first when it wants it."""
 
@@ -88,12 +100,13 @@ class Panel:
         self.visible = viewer.fb_size[0] >= MIN_WINDOW_WIDTH
         self.message = ""
         self.selected: Node | None = None
-        self._ranges: dict[int, tuple[float, float]] = {}
+        self._ranges: dict[int, tuple[str, float, float]] = {}  # the control of each param
         self._colours: tuple[int, set[int]] = (0, set())
         self.wants_mouse = False
         self.wants_keyboard = False
         self.rects: dict[str, tuple[float, float, float, float]] = {}  # widget -> (x0, y0, x1, y1), for scripts
         self.readout: dict[str, float] = {}  # the live figures the panel shows, for scripts
+        self.controls: dict[str, str] = {}   # param label -> its control ("slider", "colour", "vector")
 
     # -- input: called by the window's callbacks, before its own handling -------------
     def on_cursor(self, x: float, y: float) -> bool:
@@ -176,15 +189,16 @@ class Panel:
             label = p.name or f"p{i}"
             imgui.push_id(f"param{i}")
             if id(p) not in self._ranges:
-                self._ranges[id(p)] = slider_range(p)
-            lo, hi = self._ranges[id(p)]
-            if np.ndim(p.value) == 0:
+                self._ranges[id(p)] = control(p, self._colours[1])
+            kind, lo, hi = self._ranges[id(p)]
+            self.controls[label] = kind
+            if kind == "slider":
                 changed, new = imgui.slider_float(label, float(p.value), lo, hi)
                 self.rects[label] = (*imgui.get_item_rect_min(), *imgui.get_item_rect_max())
                 typed, val = imgui.input_float("##typed", float(p.value), 0.0, 0.0, "%.4g")
                 if typed:
                     changed, new = True, val
-            elif id(p) in self._colours[1]:
+            elif kind == "colour":
                 changed, rgb = imgui.color_edit3(label, [float(x) for x in p.value])
                 new = tuple(rgb)
                 self.rects[label] = (*imgui.get_item_rect_min(), *imgui.get_item_rect_max())

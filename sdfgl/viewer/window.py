@@ -522,7 +522,7 @@ class Viewer:
             self.panel.draw()
             self.state.panel = {"visible": self.panel.visible, "rects": self.panel.rects, "message": self.panel.message,
                                 "selected": self.panel.selected.label() if self.panel.selected else None,
-                                "readout": self.panel.readout,
+                                "readout": self.panel.readout, "controls": self.panel.controls,
                                 "params": {(q.name or f"p{i}"): np.asarray(q.value).tolist()
                                            for i, q in enumerate(self.live_params())}}
         glfw.swap_buffers(self.window)
