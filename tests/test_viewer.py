@@ -126,3 +126,17 @@ def test_resize_follows_the_framebuffer(viewer):
     drv.xdo("windowsize", drv.window, "400", "300")
     st = drv.wait_for(lambda s: s["size"] == [400, 300] and s["samples"] >= 1, what="the resize")
     assert st["error"] == ""
+
+
+def test_help_is_legible_at_any_window_size(viewer):
+    drv, proc, _, _ = viewer
+    st = drv.state()
+    assert st["overlay"] == "H: help"  # the hint, on first open
+    drv.key("h")
+    big = drv.wait_for(lambda s: "anti-aliasing" in s["overlay"], what="the help")
+    assert big["overlay_fits"] and big["overlay_font"] >= 10
+    for w, h in (("170", "130"), ("1200", "700")):
+        drv.xdo("windowsize", drv.window, w, h)
+        st = drv.wait_for(lambda s: s["overlay_size"] == [int(w), int(h)], what="the help laid out again")
+        assert st["overlay_fits"] and st["overlay_font"] >= 10, st["overlay_font"]
+    assert st["overlay_font"] > big["overlay_font"]  # a big window gets a bigger font

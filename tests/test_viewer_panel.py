@@ -146,3 +146,18 @@ def test_without_the_gui_library_the_panel_says_what_to_install(monkeypatch):
     from sdfgl.viewer import panel
     monkeypatch.setitem(sys.modules, "imgui_bundle", None)
     assert "pip install 'sdfgl[panel]'" in panel.available()
+
+
+def test_readouts_show_frame_time_and_mean_steps(viewer):
+    """The panel's live figures: frame time, and the mean map() calls per pixel of the image shown,
+    which match a headless render's steps output of the same view."""
+    drv, _, _ = viewer
+    st = still(drv, lambda s: s["panel"].get("readout", {}).get("samples", 0) >= 2)
+    readout = st["panel"]["readout"]
+    assert readout["frame_ms"] > 0
+    scene = sg.sphere(0.6).translate((-1, 0, 0)) | sg.box(1.2).translate((1, 0, 0))
+    cam = OrbitCamera(target=tuple(st["target"]), distance=st["distance"], yaw=st["yaw"], pitch=st["pitch"])
+    ref = sg.render(scene, cam, (W - PANEL, H), shadows=False, ao=False, outputs=("color", "steps"))
+    want = float(ref.steps.mean())
+    assert want > 0.5
+    assert abs(readout["mean_steps"] - want) < 0.1 * want, (readout, want)

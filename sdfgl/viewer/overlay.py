@@ -30,8 +30,9 @@ def _fits(draw: ImageDraw.ImageDraw, text: str, font: Any, width: int, height: i
 
 
 def layout_text(draw: ImageDraw.ImageDraw, text: str, width: int, height: int,
-                shorter: tuple[str, str] | None = None) -> tuple[Any, str]:
-    """The largest font (MAX_FONT..MIN_FONT px) and the wrapped text that fit ``width`` x ``height``.
+                shorter: tuple[str, str] | None = None) -> tuple[Any, str, bool]:
+    """The largest font (MAX_FONT..MIN_FONT px) and the wrapped text that fit ``width`` x ``height``,
+    and whether they fit.
 
     ``shorter`` = (long, short): when ``text`` fits at no legible size, ``long`` in it is replaced by
     ``short`` (the help's short form); when nothing fits, the smallest legible font is used and the
@@ -44,6 +45,6 @@ def layout_text(draw: ImageDraw.ImageDraw, text: str, width: int, height: int,
             font = ImageFont.load_default(size=size)
             wrapped = _wrap(draw, candidate, font, width)
             if _fits(draw, wrapped, font, width, height):
-                return font, wrapped
+                return font, wrapped, True
     font = ImageFont.load_default(size=MIN_FONT)
-    return font, _wrap(draw, candidates[-1], font, width)
+    return font, _wrap(draw, candidates[-1], font, width), False

@@ -94,6 +94,8 @@ class ViewState:
     param_edits: int = 0
     overlay: str = ""  # the text drawn over the image (help, hint, status, error)
     overlay_font: int = 0  # its font size in pixels
+    overlay_fits: bool = True  # whether all of it fits the window at that size
+    overlay_size: tuple[int, int] = (0, 0)  # the window size it was laid out for
     panel: dict[str, Any] = field(default_factory=dict)
     compile_log: list[dict[str, float]] = field(default_factory=list)  # worker timings of each new program
     present_log: list[tuple[float, float | None, bool]] = field(default_factory=list)  # (wall time, yaw drawn, compiling)
@@ -543,14 +545,15 @@ class Viewer:
             if text:
                 draw = ImageDraw.Draw(img)
                 x0 = x0 if x0 + 200 < self.fb_size[0] else 10  # a narrow view: over the panel rather than clipped
-                font, shown = layout_text(draw, text, self.fb_size[0] - x0 - 10, self.fb_size[1] - 20,
+                font, shown, fits = layout_text(draw, text, self.fb_size[0] - x0 - 10, self.fb_size[1] - 20,
                                           shorter=(KEYS_HELP, KEYS_COMPACT))
                 box = draw.multiline_textbbox((x0, 10), shown, font=font)
                 draw.rectangle((box[0] - 6, box[1] - 6, box[2] + 6, box[3] + 6), fill=(0, 0, 0, 170))
                 draw.multiline_text((x0, 10), shown, font=font,
                                     fill=(255, 120, 110, 255) if self.state.error and not self.show_help
                                     else (235, 235, 235, 255))
-                self.state.overlay_font = font.size
+                self.state.overlay_font, self.state.overlay_fits = font.size, fits
+            self.state.overlay_size = self.fb_size
             if self._overlay_tex is not None:
                 self._overlay_tex.release()
             self._overlay_tex = self.ctx.texture(self.fb_size, 4, img.tobytes(), dtype="f1")
