@@ -1,9 +1,9 @@
-"""The few OpenGL entry points the compile worker calls directly, through ctypes.
+"""The few OpenGL entry points the render threads (and the window, to bind their images) call through ctypes.
 
 moderngl holds Python's global interpreter lock while the driver compiles and links,
-so a moderngl compile in a thread still stops the window's loop; a ctypes call releases
+so a moderngl compile or draw in a thread still stops the window's loop; a ctypes call releases
 the lock for the length of the call. A program linked here lives in the share group of
-the viewer's context and is drawn by :class:`sdfgl.viewer.compile_worker.RawProgram`.
+the viewer's context and is drawn by :class:`sdfgl.viewer.programs.RawProgram`.
 """
 from __future__ import annotations
 

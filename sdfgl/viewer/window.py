@@ -66,7 +66,7 @@ ZOOM_RANGE = (1e-4, 100.0)  # wheel zoom keeps the distance within these multipl
 
 
 def _codegen(scene: Node, settings: Settings, origin: np.ndarray, projection: str, highlight: Node | None) -> Any:
-    """The window's shader source (run in the compile worker); any failure becomes one overlay message."""
+    """The window's shader source (run in a render thread); any failure becomes one overlay message."""
     try:
         return generate(scene, settings, origin, projection=projection, highlight=highlight)
     except SdfglError:
@@ -453,7 +453,7 @@ class Viewer:
         """A frame failed in the render thread: show why and go back to the last program, scene and settings that drew."""
         self._set_error(text)
         good = self._good
-        if version == self._version and good is not None and (good[0] != self._shown or good[1] is not self.scene
+        if version == self._version and good is not None and (good[0] is not self._shown or good[1] is not self.scene
                                                               or good[2] != self.state.settings):
             self._shown, self.scene, self.state.settings = good[0], good[1], dict(good[2])
             self._mark()
