@@ -9,7 +9,7 @@ import time
 import pytest
 
 from .test_viewer import display  # noqa: F401 - the Xvfb fixture
-from .xserver import Driver
+from .xserver import Driver, XTest
 
 pytestmark = pytest.mark.window
 
@@ -66,18 +66,24 @@ def test_window_answers_input_during_a_slow_compile(display, tmp_path):
         drv.key("s")  # shadows: a new 256-primitive program, built by the idle render thread
         drv.wait_for(lambda s: s["compiling"], what="the compile to start")
         sends, done_at = [], None
+        geo = dict(line.split("=") for line in drv.xdo("getwindowgeometry", "--shell", drv.window).split())
+        wx, wy = int(geo["X"]), int(geo["Y"])
         drv.xdo("mousemove", "--window", drv.window, "32", "24", "mousedown", "1")
+        xt = XTest(display)
         x = 32
-        while len(sends) < 600:
-            x = 32 + (x - 30) % 24  # to and fro: every move changes the yaw
-            sends.append(time.time())
-            drv.xdo("mousemove", "--window", drv.window, str(x), "24")
-            time.sleep(0.04)
-            if done_at is None and not drv.state()["compiling"]:
-                done_at = time.time()
-            if done_at is not None and time.time() - done_at > 1.5:  # and on through the switch
-                break
-        drv.xdo("mouseup", "1")
+        try:
+            while len(sends) < 2000:
+                x = 32 + (x - 30) % 24  # to and fro: every move changes the yaw
+                sends.append(time.time())
+                xt.move(wx + x, wy + 24)
+                time.sleep(0.06)
+                if len(sends) % 5 == 0 and done_at is None and not drv.state()["compiling"]:
+                    done_at = time.time()
+                if done_at is not None and time.time() - done_at > 1.5:  # and on through the switch
+                    break
+        finally:
+            xt.close()
+            drv.xdo("mouseup", "1")
         st = drv.wait_for(lambda s: not s["compiling"] and s["compiles"] == 2, timeout=180, what="the compile")
         assert st["settings"]["shadows"] == "hard" and st["error"] == ""
         w = st["compile_log"][-1]

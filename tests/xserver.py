@@ -91,3 +91,30 @@ class Driver:
     def scroll(self, up: bool, times: int = 1) -> None:
         for _ in range(times):
             self.xdo("click", "--window", self.window, "4" if up else "5")
+
+
+class XTest:
+    """Pointer motion through libXtst directly (no process per event, unlike xdotool), for timing
+    input-to-redraw latency: ``move`` returns once the event is flushed to the X server."""
+
+    def __init__(self, display: str) -> None:
+        import ctypes
+        self._x11 = ctypes.CDLL("libX11.so.6")
+        self._xtst = ctypes.CDLL("libXtst.so.6")
+        self._x11.XOpenDisplay.restype = ctypes.c_void_p
+        self._x11.XOpenDisplay.argtypes = [ctypes.c_char_p]
+        self._x11.XFlush.argtypes = [ctypes.c_void_p]
+        self._x11.XCloseDisplay.argtypes = [ctypes.c_void_p]
+        self._xtst.XTestFakeMotionEvent.argtypes = [ctypes.c_void_p, ctypes.c_int, ctypes.c_int, ctypes.c_int,
+                                                    ctypes.c_ulong]
+        self._dpy = self._x11.XOpenDisplay(display.encode())
+        if not self._dpy:
+            raise AssertionError(f"cannot open X display {display}")
+
+    def move(self, x: int, y: int) -> None:
+        """Move the pointer to screen position (x, y)."""
+        self._xtst.XTestFakeMotionEvent(self._dpy, -1, x, y, 0)
+        self._x11.XFlush(self._dpy)
+
+    def close(self) -> None:
+        self._x11.XCloseDisplay(self._dpy)

@@ -62,6 +62,8 @@ METHOD_CYCLE = ("sphere", "relaxed", "enhanced", "newton", "forward_newton")
 DEBUG_CYCLE = (None, "steps", "normal", "depth")
 SHADOW_CYCLE = (False, "hard", "soft")
 MOVE_HOLD_S = 0.15  # a camera change keeps the low-resolution mode this long
+PRESENT_LOG = 1200  # presents kept in the state file's present_log
+STATE_EVERY_S = 0.05  # the state file is written at most this often (and within 0.2 s of any change)
 ZOOM_RANGE = (1e-4, 100.0)  # wheel zoom keeps the distance within these multiples of the framing distance
 
 
@@ -144,6 +146,7 @@ class Viewer:
         self._frame: Frame | None = None  # on screen
         self._overlay_key: tuple | None = None
         self._shots = 0  # screenshots asked for
+        self._state_at = 0.0  # when the state file was last written
         # scene, lane, program key (source text), source, origin
         self._shown: tuple[Node, int, str, ShaderSource, np.ndarray] | None = None
         self._good: tuple[Any, Node, dict[str, Any]] | None = None  # the last (shown, scene, settings) that drew
@@ -532,7 +535,7 @@ class Viewer:
         self._repaint = False
         self.state.present_log.append((time.time(), frame.spec.camera.yaw if frame is not None else None,
                                        self.state.compiling))
-        del self.state.present_log[:-400]
+        del self.state.present_log[:-PRESENT_LOG]
 
     def _overlay(self) -> moderngl.Texture:
         text = "\n".join(x for x in ((KEYS_HELP if self.show_help else "H: help" if self.show_hint else ""),
@@ -642,6 +645,7 @@ class Viewer:
         return new
 
     def _write_state(self) -> None:
+        self._state_at = time.perf_counter()
         if self.state_file is None:
             return
         c = self.camera
@@ -665,7 +669,8 @@ class Viewer:
                 elif self._ui_frames > 0:
                     self._ui_frames -= 1
                     self._present()
-                self._write_state()
+                if time.perf_counter() - self._state_at > STATE_EVERY_S:
+                    self._write_state()
                 if self._ui_frames > 0 or self._dirty:
                     glfw.poll_events()
                 else:  # idle: no busy loop; the render threads wake it (frames, compiles), and it checks the file
