@@ -20,6 +20,7 @@ screen nor the newest one.
 from __future__ import annotations
 
 import math
+import os
 import threading
 import time
 from collections import OrderedDict
@@ -44,6 +45,7 @@ from .programs import Job, RawProgram, Result, link, make_source, stamp
 LANES = 2
 CACHE_SIZE = 12          # warm programs kept per lane, for instant toggling back
 STEPS_EVERY_S = 0.25     # the mean-steps readout reads the steps image at most this often
+COMPILE_NICE = 10        # how much lower the CPU priority of compiles is than drawing's
 
 
 def describe_error(exc: BaseException, where: str) -> str:
@@ -264,6 +266,28 @@ class Lane:
 
     # -- compiles (idle lane) -----------------------------------------------------------
     def _compile(self, job: Job) -> None:
+        """Build ``job`` in a short-lived thread of lower CPU priority (on Linux; its context is this
+        lane's): on a busy machine the link and machine-code build then yield to the drawing lane
+        and the window's thread, which answer input."""
+        glfw.make_context_current(None)
+        worker = threading.Thread(target=self._compile_niced, args=(job,), name=f"sdfgl-compile-{self.index}")
+        worker.start()
+        worker.join()
+        glfw.make_context_current(self._hidden)
+
+    def _compile_niced(self, job: Job) -> None:
+        try:
+            tid = threading.get_native_id()
+            os.setpriority(os.PRIO_PROCESS, tid, min(19, os.getpriority(os.PRIO_PROCESS, tid) + COMPILE_NICE))
+        except (AttributeError, OSError):  # not Linux, or not allowed: compile at the same priority
+            pass
+        glfw.make_context_current(self._hidden)
+        try:
+            self._build(job)
+        finally:
+            glfw.make_context_current(None)
+
+    def _build(self, job: Job) -> None:
         ex = self.ex
         t0 = time.perf_counter()
         res = Result(job.token, job.meta)

@@ -196,8 +196,6 @@ class Viewer:
         for i in range(LANES):
             self.lanes.append(Lane(i, self.window, self.exchange))
         self.exchange.lanes = self.lanes
-        for lane in self.lanes:
-            lane.wait_ready()
         self._overlay_tex: moderngl.Texture | None = None
         self.panel: panel_mod.Panel | None = None
         self._resize_targets()
@@ -213,6 +211,9 @@ class Viewer:
         glfw.set_key_callback(self.window, self._guarded(self._on_key, "key"))
         glfw.set_framebuffer_size_callback(self.window, self._guarded(lambda *_: self._resize_targets(), "resize"))
         glfw.set_window_refresh_callback(self.window, lambda *_: self._mark())
+        self._write_state()  # scripts see the window at once; the render threads may take a while to start
+        for lane in self.lanes:
+            lane.wait_ready()
 
     def _resize_targets(self) -> None:
         fw, fh = glfw.get_framebuffer_size(self.window)
