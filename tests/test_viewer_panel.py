@@ -40,7 +40,7 @@ def viewer(display, tmp_path):
     try:
         drv.find_window(timeout=60)
         drv.wait_for(lambda s: s["samples"] >= 2 and not s["compiling"] and s["panel"].get("rects"),
-                     timeout=60, what="the first image with the panel")
+                     timeout=120, what="the first image with the panel")
         yield drv, display, tmp_path
     finally:
         if proc.poll() is None:
