@@ -38,7 +38,12 @@ def viewer(display, tmp_path):
                              "--screenshot-dir", str(tmp_path / "shots")],
                             env=drv.env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     try:
-        drv.find_window(timeout=60)
+        try:
+            drv.find_window(timeout=120)  # a loaded machine can take long to import and open the window
+        except AssertionError:
+            if proc.poll() is not None:  # say why the viewer died
+                raise AssertionError(f"the viewer exited ({proc.returncode}): {proc.stderr.read()[-2000:]}") from None
+            raise
         drv.wait_for(lambda s: s["samples"] >= 2 and not s["compiling"] and s["panel"].get("rects"),
                      timeout=120, what="the first image with the panel")
         yield drv, display, tmp_path
@@ -59,7 +64,7 @@ def still(drv, pred=lambda s: True, what="a still image"):
 
 
 def test_slider_drag_changes_value_and_image_without_a_new_program(viewer):
-    drv, display, _ = viewer
+    drv, display, tmp = viewer
     s0 = still(drv)
     before = grab(drv, display)
     x0, y0, x1, y1 = s0["panel"]["rects"]["radius"]
@@ -75,6 +80,15 @@ def test_slider_drag_changes_value_and_image_without_a_new_program(viewer):
     after = grab(drv, display)
     scene_part = np.abs(after[:, PANEL:] - before[:, PANEL:]).max(axis=2) > 30
     assert scene_part.sum() > 200                    # the sphere grew on screen
+    # "save JSON" writes the scene with the value the slider set, and the view's camera
+    x0, y0, x1, y1 = s1["panel"]["rects"]["save JSON"]
+    drv.xdo("mousemove", "--window", drv.window, str(int((x0 + x1) / 2)), str(int((y0 + y1) / 2)), "click", "1")
+    s2 = drv.wait_for(lambda s: s["panel"]["message"].startswith("saved"), what="the JSON document")
+    doc = sg.load_scene(tmp / "shots" / "scene.json")
+    assert doc.params["radius"].value == pytest.approx(s2["panel"]["params"]["radius"], abs=1e-6)
+    assert doc.camera.eye == pytest.approx(OrbitCamera(target=tuple(s2["target"]), distance=s2["distance"],
+                                                       yaw=s2["yaw"], pitch=s2["pitch"]).eye)
+    assert doc.settings["shadows"] is False
 
 
 def test_tree_selection_tints_the_subtree(viewer):

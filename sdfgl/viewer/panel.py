@@ -215,6 +215,7 @@ class Panel:
         imgui.same_line()
         if imgui.button("save JSON"):
             self.message = self._save_json()
+        self.rects["save JSON"] = (*imgui.get_item_rect_min(), *imgui.get_item_rect_max())
 
     def set_param(self, p: Param, value: Any) -> None:
         """Set a live value (validated by its nodes); the image re-renders with the same program."""
@@ -234,7 +235,10 @@ class Panel:
         # the tree's selection is a view of this window, not a setting a document can render alone
         settings = {k: val for k, val in v.state.settings.items() if not (k == "debug" and val == "select")}
         try:
+            path.parent.mkdir(parents=True, exist_ok=True)
             save_scene(v.scene, path, camera=v.camera, settings=settings)
+        except OSError as exc:
+            return f"could not save {path}: {exc}"
         except SdfglError as exc:
             return f"could not save {path}: {exc}"
         return f"saved {path}"
