@@ -2,8 +2,6 @@
 import json
 import os
 import statistics
-import subprocess
-import sys
 import time
 
 import pytest
@@ -30,10 +28,7 @@ def open_viewer(display, tmp_path, text, size="64x48", extra=()):
     state = tmp_path / "state.json"
     drv = Driver(display, state)
     drv.env["MESA_SHADER_CACHE_DISABLE"] = "true"  # every compile is a real one, run after run
-    proc = subprocess.Popen([sys.executable, "-m", "sdfgl.cli", "view", str(scene), "--size", size,
-                             "--state-file", str(state), "--max-samples", "2", *extra], env=drv.env,
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    drv.find_window(timeout=60)
+    proc = drv.launch(str(scene), "--size", size, "--max-samples", "2", *extra)
     return drv, proc
 
 

@@ -1,8 +1,6 @@
 """Every live parameter of the gallery scenes (and of demos/live_params.py) has a working control in
 the viewer's panel: its control's whole range is accepted by the nodes that use it and moves the
 image without a new program (headless, the panel's own control logic); the window lists them all."""
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -68,11 +66,8 @@ def test_the_window_shows_a_control_for_each_param(display, tmp_path):
     path = ROOT / "demos" / "gallery" / "domain.py"
     state = tmp_path / "state.json"
     drv = Driver(display, state)
-    proc = subprocess.Popen([sys.executable, "-m", "sdfgl.cli", "view", str(path), "--size", "820x400",
-                             "--state-file", str(state), "--max-samples", "1"],
-                            env=drv.env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    proc = drv.launch(str(path), "--size", "820x400", "--max-samples", "1")
     try:
-        drv.find_window(timeout=60)
         st = drv.wait_for(lambda s: s["samples"] >= 1 and not s["compiling"] and s["panel"].get("controls"),
                           timeout=120, what="the panel")
         assert st["panel"]["controls"] == {"shell thickness": "slider", "rounding": "slider",

@@ -1,5 +1,4 @@
 """The side panel under Xvfb, driven by real mouse events: sliders, settings, the scene tree."""
-import subprocess
 import sys
 import time
 
@@ -33,17 +32,9 @@ def viewer(display, tmp_path):
     (tmp_path / "scene.py").write_text(SCENE)
     state = tmp_path / "state.json"
     drv = Driver(display, state)
-    proc = subprocess.Popen([sys.executable, "-m", "sdfgl.cli", "view", str(tmp_path / "scene.py"),
-                             "--size", f"{W}x{H}", "--state-file", str(state), "--max-samples", "2",
-                             "--screenshot-dir", str(tmp_path / "shots")],
-                            env=drv.env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    proc = drv.launch(str(tmp_path / "scene.py"), "--size", f"{W}x{H}", "--max-samples", "2",
+                      "--screenshot-dir", str(tmp_path / "shots"))
     try:
-        try:
-            drv.find_window(timeout=120)  # a loaded machine can take long to import and open the window
-        except AssertionError:
-            if proc.poll() is not None:  # say why the viewer died
-                raise AssertionError(f"the viewer exited ({proc.returncode}): {proc.stderr.read()[-2000:]}") from None
-            raise
         drv.wait_for(lambda s: s["samples"] >= 2 and not s["compiling"] and s["panel"].get("rects"),
                      timeout=120, what="the first image with the panel")
         yield drv, display, tmp_path

@@ -5,6 +5,7 @@ import json
 import os
 import shutil
 import subprocess
+import sys
 import time
 from pathlib import Path
 
@@ -58,6 +59,31 @@ class Driver:
                 return self.window
             time.sleep(0.1)
         raise AssertionError("the viewer window never appeared")
+
+    def launch(self, *args: str, timeout: float = 120.0) -> subprocess.Popen:
+        """Start ``sdfgl view *args`` writing this driver's state file and wait for its window; say why
+        the viewer died if it did (a loaded machine can take long to import and open the window).
+
+        A viewer that could not open the display is started again (up to 3 tries): on the shared test
+        machine a connection to a live Xvfb is now and then refused (seen a few times a day, not
+        reproduced in 300 connections in a row)."""
+        for attempt in range(3):
+            proc = subprocess.Popen([sys.executable, "-m", "sdfgl.cli", "view", *args, "--state-file",
+                                     str(self.state_file)], env=self.env, stdout=subprocess.PIPE,
+                                    stderr=subprocess.PIPE, text=True)
+            try:
+                self.find_window(timeout)
+                return proc
+            except AssertionError:
+                if proc.poll() is None:
+                    proc.kill()
+                    proc.wait(10)
+                    raise
+                err = proc.stderr.read()[-2000:]
+                if "Failed to open display" not in err or attempt == 2:
+                    raise AssertionError(f"the viewer exited ({proc.returncode}): {err}") from None
+                time.sleep(1.0)
+        raise AssertionError("unreachable")
 
     def state(self) -> dict:
         for _ in range(50):
