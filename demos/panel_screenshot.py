@@ -17,7 +17,10 @@ W, H = 1100, 600
 
 
 def main() -> None:
-    display = ":93"
+    n = 700 + os.getpid() % 200
+    while Path(f"/tmp/.X{n}-lock").exists():
+        n += 1
+    display = f":{n}"
     xvfb = subprocess.Popen(["Xvfb", display, "-screen", "0", f"{W}x{H}x24", "-nolisten", "tcp"])
     env = {**os.environ, "DISPLAY": display}
     tmp = Path(tempfile.mkdtemp())

@@ -194,7 +194,22 @@ class Emitter:
     def grid_union(self, grid: Any, p: str) -> str:
         """The union kept as data at point ``p``: its distance, or (vec3, distance) in colour
         mode (packed primitives carry colours only: other channels are the current ones)."""
+        self._mark_member(grid.children, p)
         return grid.emit(self, p)
+
+    def _mark_member(self, members: list[Node], p: str) -> None:
+        """The select view inside a union kept as data: the member that is (or holds) the highlighted
+        node is written out as code too, so that its distance reaches gSel (members are data)."""
+        if self.highlight is None or self.mode != "dist" or self.detail:
+            return
+        for member in members:
+            stack = [member]
+            while stack:
+                n = stack.pop()
+                if n is self.highlight:
+                    member.emit(self, p)
+                    return
+                stack.extend(n.children)
 
     # -- literals ----------------------------------------------------------------------
     def num(self, x: float | Live) -> str:

@@ -1,6 +1,4 @@
 """The interactive viewer in a real window on Xvfb, driven by real input events."""
-import subprocess
-import sys
 import time
 
 import numpy as np
@@ -30,17 +28,9 @@ def viewer(display, tmp_path):
     scene.write_text(SCENE_A)
     state = tmp_path / "state.json"
     drv = Driver(display, state)
-    proc = subprocess.Popen([sys.executable, "-m", "sdfgl.cli", "view", str(scene), "--size", "320x240",
-                             "--state-file", str(state), "--screenshot-dir", str(tmp_path / "shots"),
-                             "--max-samples", "4"], env=drv.env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                            text=True)
+    proc = drv.launch(str(scene), "--size", "320x240", "--screenshot-dir", str(tmp_path / "shots"),
+                      "--max-samples", "4")
     try:
-        try:
-            drv.find_window(60.0)  # a loaded machine can take long to import and open the window
-        except AssertionError:
-            if proc.poll() is not None:  # say why the viewer died
-                raise AssertionError(f"the viewer exited ({proc.returncode}): {proc.stderr.read()[-2000:]}") from None
-            raise
         # the first compile (soft shadows, AO) takes a while on a loaded CPU rasteriser
         drv.wait_for(lambda s: s["frames"] > 0 and s["samples"] >= 1, timeout=60.0, what="the first frame")
         yield drv, proc, scene, tmp_path
@@ -126,3 +116,17 @@ def test_resize_follows_the_framebuffer(viewer):
     drv.xdo("windowsize", drv.window, "400", "300")
     st = drv.wait_for(lambda s: s["size"] == [400, 300] and s["samples"] >= 1, what="the resize")
     assert st["error"] == ""
+
+
+def test_help_is_legible_at_any_window_size(viewer):
+    drv, proc, _, _ = viewer
+    st = drv.state()
+    assert st["overlay"] == "H: help"  # the hint, on first open
+    drv.key("h")
+    big = drv.wait_for(lambda s: "anti-aliasing" in s["overlay"], what="the help")
+    assert big["overlay_fits"] and big["overlay_font"] >= 10
+    for w, h in (("170", "130"), ("1200", "700")):
+        drv.xdo("windowsize", drv.window, w, h)
+        st = drv.wait_for(lambda s: s["overlay_size"] == [int(w), int(h)], what="the help laid out again")
+        assert st["overlay_fits"] and st["overlay_font"] >= 10, st["overlay_font"]
+    assert st["overlay_font"] > big["overlay_font"]  # a big window gets a bigger font

@@ -2,14 +2,12 @@
 import json
 import os
 import statistics
-import subprocess
-import sys
 import time
 
 import pytest
 
 from .test_viewer import display  # noqa: F401 - the Xvfb fixture
-from .xserver import Driver
+from .xserver import Driver, XTest
 
 pytestmark = pytest.mark.window
 
@@ -30,10 +28,7 @@ def open_viewer(display, tmp_path, text, size="64x48", extra=()):
     state = tmp_path / "state.json"
     drv = Driver(display, state)
     drv.env["MESA_SHADER_CACHE_DISABLE"] = "true"  # every compile is a real one, run after run
-    proc = subprocess.Popen([sys.executable, "-m", "sdfgl.cli", "view", str(scene), "--size", size,
-                             "--state-file", str(state), "--max-samples", "2", *extra], env=drv.env,
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    drv.find_window(timeout=60)
+    proc = drv.launch(str(scene), "--size", size, "--max-samples", "2", *extra)
     return drv, proc
 
 
@@ -50,61 +45,71 @@ def latencies(sends: list[float], log: list) -> list[float]:
     return out
 
 
+def pct(values: list[float], q: float) -> float:
+    """The q-th percentile (nearest rank) of ``values``."""
+    v = sorted(values)
+    return v[min(len(v) - 1, max(0, round(q / 100 * len(v)) - 1))]
+
+
 def test_window_answers_input_during_a_slow_compile(display, tmp_path):
+    """Input-to-redraw latency over a whole 256-primitive compile: codegen, link, llvmpipe's machine-code
+    build at the first draw (the render thread's warm-up draw), and the switch to the new program."""
     drv, proc = open_viewer(display, tmp_path, BIG)
     try:
         s0 = drv.wait_for(lambda s: s["samples"] >= 1 and not s["compiling"], timeout=180, what="the first image")
         assert s0["compiles"] == 1 and s0["error"] == ""
-        # orbit once first: llvmpipe builds the shown program's code for the moving (low-resolution)
-        # target at its first such draw, on the window's thread; that is not the compile measured here
-        drv.drag(1, 32, 24, 6, 0, steps=3)
-        drv.wait_for(lambda s: not s["moving"] and s["samples"] >= 1, timeout=180, what="a still image")
-        drv.key("s")  # shadows: a new 256-primitive program, compiled by the worker
+        drv.key("s")  # shadows: a new 256-primitive program, built by the idle render thread
         drv.wait_for(lambda s: s["compiling"], what="the compile to start")
-        sends = []
+        sends, done_at = [], None
+        geo = dict(line.split("=") for line in drv.xdo("getwindowgeometry", "--shell", drv.window).split())
+        wx, wy = int(geo["X"]), int(geo["Y"])
         drv.xdo("mousemove", "--window", drv.window, "32", "24", "mousedown", "1")
+        xt = XTest(display)
         x = 32
-        while True:
-            x += 2
-            sends.append(time.time())
-            drv.xdo("mousemove", "--window", drv.window, str(x), "24")
-            time.sleep(0.04)
-            st = drv.state()
-            if not st["compiling"] or len(sends) > 400:
-                break
-        drv.xdo("mouseup", "1")
+        try:
+            while len(sends) < 2000:
+                x = 32 + (x - 30) % 24  # to and fro: every move changes the yaw
+                sends.append(time.time())
+                xt.move(wx + x, wy + 24)
+                time.sleep(0.06)
+                if len(sends) % 5 == 0 and done_at is None and not drv.state()["compiling"]:
+                    done_at = time.time()
+                if done_at is not None and time.time() - done_at > 1.5:  # and on through the switch
+                    break
+        finally:
+            xt.close()
+            drv.xdo("mouseup", "1")
         st = drv.wait_for(lambda s: not s["compiling"] and s["compiles"] == 2, timeout=180, what="the compile")
         assert st["settings"]["shadows"] == "hard" and st["error"] == ""
-        compile_s = st["compile_log"][-1]["s"]
-        log = [e for e in st["present_log"]]
-        during = [t for t in sends if any(c for (w, _, c) in log if w > t)]  # sent while still compiling
-        lat = latencies(during, log)
-        frames = [w for (w, _, c) in log if c]
-        gaps = [b - a for a, b in zip(frames, frames[1:])]
-        end = st["compile_log"][-1]["wall_end"]
-        after = [w for (w, _, _) in log if w >= end]
-        # the new program's first frame: llvmpipe builds its machine code then, on the window's thread
-        first_frame = (after[0] - max([w for (w, _, _) in log if w < end] or [end])) if after else None
-        figures = {"compile_s": compile_s, "inputs_during_compile": len(during), "answered": len(lat),
-                   "latency_median_ms": 1000 * statistics.median(lat) if lat else None,
-                   "latency_max_ms": 1000 * max(lat) if lat else None,
-                   "frames_during_compile": len(frames),
-                   "frame_gap_max_ms": 1000 * max(gaps) if gaps else None,
-                   "gap_at_new_program_ms": 1000 * first_frame if first_frame is not None else None,
-                   "worker": st["compile_log"][-1]}
-        print("async compile figures:", json.dumps(figures))
         w = st["compile_log"][-1]
+        log = st["present_log"]
+        sent = [t for t in sends if t > log[0][0]]  # the log keeps the newest presents
+        lat = latencies(sent, log)
         t0 = w["wall_start"]
-        big = [(round(a - t0, 2), round(b - a, 2)) for a, b in zip(frames, frames[1:]) if b - a > 0.2]
-        print("phases", {k: round(v, 2) for k, v in w.items() if k.endswith("_s")}, "big gaps (start, len)", big)
+        linked = t0 + w["codegen_s"] + w["link_s"]
+        phase = {"link": [t for t in sent if t < linked], "warm-up": [t for t in sent if linked <= t < w["wall_end"]],
+                 "after": [t for t in sent if t >= w["wall_end"]]}
+        figures = {"compile_s": w["s"], "phases_s": {k: round(v, 3) for k, v in w.items() if k.endswith("_s")},
+                   "inputs": len(sent), "answered": len(lat),
+                   "latency_ms": {"median": 1000 * statistics.median(lat), "p90": 1000 * pct(lat, 90),
+                                  "max": 1000 * max(lat)},
+                   "median_ms_by_phase": {k: (1000 * statistics.median(x) if (x := latencies(v, log)) else None)
+                                          for k, v in phase.items()},
+                   "inputs_by_phase": {k: len(v) for k, v in phase.items()},
+                   "load": os.getloadavg()[0]}
+        print("async compile figures:", json.dumps(figures))
         out = os.environ.get("SDFGL_FIGURES")
         if out:
             with open(out, "a") as fh:
                 fh.write(json.dumps(figures) + "\n")
-        # the camera moved on screen, many times, while the program was being built
-        assert len(lat) >= 3 and len(frames) >= 3
-        # answering input never waited for the compile
-        assert statistics.median(lat) < 0.25 * compile_s
+        # inputs were sent through the link, the machine-code build and the switch, and nearly all answered
+        assert all(len(v) >= 2 for v in phase.values()), figures
+        assert len(lat) >= 0.9 * len(sent)
+        # the issue's bound: redraws follow input within 100 ms (median; the p90 and the maximum are
+        # printed: on this shared 2-core machine a busy neighbour can delay any one frame)
+        assert statistics.median(lat) < 0.1, figures
+        # no phase of the compile stalls the window (the first draw of the new program used to take seconds)
+        assert max(m for m in figures["median_ms_by_phase"].values() if m is not None) < 100, figures
     finally:
         if proc.poll() is None:
             proc.kill()

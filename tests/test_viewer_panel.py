@@ -1,20 +1,18 @@
 """The side panel under Xvfb, driven by real mouse events: sliders, settings, the scene tree."""
-import subprocess
 import sys
 import time
 
 import numpy as np
 import pytest
-from PIL import ImageGrab
+from PIL import Image, ImageGrab
 
 import sdfgl as sg
 from sdfgl.camera import OrbitCamera
 from sdfgl.codegen import generate
-from sdfgl.gl.targets import Targets
-from sdfgl.render import camera_uniforms, default_renderer, scene_uniforms
 from sdfgl.settings import Settings
 
 from .test_viewer import display  # noqa: F401 - the Xvfb fixture
+from .test_viewer_select import select_image
 from .xserver import Driver
 
 pytestmark = pytest.mark.window
@@ -34,14 +32,12 @@ def viewer(display, tmp_path):
     (tmp_path / "scene.py").write_text(SCENE)
     state = tmp_path / "state.json"
     drv = Driver(display, state)
-    proc = subprocess.Popen([sys.executable, "-m", "sdfgl.cli", "view", str(tmp_path / "scene.py"),
-                             "--size", f"{W}x{H}", "--state-file", str(state), "--max-samples", "2"],
-                            env=drv.env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    proc = drv.launch(str(tmp_path / "scene.py"), "--size", f"{W}x{H}", "--max-samples", "2",
+                      "--screenshot-dir", str(tmp_path / "shots"))
     try:
-        drv.find_window(timeout=60)
         drv.wait_for(lambda s: s["samples"] >= 2 and not s["compiling"] and s["panel"].get("rects"),
-                     timeout=60, what="the first image with the panel")
-        yield drv, display
+                     timeout=120, what="the first image with the panel")
+        yield drv, display, tmp_path
     finally:
         if proc.poll() is None:
             proc.kill()
@@ -59,7 +55,7 @@ def still(drv, pred=lambda s: True, what="a still image"):
 
 
 def test_slider_drag_changes_value_and_image_without_a_new_program(viewer):
-    drv, display = viewer
+    drv, display, tmp = viewer
     s0 = still(drv)
     before = grab(drv, display)
     x0, y0, x1, y1 = s0["panel"]["rects"]["radius"]
@@ -75,10 +71,20 @@ def test_slider_drag_changes_value_and_image_without_a_new_program(viewer):
     after = grab(drv, display)
     scene_part = np.abs(after[:, PANEL:] - before[:, PANEL:]).max(axis=2) > 30
     assert scene_part.sum() > 200                    # the sphere grew on screen
+    # "save JSON" writes the scene with the value the slider set, and the view's camera
+    x0, y0, x1, y1 = s1["panel"]["rects"]["save JSON"]
+    drv.xdo("mousemove", "--window", drv.window, str(int((x0 + x1) / 2)), str(int((y0 + y1) / 2)), "click", "1")
+    s2 = drv.wait_for(lambda s: s["panel"]["message"].startswith("saved"), what="the JSON document")
+    doc = sg.load_scene(tmp / "shots" / "scene.json")
+    assert doc.params["radius"].value == pytest.approx(s2["panel"]["params"]["radius"], abs=1e-6)
+    assert doc.camera.eye == pytest.approx(OrbitCamera(target=tuple(s2["target"]), distance=s2["distance"],
+                                                       yaw=s2["yaw"], pitch=s2["pitch"]).eye)
+    assert doc.settings["shadows"] is False
 
 
 def test_tree_selection_tints_the_subtree(viewer):
-    drv, display = viewer
+    """The box's row tints the pixels where the box is the surface hit, in the window and in a P screenshot."""
+    drv, display, tmp = viewer
     s0 = still(drv)
     rects = s0["panel"]["rects"]
     box_row = next(k for k in rects if k.startswith("tree:translate(offset=(1"))
@@ -86,32 +92,24 @@ def test_tree_selection_tints_the_subtree(viewer):
     drv.xdo("mousemove", "--window", drv.window, str(int(x0) + 60), str(int((y0 + y1) / 2)), "click", "1")
     st = still(drv, lambda s: s["settings"].get("debug") == "select" and s["panel"]["selected"], "the tint")
     assert st["error"] == "" and st["compiles"] == s0["compiles"] + 1
+    assert st["view"] == [PANEL, 0, W - PANEL, H]  # the image lies right of the panel
     img = grab(drv, display)
     tint = (img[..., 0] > img[..., 2] + 60)[:, PANEL:]
+    drv.key("p")  # a screenshot of the select view: what the window shows, without panel and overlay
+    shot = drv.wait_for(lambda s: len(s["screenshots"]) == 1, what="the screenshot")
+    assert shot["error"] == ""
+    png = np.asarray(Image.open(shot["screenshots"][0]).convert("RGB")).astype(np.int16)
+    assert png.shape == (H, W - PANEL, 3)
+    shot_tint = png[..., 0] > png[..., 2] + 60
     # the same view rendered headless: where the box is the surface hit
     scene = sg.sphere(0.6).translate((-1, 0, 0)) | sg.box(1.2).translate((1, 0, 0))
-    box = scene.children[1]
-    src = generate(scene, Settings.build(debug="select", shadows=False, ao=False), highlight=box)
-    r = default_renderer()
     cam = OrbitCamera(target=tuple(st["target"]), distance=st["distance"], yaw=st["yaw"], pitch=st["pitch"])
-
-    def draw():  # on the renderer's GL thread, which owns its context
-        prog, vao = r.programs.entry(src)
-        t = Targets(r.ctx, (W, H), ("color",))
-        camera_uniforms(prog, cam, (W, H), np.zeros(3))
-        scene_uniforms(prog, src, scene, np.zeros(3))
-        t.fbo.use()
-        r.ctx.viewport = (0, 0, W, H)
-        vao.render(vertices=3)
-        out = t.read("color")
-        t.release()
-        return out
-
-    ref = r.run(draw)[..., :3].astype(np.int16)
-    want = (ref[..., 0] > ref[..., 2] + 60)[:, PANEL:]
+    ref, _ = select_image(scene, scene.children[1], cam, (W - PANEL, H))
+    want = ref[..., 0] > ref[..., 2] + 60
     assert want.sum() > 500
-    iou = (tint & want).sum() / (tint | want).sum()
-    assert iou > 0.9, iou
+    for got in (tint, shot_tint):
+        iou = (got & want).sum() / (got | want).sum()
+        assert iou > 0.9, iou
 
 
 def test_select_view_needs_a_highlight_and_values_print_as_python():
@@ -137,7 +135,7 @@ def test_select_view_needs_a_highlight_and_values_print_as_python():
 
 
 def test_panel_key_hint_and_help(viewer):
-    drv, _ = viewer
+    drv, _, _ = viewer
     s0 = still(drv)
     assert s0["panel"]["visible"] and s0["overlay"] == "H: help"
     drv.key("n")
@@ -153,3 +151,18 @@ def test_without_the_gui_library_the_panel_says_what_to_install(monkeypatch):
     from sdfgl.viewer import panel
     monkeypatch.setitem(sys.modules, "imgui_bundle", None)
     assert "pip install 'sdfgl[panel]'" in panel.available()
+
+
+def test_readouts_show_frame_time_and_mean_steps(viewer):
+    """The panel's live figures: frame time, and the mean map() calls per pixel of the image shown,
+    which match a headless render's steps output of the same view."""
+    drv, _, _ = viewer
+    st = still(drv, lambda s: s["panel"].get("readout", {}).get("samples", 0) >= 2)
+    readout = st["panel"]["readout"]
+    assert readout["frame_ms"] > 0
+    scene = sg.sphere(0.6).translate((-1, 0, 0)) | sg.box(1.2).translate((1, 0, 0))
+    cam = OrbitCamera(target=tuple(st["target"]), distance=st["distance"], yaw=st["yaw"], pitch=st["pitch"])
+    ref = sg.render(scene, cam, (W - PANEL, H), shadows=False, ao=False, outputs=("color", "steps"))
+    want = float(ref.steps.mean())
+    assert want > 0.5
+    assert abs(readout["mean_steps"] - want) < 0.1 * want, (readout, want)

@@ -1,5 +1,8 @@
-"""Combiners: hard, quadratic, circular and chamfer unions; colours blend across smooth seams."""
+"""Combiners: hard, quadratic, circular and chamfer unions; colours blend across smooth seams.
+The blend radius is live: a slider in `sdfgl view` (panel) and `sdfgl html`."""
 import sdfgl as sg
+
+k = sg.param(0.35, "blend radius", range=(0.05, 0.6))
 
 
 def pair(**kw):
@@ -7,8 +10,8 @@ def pair(**kw):
                     **kw)
 
 
-scene = sg.union(pair().translate((-2.7, 0.4, 0)), pair(k=0.35).translate((-0.9, 0.4, 0)),
-                 pair(k=0.35, blend="circular").translate((0.9, 0.4, 0)),
-                 pair(k=0.35, blend="chamfer").translate((2.7, 0.4, 0)))
+scene = sg.union(pair().translate((-2.7, 0.4, 0)), pair(k=k).translate((-0.9, 0.4, 0)),
+                 pair(k=k, blend="circular").translate((0.9, 0.4, 0)),
+                 pair(k=k, blend="chamfer").translate((2.7, 0.4, 0)))
 camera = sg.OrbitCamera(target=(0, 0.4, 0), distance=6.5, yaw=10, pitch=25)
 settings = {"ground": True}

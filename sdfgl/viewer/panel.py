@@ -74,6 +74,18 @@ def slider_range(p: Param) -> tuple[float, float]:
     return default_range(p)
 
 
+def control(p: Param, colours: set[int]) -> tuple[str, float, float]:
+    """The control a parameter gets: ("slider" | "colour" | "vector", low, high).
+
+    A scalar gets a slider over its range (and a typed entry), a whole colour a colour picker
+    (0..1), any other vector a 3-slider over its range."""
+    if np.ndim(p.value) == 0:
+        return ("slider", *slider_range(p))
+    if id(p) in colours:
+        return "colour", 0.0, 1.0
+    return ("vector", *slider_range(p))
+
+
 class Panel:
     """Dear ImGui drawn over the window's left edge; input goes to it first when it wants it."""
 
@@ -88,11 +100,13 @@ class Panel:
         self.visible = viewer.fb_size[0] >= MIN_WINDOW_WIDTH
         self.message = ""
         self.selected: Node | None = None
-        self._ranges: dict[int, tuple[float, float]] = {}
+        self._ranges: dict[int, tuple[str, float, float]] = {}  # the control of each param
         self._colours: tuple[int, set[int]] = (0, set())
         self.wants_mouse = False
         self.wants_keyboard = False
         self.rects: dict[str, tuple[float, float, float, float]] = {}  # widget -> (x0, y0, x1, y1), for scripts
+        self.readout: dict[str, float] = {}  # the live figures the panel shows, for scripts
+        self.controls: dict[str, str] = {}   # param label -> its control ("slider", "colour", "vector")
 
     # -- input: called by the window's callbacks, before its own handling -------------
     def on_cursor(self, x: float, y: float) -> bool:
@@ -147,7 +161,11 @@ class Panel:
     def _status(self) -> None:
         imgui, v = self.imgui, self.viewer
         st = v.state
-        imgui.text(f"{st.last_frame_ms:.1f} ms/frame  {v.fb_size[0]}x{v.fb_size[1]}")
+        w, h = st.view[2:]
+        self.readout = {"frame_ms": round(st.last_frame_ms, 2), "mean_steps": round(st.mean_steps, 2),
+                        "samples": st.samples}
+        imgui.text(f"{st.last_frame_ms:.1f} ms/frame  {w}x{h}{' (moving)' if st.moving else ''}")
+        imgui.text(f"{st.mean_steps:.1f} steps/pixel (mean of map() calls)")
         imgui.text(f"samples {st.samples}/{v.max_samples}   programs {st.compiles}")
         if st.compile_log:
             imgui.text(f"last compile {st.compile_log[-1]['s']:.2f} s (in the background)")
@@ -171,15 +189,16 @@ class Panel:
             label = p.name or f"p{i}"
             imgui.push_id(f"param{i}")
             if id(p) not in self._ranges:
-                self._ranges[id(p)] = slider_range(p)
-            lo, hi = self._ranges[id(p)]
-            if np.ndim(p.value) == 0:
+                self._ranges[id(p)] = control(p, self._colours[1])
+            kind, lo, hi = self._ranges[id(p)]
+            self.controls[label] = kind
+            if kind == "slider":
                 changed, new = imgui.slider_float(label, float(p.value), lo, hi)
                 self.rects[label] = (*imgui.get_item_rect_min(), *imgui.get_item_rect_max())
                 typed, val = imgui.input_float("##typed", float(p.value), 0.0, 0.0, "%.4g")
                 if typed:
                     changed, new = True, val
-            elif id(p) in self._colours[1]:
+            elif kind == "colour":
                 changed, rgb = imgui.color_edit3(label, [float(x) for x in p.value])
                 new = tuple(rgb)
                 self.rects[label] = (*imgui.get_item_rect_min(), *imgui.get_item_rect_max())
@@ -196,6 +215,7 @@ class Panel:
         imgui.same_line()
         if imgui.button("save JSON"):
             self.message = self._save_json()
+        self.rects["save JSON"] = (*imgui.get_item_rect_min(), *imgui.get_item_rect_max())
 
     def set_param(self, p: Param, value: Any) -> None:
         """Set a live value (validated by its nodes); the image re-renders with the same program."""
@@ -215,7 +235,10 @@ class Panel:
         # the tree's selection is a view of this window, not a setting a document can render alone
         settings = {k: val for k, val in v.state.settings.items() if not (k == "debug" and val == "select")}
         try:
+            path.parent.mkdir(parents=True, exist_ok=True)
             save_scene(v.scene, path, camera=v.camera, settings=settings)
+        except OSError as exc:
+            return f"could not save {path}: {exc}"
         except SdfglError as exc:
             return f"could not save {path}: {exc}"
         return f"saved {path}"

@@ -1,9 +1,9 @@
-"""The few OpenGL entry points the compile worker calls directly, through ctypes.
+"""The few OpenGL entry points the render threads (and the window, to bind their images) call through ctypes.
 
 moderngl holds Python's global interpreter lock while the driver compiles and links,
-so a moderngl compile in a thread still stops the window's loop; a ctypes call releases
+so a moderngl compile or draw in a thread still stops the window's loop; a ctypes call releases
 the lock for the length of the call. A program linked here lives in the share group of
-the viewer's context and is drawn by :class:`sdfgl.viewer.compile_worker.RawProgram`.
+the viewer's context and is drawn by :class:`sdfgl.viewer.programs.RawProgram`.
 """
 from __future__ import annotations
 
@@ -20,6 +20,7 @@ COMPILE_STATUS, LINK_STATUS, INFO_LOG_LENGTH = 0x8B81, 0x8B82, 0x8B84
 ACTIVE_UNIFORMS = 0x8B86
 FLOAT, FLOAT_VEC2, FLOAT_VEC3, FLOAT_VEC4, INT, SAMPLER_2D = 0x1406, 0x8B50, 0x8B51, 0x8B52, 0x1404, 0x8B5E
 TRIANGLES = 0x0004
+TEXTURE_2D, TEXTURE0 = 0x0DE1, 0x84C0
 
 _SIGNATURES: dict[str, tuple[Any, ...]] = {
     "glCreateShader": (c_uint, c_uint),
@@ -47,6 +48,8 @@ _SIGNATURES: dict[str, tuple[Any, ...]] = {
     "glBindVertexArray": (None, c_uint),
     "glDrawArrays": (None, c_uint, c_int, c_int),
     "glFinish": (None,),
+    "glActiveTexture": (None, c_uint),
+    "glBindTexture": (None, c_uint, c_uint),
 }
 
 
@@ -128,6 +131,11 @@ class GL:
             if setter is None:
                 raise GLError(f"uniform type 0x{typ:x} is not supported by the viewer")
             setter(prog, location, *(float(x) for x in value))
+
+    def bind_texture(self, unit: int, texture: int) -> None:
+        """Bind 2D texture ``texture`` (a GL name, possibly from a shared context) to ``unit``."""
+        self.glActiveTexture(TEXTURE0 + unit)
+        self.glBindTexture(TEXTURE_2D, texture)
 
     def vertex_array(self) -> int:
         """An empty vertex array object (core profile draws need one bound)."""

@@ -3,12 +3,14 @@
 While the camera moves, frames are drawn at a reduced resolution chosen so a frame
 stays under the target time; when it stops, full-resolution frames with sub-pixel
 jitter are accumulated into a clean anti-aliased image, and then nothing is redrawn
-until something changes.
+until something changes. The scene is drawn by a render thread (:mod:`.render_thread`);
+this thread answers input, presents the newest image right of the side panel, and
+draws the panel and the text overlay.
 """
 from __future__ import annotations
 
+import copy
 import json
-import math
 import os
 import time
 from dataclasses import dataclass, field
@@ -18,18 +20,21 @@ from typing import Any
 import glfw
 import moderngl
 import numpy as np
-from PIL import Image, ImageDraw, ImageFont
+from PIL import Image, ImageDraw
 
 from .. import shaderlib
 from ..camera import Camera, OrbitCamera
-from ..codegen import generate
+from ..codegen import ShaderSource, generate
 from ..errors import ContextError, SdfglError
 from ..nodes.base import IMPLICIT, Node
-from ..render import Renderer, camera_uniforms, scene_uniforms, shader_origin
+from ..render import shader_origin
 from ..scenefile import load_scene_file
 from ..settings import DISTANCE_METHODS, Settings
 from . import panel as panel_mod
-from .compile_worker import CompileWorker, Job, RawProgram, Result
+from . import rawgl
+from .overlay import layout_text
+from .programs import Job, Result
+from .render_thread import LANES, Exchange, Frame, FrameSpec, Lane, describe_error
 
 KEYS_HELP = """\
 mouse   left drag: orbit   right/middle drag: pan   wheel: zoom to target
@@ -43,49 +48,33 @@ F       frame the whole scene        R   reset the view
 N       side panel: parameters, render settings, scene tree
 P       save a screenshot PNG        H   this help
 Q, Esc  quit"""
+KEYS_COMPACT = """\
+drag: orbit / pan
+wheel: zoom
+A aa   S shadows
+O AO   M method
+G ground  D debug
+F frame   R reset
+N panel   P shot
+H help    Q quit"""  # the help of a window too small for KEYS_HELP at a legible size
 
 METHOD_CYCLE = ("sphere", "relaxed", "enhanced", "newton", "forward_newton")
 DEBUG_CYCLE = (None, "steps", "normal", "depth")
 SHADOW_CYCLE = (False, "hard", "soft")
 MOVE_HOLD_S = 0.15  # a camera change keeps the low-resolution mode this long
+PRESENT_LOG = 1200  # presents kept in the state file's present_log
+STATE_EVERY_S = 0.05  # the state file is written at most this often (and within 0.2 s of any change)
 ZOOM_RANGE = (1e-4, 100.0)  # wheel zoom keeps the distance within these multiples of the framing distance
 
 
-def describe_error(exc: BaseException, where: str) -> str:
-    """One message for the overlay, whatever the exception (ours name their node or file)."""
-    if isinstance(exc, SdfglError):
-        return str(exc)
-    if isinstance(exc, RecursionError):
-        return f"{where}: the scene is nested too deeply for Python's recursion limit ({exc})"
-    text = f"{where}: {type(exc).__name__}: {exc}"
-    return text if len(text) < 800 else text[:800] + " ..."
-
-
-def _fitting_font(draw: ImageDraw.ImageDraw, text: str, width: int, height: int) -> Any:
-    """The largest font (8..22 px) in which ``text`` fits width x height, so help stays legible at any size."""
-    font = None
-    for size in range(22, 7, -1):
-        font = ImageFont.load_default(size=size)
-        box = draw.multiline_textbbox((0, 0), text, font=font)
-        if box[2] - box[0] <= width and box[3] - box[1] <= height:
-            return font
-    return font
-
-
 def _codegen(scene: Node, settings: Settings, origin: np.ndarray, projection: str, highlight: Node | None) -> Any:
-    """The window's shader source (run in the compile worker); any failure becomes one overlay message."""
+    """The window's shader source (run in a render thread); any failure becomes one overlay message."""
     try:
         return generate(scene, settings, origin, projection=projection, highlight=highlight)
     except SdfglError:
         raise
     except Exception as exc:  # noqa: BLE001 - a user's scene may raise anything while generating code
         raise SdfglError(describe_error(exc, "compile")) from exc
-
-
-def _r2(n: int) -> tuple[float, float]:
-    """The n-th point of the R2 low-discrepancy sequence, centred on 0 (sub-pixel jitter)."""
-    g = 1.32471795724474602596
-    return ((0.5 + n / g) % 1.0) - 0.5, ((0.5 + n / (g * g)) % 1.0) - 0.5
 
 
 @dataclass
@@ -106,9 +95,14 @@ class ViewState:
     compiling: bool = False
     param_edits: int = 0
     overlay: str = ""  # the text drawn over the image (help, hint, status, error)
+    overlay_font: int = 0  # its font size in pixels
+    overlay_fits: bool = True  # whether all of it fits the window at that size
+    overlay_size: tuple[int, int] = (0, 0)  # the window size it was laid out for
     panel: dict[str, Any] = field(default_factory=dict)
     compile_log: list[dict[str, float]] = field(default_factory=list)  # worker timings of each new program
-    present_log: list[tuple[float, float, bool]] = field(default_factory=list)  # (wall time, yaw, compiling)
+    present_log: list[tuple[float, float | None, bool]] = field(default_factory=list)  # (wall time, yaw drawn, compiling)
+    mean_steps: float = 0.0  # map() calls per pixel of the image on screen (pixel-centre rays)
+    view: tuple[int, int, int, int] = (0, 0, 0, 0)  # the image's rectangle in the window: x, y, width, height
 
 
 class Viewer:
@@ -142,13 +136,19 @@ class Viewer:
         self.show_hint = True  # "H: help" until the first key
         self._want_panel = panel
         self._ui_frames = 0  # frames to redraw for the panel alone (hover, drag) without re-rendering the scene
-        self._image: tuple[moderngl.Texture | None, float] = (None, 1.0)
         self._last_move = -1.0
         self._drag: tuple[int, float, float] | None = None
-        self._dirty = True
-        self._overlay_text: str | None = None
-        self._overlay_x = 10
-        self._shown: tuple[Node, RawProgram, Any, np.ndarray] | None = None  # scene, program, source, origin
+        self._dirty = True     # the render thread needs a new spec (camera, params, size, program)
+        self._repaint = True   # the window needs presenting again (overlay, panel)
+        self._version = 0      # of the newest spec
+        self._spec_moving = False
+        self._serial = 0       # of the newest frame taken
+        self._frame: Frame | None = None  # on screen
+        self._overlay_key: tuple | None = None
+        self._shots = 0  # screenshots asked for
+        self._state_at = 0.0  # when the state file was last written
+        # scene, lane, program key (source text), source, origin
+        self._shown: tuple[Node, int, str, ShaderSource, np.ndarray] | None = None
         self._good: tuple[Any, Node, dict[str, Any]] | None = None  # the last (shown, scene, settings) that drew
         self._token = 0
         self._error_token = 0
@@ -187,12 +187,16 @@ class Viewer:
         glfw.make_context_current(self.window)
         glfw.swap_interval(0)
         self.ctx = moderngl.create_context()
-        self.renderer = Renderer(self.ctx)
         self.present = self.ctx.program(vertex_shader=shaderlib.read("fullscreen.vert"),
                                         fragment_shader=shaderlib.read("present.frag"))
         self.present_vao = self.ctx.vertex_array(self.present, [])
-        self.compiler = CompileWorker(self.window, self.ctx)
-        self._targets: dict[str, Any] = {}
+        self.gl = rawgl.GL()
+        self.exchange = Exchange()
+        self.lanes: list[Lane] = []
+        for i in range(LANES):
+            self.lanes.append(Lane(i, self.window, self.exchange))
+        self.exchange.lanes = self.lanes
+        self._overlay_tex: moderngl.Texture | None = None
         self.panel: panel_mod.Panel | None = None
         self._resize_targets()
         self._panel_missing = panel_mod.available()
@@ -207,18 +211,27 @@ class Viewer:
         glfw.set_key_callback(self.window, self._guarded(self._on_key, "key"))
         glfw.set_framebuffer_size_callback(self.window, self._guarded(lambda *_: self._resize_targets(), "resize"))
         glfw.set_window_refresh_callback(self.window, lambda *_: self._mark())
+        self._write_state()  # scripts see the window at once; the render threads may take a while to start
+        for lane in self.lanes:
+            lane.wait_ready()
 
     def _resize_targets(self) -> None:
         fw, fh = glfw.get_framebuffer_size(self.window)
-        fw, fh = max(fw, 1), max(fh, 1)
-        for obj in self._targets.values():
-            obj.release()
-        accum = self.ctx.texture((fw, fh), 4, dtype="f4")
-        self._targets = {"accum": accum, "accum_fbo": self.ctx.framebuffer(color_attachments=[accum])}
-        self.fb_size = (fw, fh)
-        self._low: tuple[moderngl.Texture, moderngl.Framebuffer, tuple[int, int]] | None = None
-        self._overlay_text = None
+        self.fb_size = (max(fw, 1), max(fh, 1))
         self._mark()
+
+    def view_rect(self) -> tuple[int, int, int, int]:
+        """The image's rectangle in framebuffer pixels (x, y, width, height): right of the panel when it shows."""
+        fw, fh = self.fb_size
+        x = 0
+        if self.panel is not None and self.panel.visible:
+            ww = glfw.get_window_size(self.window)[0] or fw
+            x = min(fw - 1, round(panel_mod.WIDTH * fw / ww))
+        return x, 0, fw - x, fh
+
+    def _aspect(self) -> float:
+        _, _, w, h = self.view_rect()
+        return w / h
 
     # -- events -----------------------------------------------------------------------
     def _guarded(self, fn: Any, where: str) -> Any:
@@ -231,6 +244,7 @@ class Viewer:
         return callback
 
     def _mark(self, moved: bool = False) -> None:
+        """The image must be drawn again (camera, params, size or program changed)."""
         self._dirty = True
         self.state.samples = 0
         if moved:
@@ -301,8 +315,7 @@ class Viewer:
             return
         if self.show_hint:
             self.show_hint = False
-            self._overlay_text = None
-            self._dirty = True
+            self._repaint = True
         s = self.wanted_settings
         if key in (glfw.KEY_Q, glfw.KEY_ESCAPE):
             glfw.set_window_should_close(self.window, True)
@@ -322,12 +335,12 @@ class Viewer:
             self._cycle("debug", DEBUG_CYCLE)
         elif key == glfw.KEY_F:
             framed = OrbitCamera.framing(*self.scene.bounds, yaw=self.camera.yaw, pitch=self.camera.pitch,
-                                         fov=self.camera.fov, aspect=self.size[0] / self.size[1],
+                                         fov=self.camera.fov, aspect=self._aspect(),
                                          projection=self.camera.projection)
             self.camera = framed
             self._mark(moved=True)
         elif key == glfw.KEY_R:
-            self.camera = self._orbit_of(self.home, self.scene, self.size[0] / self.size[1])
+            self.camera = self._orbit_of(self.home, self.scene, self._aspect())
             self._mark(moved=True)
         elif key == glfw.KEY_P:
             self.screenshot()
@@ -336,15 +349,14 @@ class Viewer:
                 self._set_error(self._panel_missing)
             else:
                 self.panel.visible = not self.panel.visible
-                self._dirty = True
+                self._mark()  # the view's size changes
         elif key in (glfw.KEY_H, glfw.KEY_F1):
             self.show_help = not self.show_help
-            self._overlay_text = None
-            self._dirty = True
+            self._repaint = True
 
     def live_params(self) -> list[Any]:
         """The live parameters of the program on screen (its uniforms uP0, uP1, ...)."""
-        return list(self._shown[2].params) if self._shown is not None else []
+        return list(self._shown[3].params) if self._shown is not None else []
 
     def param_changed(self) -> None:
         """A live value changed: redraw with the same program (its uniform is set every frame)."""
@@ -381,14 +393,15 @@ class Viewer:
     # -- drawing ----------------------------------------------------------------------
     def _request(self, scene: Node, settings: dict[str, Any], why: str,
                  file_settings: dict[str, Any] | None = None) -> None:
-        """Compile (in the worker) the program for ``scene`` and ``settings``; it replaces the shown one when ready.
+        """Compile (in the idle render thread) the program for ``scene`` and ``settings``; it replaces the
+        shown one when it is linked and drawn once there.
 
         ``file_settings`` are the scene file's own settings when ``why`` is "reload"; a request made
         while a reload is still compiling stays a reload (it carries that reload's scene)."""
         if self._pending is not None and self._pending[2] == "reload" and why != "reload":
             why, file_settings = "reload", self._pending[4]
         origin = shader_origin(scene, self.camera.eye)
-        st = Settings.build(**settings)
+        st = Settings.build(**{**settings, "outputs": ("color", "steps")})  # steps: the panel's readout
         hl = None
         if st.debug == "select":  # the scene tree's selection (else the whole scene) is tinted
             hl = self._highlight[1] if self._highlight and self._highlight[0] is scene else scene
@@ -396,16 +409,27 @@ class Viewer:
         self._token += 1
         meta = (scene, dict(settings), why, origin, file_settings)
         self._pending = meta
-        self.compiler.submit(Job(self._token, lambda: _codegen(scene, st, origin, projection, hl), meta))
+        job = Job(self._token, lambda: _codegen(scene, st, origin, projection, hl), scene, origin, meta)
+        with self.exchange.cond:
+            self.exchange.job = job  # a queued older request is dropped: the newest wins
+            self.exchange.cond.notify_all()
         self.state.compiling = True
-        self._overlay_text = None
-        self._dirty = True
+        self._repaint = True
 
-    def _poll_compiles(self) -> None:
-        """Take finished compiles: the newest good one is shown; an error keeps the last good program."""
-        for res in self.compiler.poll():
+    def _poll(self) -> None:
+        """Take what the render threads finished: compiles, render errors, screenshots."""
+        ex = self.exchange
+        with ex.cond:
+            results, ex.results = ex.results, []
+            errors, ex.errors = ex.errors, []
+            shots, ex.shots = ex.shots, []
+        for res in results:
             self._accept(res)
         self.state.compiling = self._pending is not None
+        for version, text in errors:
+            self._render_failed(version, text)
+        for paths, img in shots:
+            self._save_shot(paths, img)
 
     def _accept(self, res: Result) -> None:
         if res.compiled:
@@ -416,14 +440,11 @@ class Viewer:
             return  # a newer request is on its way
         self._pending = None
         scene, settings, why, origin, file_settings = res.meta
-        self._overlay_text = None
-        self._dirty = True
-        if res.program is None:
+        self._repaint = True
+        if res.error or res.source is None:
             self._set_error(res.error)
             return
-        self._shown = (scene, res.program, res.source, origin)
-        good = self._good[0][1] if self._good and self._good[0] else None
-        self.compiler.trim(res.program, good)  # both may be drawn next
+        self._shown = (scene, res.lane, res.source.text, res.source, origin)
         if why == "reload":
             self.state.reloads += 1
             self._file_settings = dict(file_settings or {})
@@ -432,129 +453,124 @@ class Viewer:
             self._set_error("")
         self._mark()
 
+    def _render_failed(self, version: int, text: str) -> None:
+        """A frame failed in the render thread: show why and go back to the last program, scene and settings that drew."""
+        self._set_error(text)
+        good = self._good
+        if version == self._version and good is not None and (good[0] is not self._shown or good[1] is not self.scene
+                                                              or good[2] != self.state.settings):
+            self._shown, self.scene, self.state.settings = good[0], good[1], dict(good[2])
+            self._mark()
+
     def _moving(self) -> bool:
         return self._drag is not None or time.perf_counter() - self._last_move < MOVE_HOLD_S
 
-    def _low_target(self, scale: float) -> tuple[moderngl.Texture, moderngl.Framebuffer, tuple[int, int]]:
-        size = (max(1, int(self.fb_size[0] * scale)), max(1, int(self.fb_size[1] * scale)))
-        if self._low is None or self._low[2] != size:
-            if self._low is not None:
-                self._low[0].release()
-                self._low[1].release()
-            tex = self.ctx.texture(size, 4, dtype="f1")
-            tex.filter = (moderngl.LINEAR, moderngl.LINEAR)
-            self._low = (tex, self.ctx.framebuffer(color_attachments=[tex]), size)
-        return self._low
-
-    def _draw_scene(self, fbo: moderngl.Framebuffer, size: tuple[int, int], jitter: tuple[float, float],
-                    blend: bool) -> float:
-        assert self._shown is not None
-        scene, prog, source, origin = self._shown
+    def _push_spec(self) -> None:
+        """Hand the render thread what to draw now (a new version restarts its accumulation)."""
+        self._dirty = False
+        self._spec_moving = moving = self._moving()
+        self.state.moving = moving
+        view = self.view_rect()
+        self.state.view = view
+        if self._shown is None:
+            return
+        scene, lane, key, source, origin = self._shown
         if self._pending is None and not np.array_equal(shader_origin(scene, self.camera.eye), origin):
             self._request(scene, self.state.settings, "origin")  # far scenes: re-anchor float32 coordinates
-        camera_uniforms(prog, self.camera, size, origin, jitter)
-        scene_uniforms(prog, source, scene, origin, self.renderer.data)
-        fbo.use()
-        self.ctx.viewport = (0, 0, *size)
-        if blend:
-            self.ctx.enable(moderngl.BLEND)
-            self.ctx.blend_func = moderngl.ONE, moderngl.ONE
-        t0 = time.perf_counter()
-        prog.render(self.compiler.vao)
-        self.ctx.finish()
-        ms = 1000 * (time.perf_counter() - t0)
-        if blend:
-            self.ctx.disable(moderngl.BLEND)
-        return ms
+        self._version += 1
+        spec = FrameSpec(self._version, lane, key, source, scene, origin, copy.deepcopy(self.camera), view[2:],
+                         moving, self.max_samples, self.target_ms, self.adaptive)
+        keep = {key} | ({self._good[0][2]} if self._good and self._good[0] else set())
+        with self.exchange.cond:
+            self.exchange.spec = spec
+            self.exchange.keep = keep
+            self.exchange.cond.notify_all()
 
-    def frame(self) -> None:
-        """Draw one frame: low resolution while moving, else one more accumulated sample."""
-        moving = self._moving()
+    def _take_frame(self) -> Frame | None:
+        """The newest frame a render thread published, if it is new; it becomes the one on screen."""
+        ex = self.exchange
+        with ex.cond:
+            frame = ex.latest
+            if frame is None or frame.serial == self._serial:
+                return None
+            self._serial = frame.serial
+            ex.showing = frame.buffer
         st = self.state
-        if self._shown is None:  # the first program is still compiling: show the status line only
-            self.ctx.screen.use()
-            self.ctx.clear(0.1, 0.1, 0.12)
-            self._present(None, 1.0)
-            st.frames += 1
-            self._dirty = False
-            return
-        if moving:
-            if self.adaptive and not st.moving and st.last_frame_ms > self.target_ms:
-                # the first moving frame: start from what the last full-resolution frame cost
-                st.scale = float(max(0.1, min(st.scale, math.sqrt(self.target_ms / st.last_frame_ms))))
-            scale = st.scale if self.adaptive else 1.0
-            tex, fbo, size = self._low_target(scale)
-            ms = self._draw_scene(fbo, size, (0.0, 0.0), blend=False)
-            if self.adaptive:  # area scales with scale^2; damp the correction
-                want = scale * math.sqrt(self.target_ms / max(ms, 1e-3))
-                st.scale = float(min(1.0, max(0.1, 0.5 * scale + 0.5 * want)))
-            image, weight = tex, 1.0
-            st.samples = 0
-        else:
-            if st.samples == 0:
-                self._targets["accum_fbo"].clear(0.0, 0.0, 0.0, 0.0)
-            ms = self._draw_scene(self._targets["accum_fbo"], self.fb_size, _r2(st.samples), blend=True)
-            st.samples += 1
-            image, weight = self._targets["accum"], 1.0 / st.samples
-        self._present(image, weight)
+        self._frame = frame
+        if frame.spec.version == self._version:
+            st.samples, st.moving, st.scale = frame.samples, frame.spec.moving, frame.scale
+        if self._shown is not None and (frame.spec.lane, frame.spec.key) == self._shown[1:3]:
+            self._good = (self._shown, self.scene, dict(self.state.settings))
+        if frame.steps is not None:
+            st.mean_steps = frame.steps
         st.frames += 1
-        st.moving = moving
-        st.last_frame_ms = ms
-        st.frame_log.append((moving, ms, st.scale if moving else 1.0))
+        st.last_frame_ms = frame.ms
+        st.frame_log.append((frame.spec.moving, frame.ms, frame.scale))
         del st.frame_log[:-400]
-        self._title(ms)
-        self._dirty = moving or st.samples < self.max_samples
+        self._title(frame.ms)
+        return frame
 
-    def _present(self, image: moderngl.Texture | None, weight: float) -> None:
+    def _present(self) -> None:
+        """Show the image on screen right of the panel, the overlay and the panel."""
         self.ctx.screen.use()
         self.ctx.viewport = (0, 0, *self.fb_size)
-        (image or self._targets["accum"]).use(0)
+        frame = self._frame
+        if frame is not None:
+            self.gl.bind_texture(0, frame.buffer.glo)
         self._overlay().use(1)
         self.present["uImage"].value = 0
         self.present["uOverlay"].value = 1
-        self.present["uWeight"].value = weight
         self.present["uWindow"].value = tuple(float(x) for x in self.fb_size)
+        self.present["uView"].value = tuple(float(x) for x in self.view_rect())
+        self.present["uHasImage"].value = 1.0 if frame is not None else 0.0
         self.present_vao.render(moderngl.TRIANGLES, vertices=3)
-        self._image = (image, weight)
         if self.panel is not None:
             self.panel.draw()
             self.state.panel = {"visible": self.panel.visible, "rects": self.panel.rects, "message": self.panel.message,
                                 "selected": self.panel.selected.label() if self.panel.selected else None,
+                                "readout": self.panel.readout, "controls": self.panel.controls,
                                 "params": {(q.name or f"p{i}"): np.asarray(q.value).tolist()
                                            for i, q in enumerate(self.live_params())}}
         glfw.swap_buffers(self.window)
-        self.state.present_log.append((time.time(), self.camera.yaw, self.state.compiling))
-        del self.state.present_log[:-400]
+        self.ctx.finish()  # the display texture was read: a render thread may draw into it again
+        self._repaint = False
+        self.state.present_log.append((time.time(), frame.spec.camera.yaw if frame is not None else None,
+                                       self.state.compiling))
+        del self.state.present_log[:-PRESENT_LOG]
 
     def _overlay(self) -> moderngl.Texture:
         text = "\n".join(x for x in ((KEYS_HELP if self.show_help else "H: help" if self.show_hint else ""),
                                      ("compiling..." if self.state.compiling else ""),
                                      (f"error: {self.state.error}" if self.state.error else "")) if x)
-        x0 = 10 + (panel_mod.WIDTH if self.panel is not None and self.panel.visible else 0)
-        if text != self._overlay_text or x0 != self._overlay_x:
+        x0 = self.view_rect()[0] + 10
+        key = (text, x0, self.fb_size)
+        if self._overlay_tex is None or key != self._overlay_key:
             img = Image.new("RGBA", self.fb_size, (0, 0, 0, 0))
-            self._overlay_x = x0
             if text:
                 draw = ImageDraw.Draw(img)
-                x0 = x0 if x0 + 120 < self.fb_size[0] else 10
-                font = _fitting_font(draw, text, self.fb_size[0] - x0 - 10, self.fb_size[1] - 20)
-                box = draw.multiline_textbbox((x0, 10), text, font=font)
+                x0 = x0 if x0 + 200 < self.fb_size[0] else 10  # a narrow view: over the panel rather than clipped
+                font, shown, fits = layout_text(draw, text, self.fb_size[0] - x0 - 10, self.fb_size[1] - 20,
+                                          shorter=(KEYS_HELP, KEYS_COMPACT))
+                box = draw.multiline_textbbox((x0, 10), shown, font=font)
                 draw.rectangle((box[0] - 6, box[1] - 6, box[2] + 6, box[3] + 6), fill=(0, 0, 0, 170))
-                draw.multiline_text((x0, 10), text, font=font,
+                draw.multiline_text((x0, 10), shown, font=font,
                                     fill=(255, 120, 110, 255) if self.state.error and not self.show_help
                                     else (235, 235, 235, 255))
-            if "overlay" in self._targets:
-                self._targets["overlay"].release()
-            self._targets["overlay"] = self.ctx.texture(self.fb_size, 4, img.tobytes(), dtype="f1")
-            self._overlay_text = text
+                self.state.overlay_font, self.state.overlay_fits = font.size, fits
+            self.state.overlay_size = self.fb_size
+            if self._overlay_tex is not None:
+                self._overlay_tex.release()
+            self._overlay_tex = self.ctx.texture(self.fb_size, 4, img.tobytes(), dtype="f1")
+            self._overlay_key = key
             self.state.overlay = text
-        return self._targets["overlay"]
+        return self._overlay_tex
 
     def _title(self, ms: float) -> None:
         s, st = self.state.settings, self.state
         shadows = s.get("shadows") or "off"
-        res = (f"{int(self.fb_size[0] * st.scale)}x{int(self.fb_size[1] * st.scale)} ({st.scale:.0%})" if st.moving
-               else f"{self.fb_size[0]}x{self.fb_size[1]} {st.samples}/{self.max_samples} samples")
+        w, h = self.state.view[2:]
+        res = (f"{int(w * st.scale)}x{int(h * st.scale)} ({st.scale:.0%})" if st.moving
+               else f"{w}x{h} {st.samples}/{self.max_samples} samples")
         name = self.path.name if self.path else self.scene.kind
         err = " | ERROR (see overlay)" if st.error else ""
         glfw.set_window_title(self.window, f"sdfgl: {name} | {ms:.1f} ms ({1000 / max(ms, 1e-3):.0f} fps) | {res} | "
@@ -563,27 +579,35 @@ class Viewer:
 
     # -- actions ----------------------------------------------------------------------
     def screenshot(self) -> Path:
-        """Render the current view at the window's framebuffer size and save it as PNG."""
+        """Save the view as PNG once its image is finished (all samples accumulated), at the view's size,
+        with what the window shows (the tree's selection tint included) and no overlay or panel."""
         try:
             self.screenshot_dir.mkdir(parents=True, exist_ok=True)
         except OSError as exc:
             raise SdfglError(f"cannot write screenshots to '{self.screenshot_dir}': {exc}") from exc
-        path = self.screenshot_dir / f"sdfgl-{time.strftime('%Y%m%d-%H%M%S')}-{len(self.state.screenshots):03d}.png"
-        res = self.renderer.render(self.scene, self.camera, self.fb_size, **self.state.settings)
-        res.save(path)
-        self.ctx.screen.use()
-        self.state.screenshots.append(str(path))
-        self._dirty = True
-        print(f"sdfgl: saved {path}")
+        self._shots += 1
+        path = self.screenshot_dir / f"sdfgl-{time.strftime('%Y%m%d-%H%M%S')}-{self._shots - 1:03d}.png"
+        with self.exchange.cond:
+            self.exchange.shot_paths.append(str(path))
+            self.exchange.cond.notify_all()
         return path
+
+    def _save_shot(self, paths: list[str], img: np.ndarray) -> None:
+        for path in paths:
+            try:
+                Image.fromarray(img).save(path)
+            except OSError as exc:
+                self._set_error(f"cannot write screenshot '{path}': {exc}")
+                continue
+            self.state.screenshots.append(path)
+            print(f"sdfgl: saved {path}")
 
     def _set_error(self, text: str) -> None:
         if text and text != self.state.error:
             print(f"sdfgl: {text}", flush=True)
         self.state.error = text
         self._error_token = self._token  # the newest request when the error came
-        self._overlay_text = None
-        self._dirty = True
+        self._repaint = True
 
     def _check_reload(self) -> None:
         if self.path is None:
@@ -621,26 +645,8 @@ class Viewer:
         new.update(self._explicit)
         return new
 
-    def _safe_frame(self) -> None:
-        """Draw a frame; on any error show it and go back to the last program, scene and settings that drew."""
-        try:
-            self.frame()
-            self._good = (self._shown, self.scene, dict(self.state.settings))
-        except Exception as exc:  # noqa: BLE001 - the window never dies from a scene
-            self._set_error(describe_error(exc, "render"))
-            good = self._good
-            if good is not None and (good[0] is not self._shown or good[1] is not self.scene
-                                     or good[2] != self.state.settings):
-                self._shown, self.scene, self.state.settings = good[0], good[1], dict(good[2])
-                self._mark()
-                return
-            self._dirty = False  # nothing to go back to: show the error until something changes
-            try:
-                self._present(self._targets["accum"], 1.0 / max(1, self.state.samples))
-            except Exception:  # noqa: BLE001 - the title and state file still carry the error
-                pass
-
     def _write_state(self) -> None:
+        self._state_at = time.perf_counter()
         if self.state_file is None:
             return
         c = self.camera
@@ -656,19 +662,23 @@ class Viewer:
         last_poll = 0.0
         try:
             while not glfw.window_should_close(self.window):
-                self._poll_compiles()
-                if self._dirty:
-                    self._safe_frame()
-                    self._write_state()
-                    glfw.poll_events()
+                self._poll()
+                if self._dirty or self._moving() != self._spec_moving:
+                    self._push_spec()
+                if self._take_frame() is not None or self._repaint:
+                    self._present()
                 elif self._ui_frames > 0:
                     self._ui_frames -= 1
-                    self._present(*self._image)
+                    self._present()
+                if time.perf_counter() - self._state_at > STATE_EVERY_S:
                     self._write_state()
+                if self._ui_frames > 0 or self._dirty:
                     glfw.poll_events()
-                else:
-                    self._write_state()
-                    glfw.wait_events_timeout(0.2)  # idle: no busy loop; wakes to check the file
+                else:  # idle: no busy loop; the render threads wake it (frames, compiles), and it checks the file
+                    wait = 0.2
+                    if self._spec_moving and self._drag is None:
+                        wait = max(0.0, MOVE_HOLD_S - (time.perf_counter() - self._last_move)) + 0.001
+                    glfw.wait_events_timeout(min(wait, 0.2))
                 now = time.perf_counter()
                 if now - last_poll > 0.2:
                     last_poll = now
@@ -677,15 +687,23 @@ class Viewer:
             self.close()
 
     def close(self) -> None:
-        """Release GL objects and the window."""
-        if getattr(self, "window", None) is not None:
-            if getattr(self, "compiler", None) is not None:
-                self.compiler.close()
-            if getattr(self, "panel", None) is not None:
-                self.panel.close()
-            glfw.destroy_window(self.window)
-            self.window = None
-            glfw.terminate()
+        """Stop the render threads and release the window."""
+        if getattr(self, "window", None) is None:
+            return
+        ex = getattr(self, "exchange", None)
+        if ex is not None:
+            with ex.cond:
+                ex.closing = True
+                ex.cond.notify_all()
+            for lane in self.lanes:
+                lane.join(timeout=120)
+            for lane in self.lanes:
+                lane.destroy_window()
+        if getattr(self, "panel", None) is not None:
+            self.panel.close()
+        glfw.destroy_window(self.window)
+        self.window = None
+        glfw.terminate()
 
 
 def show(scene: Node, camera: Camera | None = None, size: tuple[int, int] = (960, 540), **settings: Any) -> None:

@@ -1,0 +1,115 @@
+"""Programs linked off the window's thread, with plain GL calls through ctypes.
+
+moderngl cannot link them: it keeps Python's interpreter lock through the driver's compile
+(so every other thread of the viewer, the window's included, would stop) and refuses a
+program made by another moderngl context. :func:`build` links with :mod:`rawgl` (which
+releases the lock) and wraps the result as a :class:`RawProgram`.
+"""
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+from typing import Any, Callable
+
+import moderngl
+
+from .. import shaderlib
+from ..codegen import ShaderSource
+from ..errors import SdfglError
+from ..gl.dialect import of_source
+from ..gl.programs import explain_compile_error
+from . import rawgl
+
+
+class RawProgram:
+    """A program linked through ctypes, with the little of moderngl's Program API the renderer's
+    uniform helpers use: ``name in prog``, ``prog[name].value = v`` and ``prog.ctx`` (the moderngl
+    context of the thread that draws it, where its data textures are made)."""
+
+    def __init__(self, gl: rawgl.GL, glo: int, uniforms: dict[str, tuple[int, int]], ctx: moderngl.Context) -> None:
+        self.gl, self.glo, self.ctx = gl, glo, ctx
+        self._uniforms = {name.removesuffix("[0]"): v for name, v in uniforms.items()}
+
+    def __contains__(self, name: str) -> bool:
+        return name in self._uniforms
+
+    def __getitem__(self, name: str) -> "_Uniform":
+        return _Uniform(self, name)
+
+    def render(self, vao: int) -> None:
+        """Draw the full-screen triangle into the bound framebuffer (the interpreter lock is released
+        meanwhile: llvmpipe builds a program's machine code at its first draw in each context)."""
+        self.gl.glUseProgram(self.glo)
+        self.gl.glBindVertexArray(vao)
+        self.gl.glDrawArrays(rawgl.TRIANGLES, 0, 3)
+
+    def release(self) -> None:
+        if self.glo:
+            self.gl.glDeleteProgram(self.glo)
+            self.glo = 0
+
+
+class _Uniform:
+    def __init__(self, prog: RawProgram, name: str) -> None:
+        self.prog, self.name = prog, name
+
+    @property
+    def value(self) -> Any:
+        raise AttributeError("uniform values are write-only here")
+
+    @value.setter
+    def value(self, v: Any) -> None:
+        loc, typ = self.prog._uniforms[self.name]
+        self.prog.gl.set_uniform(self.prog.glo, loc, typ, v)
+
+
+@dataclass
+class Job:
+    """One compile: ``build`` makes the source (codegen runs off the window's thread too);
+    ``scene`` and ``origin`` set the uniforms of the warm-up draw; ``meta`` comes back."""
+
+    token: int
+    build: Callable[[], ShaderSource]
+    scene: Any = None
+    origin: Any = None
+    meta: Any = None
+
+
+@dataclass
+class Result:
+    """A finished job: the program to show is ``source.text`` in the cache of render lane ``lane``."""
+
+    token: int
+    meta: Any
+    lane: int = -1
+    source: ShaderSource | None = None
+    error: str = ""
+    compiled: bool = False   # a new program was linked (not found in a cache)
+    seconds: float = 0.0     # codegen + link + warm-up draw, off the window's thread
+    timings: dict[str, float] = field(default_factory=dict)
+
+
+def make_source(job: Job) -> ShaderSource:
+    """Run the job's codegen; any failure becomes one SdfglError (the overlay's message)."""
+    try:
+        return job.build()
+    except SdfglError:
+        raise
+    except Exception as exc:  # codegen of a user's scene: report, never kill the thread
+        raise SdfglError(f"code generation failed: {type(exc).__name__}: {exc}") from exc
+
+
+def link(gl: rawgl.GL, source: ShaderSource, ctx: moderngl.Context) -> RawProgram:
+    """Link ``source`` in the current context (the calling thread's); SdfglError with the driver's log."""
+    try:
+        vertex = of_source(source.text).convert(shaderlib.read("fullscreen.vert"))
+        glo = gl.link(vertex, source.text)
+    except rawgl.GLError as exc:
+        raise SdfglError(explain_compile_error(source, str(exc))) from None
+    return RawProgram(gl, glo, gl.uniforms(glo), ctx)
+
+
+def stamp(res: Result, t0: float, **phases: float) -> None:
+    """Record a job's phase times and its wall-clock span in ``res``."""
+    res.seconds = time.perf_counter() - t0
+    res.timings = {**phases, "wall_end": time.time(), "wall_start": time.time() - res.seconds}
