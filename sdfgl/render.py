@@ -157,6 +157,10 @@ def origin_uniforms(source: ShaderSource, scene: Node, origin: np.ndarray) -> di
     if source.origin_offsets is None:
         return {}
     out: dict[str, tuple] = dict(origin_values(source.origin_offsets, origin))
+    worst = max((max(abs(x) for x in v) for v in out.values()), default=0.0)
+    if not worst < 1e30:
+        raise ParameterError(f"render: the shader origin {tuple(np.asarray(origin).tolist())} (the eye of an unbounded "
+                             f"scene) lies {worst:g} from the scene's parts, beyond what float32 can hold (1e30)")
     shape = analytic_shape(scene)
     if shape is not None:
         out["uAnalytic"] = tuple(float(x) for x in analytic_relative(shape[0], shape[1], origin))
@@ -302,6 +306,7 @@ class Renderer:
         else:
             source = generate(scene, st, origin, projection=cam.projection)
             self._last_source = (key, scene, source)
+        origin_uniforms(source, scene, origin)  # refuses an origin float32 cannot hold, before drawing
         t1 = time.perf_counter()
         res = self.run(self._draw, scene, cam, wh, st, source, origin)
         res.timings["codegen_s"] = t1 - t0
