@@ -171,3 +171,22 @@ def test_sub_pixel_wire_stays_visible_with_anti_aliasing(aa):
     assert 0.5 * expected < rows.mean() < 2.0 * expected, rows.mean()
     seen = np.nonzero(rows > 0)[0]  # visible along its length, not in a few rows
     assert seen.size > 0.3 * rows.size and np.diff(seen).max() <= 4
+
+
+def test_extended_range_implicit_fields_match_the_twin_where_float32_overflows():
+    rng = np.random.default_rng(3)
+    pts = np.concatenate([rng.uniform(-1.2, 1.2, (400, 3)), rng.uniform(-300, 300, (400, 3))])
+    for expr in ("x**64 + y**64 + z**64 - 1", "x**9*y - z**3 + 2", "exp(x**2 + y**2 + z**2) - E",
+                 "cosh(x) + sqrt(y**2 + 1)*z**40 - 3", "(x**2 + y**2 + z**2 - 1)**12 - x*y"):
+        s = sg.implicit(expr)
+        assert s.extended, expr
+        gpu = sg.evaluate(s, pts).astype(np.float64)
+        twin = s.distance(pts)
+        ok = np.isfinite(twin) & (np.abs(twin) < 1e30)
+        assert np.isfinite(gpu[ok]).all(), expr
+        rel = np.abs(gpu[ok] - twin[ok]) / np.maximum(np.abs(twin[ok]), 1e-3)
+        assert np.percentile(rel, 99) < 1e-4, (expr, np.percentile(rel, 99))
+    plain = sg.implicit("tanh(x) + y**2 + z**2 - 1/E")  # tanh and E print in plain GLSL too
+    assert not plain.extended
+    near = pts[:400]
+    assert np.allclose(sg.evaluate(plain, near), plain.distance(near), rtol=1e-4, atol=1e-5)

@@ -62,6 +62,19 @@ def _printer_class() -> type:
         def _print_Rational(self, expr: Any) -> str:  # noqa: N802
             return repr(float(expr))
 
+        def _print_Exp1(self, expr: Any) -> str:  # noqa: N802 - the constant E
+            return repr(float(expr))
+
+        # GLSL (3.30 and ES 3.00) has the hyperbolic functions; sympy's printer does not know it
+        def _print_sinh(self, expr: Any) -> str:
+            return f"sinh({self._print(expr.args[0])})"
+
+        def _print_cosh(self, expr: Any) -> str:
+            return f"cosh({self._print(expr.args[0])})"
+
+        def _print_tanh(self, expr: Any) -> str:
+            return f"tanh({self._print(expr.args[0])})"
+
     return _Printer
 
 
@@ -155,7 +168,9 @@ class Implicit(Node):
         """f / |grad f| at ``p`` computed in ``dtype``, as float64."""
         vals = [np.array(np.broadcast_to(np.asarray(v, dtype=dtype), p.shape[:-1]))
                 for v in self._np(p[..., 0], p[..., 1], p[..., 2])]
-        g = np.sqrt(vals[1] ** 2 + vals[2] ** 2 + vals[3] ** 2)
+        big = np.maximum(np.maximum(np.abs(vals[1]), np.abs(vals[2])), np.abs(vals[3]))
+        unit = np.where(big > 0, big, 1.0)  # |grad f| without squaring it (no overflow)
+        g = big * np.sqrt((vals[1] / unit) ** 2 + (vals[2] / unit) ** 2 + (vals[3] / unit) ** 2)
         return np.asarray(vals[0] / np.maximum(g, 1e-12), dtype=np.float64)
 
     @property

@@ -15,7 +15,7 @@ from typing import Any
 # |x|, |y|, |z| up to this are assumed when judging whether a field can overflow: about
 # the largest scene coordinate relative to the shader origin a float32 scene resolves
 REACH = 1e4
-LIMIT_LOG10 = 30.0  # a field whose magnitude may pass 1e30 at REACH is written in extended range
+LIMIT_LOG10 = 36.0  # a field whose magnitude may pass 1e36 at REACH is written in extended range
 
 
 def magnitude_log10(expr: Any, reach: float = REACH) -> float:

@@ -5,12 +5,18 @@
 // can overflow use it (sdfgl/nodes/xfloat.py decides and writes the calls).
 const float XF_ZERO = -1.0e6;
 
+// 2^k for an integer -126 <= k <= 127, built from its bits (cheaper than exp2)
+float xfPow2(float k) {
+    return intBitsToFloat((int(k) + 127) << 23);
+}
+
 vec2 xfNorm(float m, float e) {
     if (m == 0.0) return vec2(0.0, XF_ZERO);
     if (isinf(m) || isnan(m)) return vec2(m, e);
-    float k = floor(log2(abs(m)));
-    float h = floor(0.5 * k);
-    return vec2(m * exp2(-h) * exp2(h - k), max(e + k, XF_ZERO));
+    int bits = floatBitsToInt(m);
+    int k = ((bits >> 23) & 255) - 127;  // the float's own exponent (a subnormal m: via log2)
+    if (k == -127) return vec2(m * 8388608.0 * 2.0, e - 24.0);
+    return vec2(intBitsToFloat((bits & int(0x807FFFFF)) | 0x3F800000), max(e + float(k), XF_ZERO));
 }
 
 // the plain float (clamped to +-2^127 instead of overflowing)
@@ -20,7 +26,7 @@ float xfVal(vec2 a) {
 
 vec2 xfAdd(vec2 a, vec2 b) {
     float e = max(a.y, b.y);
-    return xfNorm(a.x * exp2(max(a.y - e, -250.0)) + b.x * exp2(max(b.y - e, -250.0)), e);
+    return xfNorm(a.x * xfPow2(max(a.y - e, -126.0)) + b.x * xfPow2(max(b.y - e, -126.0)), e);
 }
 
 vec2 xfMul(vec2 a, vec2 b) {
@@ -72,8 +78,8 @@ vec2 xfAbs(vec2 a) {
 // with |g| taken no smaller than 1e-12 (as the plain path does)
 float xfRatio(vec2 f, vec2 gx, vec2 gy, vec2 gz) {
     float e = max(max(gx.y, gy.y), gz.y);
-    vec3 g = vec3(gx.x * exp2(max(gx.y - e, -250.0)), gy.x * exp2(max(gy.y - e, -250.0)),
-                  gz.x * exp2(max(gz.y - e, -250.0)));
+    vec3 g = vec3(gx.x * xfPow2(max(gx.y - e, -126.0)), gy.x * xfPow2(max(gy.y - e, -126.0)),
+                  gz.x * xfPow2(max(gz.y - e, -126.0)));
     vec2 len = xfNorm(length(g), e);
     if (len.x == 0.0 || len.y < -40.0) len = vec2(1.0e-12, 0.0);
     return xfVal(xfDiv(f, len));
