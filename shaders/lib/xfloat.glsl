@@ -1,5 +1,5 @@
 // Extended-range floats for implicit fields whose values overflow float32 (x^64 beyond
-// |x| = 4, an exp of a large argument). A value is vec2(m, e) = m * 2^e with 1 <= |m| < 4
+// |x| = 4, an exp of a large argument). A value is vec2(m, e) = m * 2^e with 1 <= |m| < 2
 // (zero: m = 0, e = XF_ZERO) and e an integer held in a float. Scaling by exact powers of
 // two keeps plain float32 rounding; the range is 2^(+-1e7). Only the implicit fields that
 // can overflow use it (sdfgl/nodes/xfloat.py decides and writes the calls).
@@ -16,7 +16,7 @@ vec2 xfNorm(float m, float e) {
     int bits = floatBitsToInt(m);
     int k = ((bits >> 23) & 255) - 127;  // the float's own exponent (a subnormal m: via log2)
     if (k == -127) return vec2(m * 8388608.0 * 2.0, e - 24.0);
-    return vec2(intBitsToFloat((bits & int(0x807FFFFF)) | 0x3F800000), max(e + float(k), XF_ZERO));
+    return vec2(intBitsToFloat((bits & ~0x7F800000) | 0x3F800000), max(e + float(k), XF_ZERO));
 }
 
 // the plain float (clamped to +-2^127 instead of overflowing)
