@@ -122,7 +122,8 @@ class Plane(Primitive):
         # to float32 rounding of p however far o and the shader origin lie from each other
         n = self._unit_normal()
         q = em.point(em.shift(p, -np.asarray(self.o, dtype=np.float64)), along=n)
-        return em.with_color(em.assign("float", f"dot({q}, {em.vec(n)})"))
+        em.require(*self.lib)
+        return em.with_color(em.assign("float", f"sdPlane({q}, {em.vec(n)}, vec3(0.0))"))
 
     def _distance(self, p: np.ndarray) -> np.ndarray:
         return (p - self.o) @ self._unit_normal()
