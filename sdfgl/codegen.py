@@ -713,6 +713,8 @@ def _generate_once(scene: Node, settings: Settings, org: np.ndarray, target: str
     libs = list(dict.fromkeys(dist.libs + (color.libs if color else []) + (detail.libs if detail else [])
                               + [lib for em, _ in passes.values() for lib in em.libs]))
     live = bool(params) or moving  # the box (and the ground) move with the parameters or the origin
+    rig = settings.lights if settings.lights is not None else DEFAULT_LIGHTS
+    lights_at = _light_positions(rig, org, origins) if target == "render" else {}
 
     b = _Builder()
     b.add(header, "(codegen)")
@@ -778,7 +780,6 @@ def _generate_once(scene: Node, settings: Settings, org: np.ndarray, target: str
         b.add_file(f"march_{MARCH_FILES.get(settings.method, settings.method)}")
     b.add_file("normal")
     implicit = scene.exactness == IMPLICIT
-    rig = settings.lights if settings.lights is not None else DEFAULT_LIGHTS
     for code, owner in shadow_code(shadow_kinds(rig, settings.shadows, implicit)):
         b.add(code, owner)
     if settings.ao:
@@ -787,7 +788,7 @@ def _generate_once(scene: Node, settings: Settings, org: np.ndarray, target: str
     b.add(_surface_function(channels), "(codegen: material)")
     b.add(*background_code(settings.background, glsl_float))
     b.add(shade_function(settings.lights, settings.ambient, settings.shadows, implicit, glsl_float,
-                         metals="surface" in channels), "(look: lights)")
+                         metals="surface" in channels, positions=lights_at), "(look: lights)")
     if settings.ground:
         b.add_file("ground")
     b.add_file("render_main_head")
@@ -795,6 +796,18 @@ def _generate_once(scene: Node, settings: Settings, org: np.ndarray, target: str
         b.add_file("debug")
     b.add_file("render_main")
     return _sized(b.build(params, live, data), size, grids, origins)
+
+
+def _light_positions(rig: Sequence[Any], org: np.ndarray, origins: OriginOffsets | None) -> dict[int, str]:
+    """GLSL of each point light's position relative to the shader origin: a constant, or
+    minus the uOrgN uniform of offset -position when the origin moves."""
+    out = {}
+    for i, lt in enumerate(rig):
+        if lt.kind != "directional":
+            pos = np.asarray(lt.vector, dtype=np.float64)
+            out[i] = (f"(-{origins.uniform(-pos, ())})" if origins is not None
+                      else f"vec3({', '.join(glsl_float(x) for x in pos - org)})")
+    return out
 
 
 def _sized(src: ShaderSource, size: int, grids: dict, origins: OriginOffsets | None = None) -> ShaderSource:

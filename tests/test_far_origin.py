@@ -103,3 +103,22 @@ def test_grid_union_far_out_matches_the_same_union_at_the_origin():
     assert np.percentile(np.abs(far.depth[hit] - near.depth[hit]) / fp, 99) <= 0.05
     cos = np.sum(near.normal[hit] * far.normal[hit], axis=-1)
     assert np.percentile(np.degrees(np.arccos(np.clip(cos, -1, 1))), 99) <= 1.0
+
+
+def test_point_lights_follow_the_shader_origin():
+    # a point light is placed relative to the shader origin (a constant for a bounded scene
+    # centred away from 0, a uOrg uniform where the origin moves): far out, the image is the
+    # one at the origin (before, the light was displaced by the origin: a bounded scene at
+    # 5 units lit from the wrong side, an unbounded one lit from the eye's offset)
+    def image(c, unbounded):
+        c = np.asarray(c, dtype=np.float64)
+        s = sg.sphere(0.5).translate(tuple(c))
+        if unbounded:
+            s = s | sg.plane((0, 1, 0), tuple(c - (0, 0.5, 0)))
+        light = sg.point_light(tuple(c + (0.8, 1.2, 0.4)), "white", 1.0, range=1.5, shadow=False)
+        cam = sg.Camera.look_at(tuple(c + (0.4, 0.9, 2.2)), tuple(c), fov=50)
+        return sg.render(s, cam, (32, 24), lights=[light], ambient="black", ao=False).color.astype(int)
+    for unbounded in (False, True):
+        at0 = image((0, 0, 0), unbounded)
+        for c in ((5.0, 0.0, 0.0), (4.321e5, -1.5, 2.5e5)):
+            assert np.abs(image(c, unbounded) - at0).max() <= 3, (c, unbounded)

@@ -450,10 +450,8 @@ class Viewer:
                     blend: bool) -> float:
         assert self._shown is not None
         scene, prog, source, origin = self._shown
-        if source.origin_offsets is not None:  # the origin is a uniform: it follows the camera, no recompile
-            origin = shader_origin(scene, self.camera.eye)
-        elif self._pending is None and not np.array_equal(shader_origin(scene, self.camera.eye), origin):
-            self._request(scene, self.state.settings, "origin")  # far scenes: re-anchor float32 coordinates
+        if source.origin_offsets is not None:  # the origin is a uniform: it follows the camera and the
+            origin = shader_origin(scene, self.camera.eye)  # parameters with no recompile (else it is fixed)
         camera_uniforms(prog, self.camera, size, origin, jitter)
         scene_uniforms(prog, source, scene, origin, self.renderer.data)
         fbo.use()
