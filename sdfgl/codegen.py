@@ -87,6 +87,47 @@ class DataPool:
         return (("uData", flat.reshape(-1, DATA_WIDTH, 4)),)
 
 
+OriginEntry = tuple  # (float64 offset, live offsets to subtract, unit axis to project on or None)
+
+
+class OriginOffsets:
+    """The uniforms uOrg0, uOrg1, ... of a shader whose origin moves (unbounded scenes and
+    scenes with live parameters, see :func:`moving_origin`): each is ``origin + offset -
+    sum(live offsets)`` for a point met in map() (the root itself, a translation, a grid's
+    centre), summed in float64 on the CPU at every draw. The float32 point a node sees is
+    then one rounding away from exact wherever the origin is, and moving the camera or a
+    parameter (which moves the origin) changes uniforms, never the source."""
+
+    def __init__(self) -> None:
+        self.entries: list[OriginEntry] = []
+        self._index: dict[tuple, int] = {}
+
+    def uniform(self, offset: np.ndarray, lives: tuple[Live, ...], along: np.ndarray | None = None) -> str:
+        """The uniform's name for this offset (one per distinct offset); ``along``: only its
+        component along this unit axis is kept (see Emitter.point)."""
+        key = (np.asarray(offset, dtype=np.float64).tobytes(), tuple(id(x) for x in lives),
+               None if along is None else along.tobytes())
+        if key not in self._index:
+            self._index[key] = len(self.entries)
+            self.entries.append((np.array(offset, dtype=np.float64), lives, along))
+        return f"uOrg{self._index[key]}"
+
+
+
+def origin_values(entries: Sequence[OriginEntry], origin: np.ndarray) -> dict[str, tuple]:
+    """The uOrgN uniform values for the shader origin ``origin`` (float64), at the current
+    parameter values."""
+    out = {}
+    for i, (off, lives, along) in enumerate(entries):
+        v = np.asarray(origin, dtype=np.float64) + off
+        for live in lives:
+            v = v - np.broadcast_to(np.asarray(live.value, dtype=np.float64), (3,))
+        if along is not None:
+            v = (v @ along) * along
+        out[f"uOrg{i}"] = tuple(float(x) for x in v)
+    return out
+
+
 class Emitter:
     """Collects the straight-line GLSL of one map()-like function.
 
@@ -111,8 +152,13 @@ class Emitter:
         # the materials (dicts of the fields they set) of the nodes around the current one
         self._colors: list[dict[str, Any]] = list(parent._colors) if parent else [DEFAULT_SURFACE]
         self._count = 0
-        self._shifts: dict[str, tuple[str, np.ndarray]] = {}
-        self._materialized: dict[str, str] = {}
+        # point name -> (base point, pending float64 offset, live offsets still to subtract)
+        self._shifts: dict[str, tuple[str, np.ndarray, tuple[Live, ...]]] = {}
+        self._materialized: dict[Any, str] = {}
+        # the point that carries a moving shader origin (the root of map() when the origin is a
+        # uniform, see OriginOffsets); None: the origin, if any, is folded into constants
+        self.origin_base: str | None = None
+        self.origins: OriginOffsets | None = parent.origins if parent else None
         self.shared_keys: set = parent.shared_keys if parent else set()
         self.helpers: dict[str, str] = parent.helpers if parent else {}
         self.detail = parent.detail if parent else False  # emitting the normals-only field
@@ -240,19 +286,41 @@ class Emitter:
     # -- points with a pending float64 offset ------------------------------------------
     def shift(self, p: str, delta: np.ndarray) -> str:
         """A point name standing for ``p + delta``; nothing is emitted yet."""
-        base, off = self._shifts.get(p, (p, np.zeros(3)))
+        base, off, lives = self._shifts.get(p, (p, np.zeros(3), ()))
         name = f"{base}@{len(self._shifts)}"
-        self._shifts[name] = (base, off + np.asarray(delta, dtype=np.float64))
+        self._shifts[name] = (base, off + np.asarray(delta, dtype=np.float64), lives)
         return name
 
-    def point(self, p: str) -> str:
-        """A GLSL expression for point ``p``, writing out a pending offset once."""
+    def shift_live(self, p: str, offset: Live) -> str | None:
+        """A point name standing for ``p - offset`` (a live offset) when ``p`` carries the
+        moving shader origin: origin, constant and live parts are then summed in float64 on
+        the CPU each frame into one uniform. None elsewhere (the caller writes the sum)."""
+        base, off, lives = self._shifts.get(p, (p, np.zeros(3), ()))
+        if self.origins is None or base != self.origin_base:
+            return None
+        name = f"{base}@{len(self._shifts)}"
+        self._shifts[name] = (base, off, (*lives, offset))
+        return name
+
+    def point(self, p: str, along: np.ndarray | None = None) -> str:
+        """A GLSL expression for point ``p``, writing out a pending offset once.
+
+        ``along`` (a unit axis): the caller reads only dot(point, along) (a plane), so only the
+        offset's component along it is added; the point stays small however far the plane's
+        anchor and the origin lie apart, and so does its float32 rounding."""
         if p not in self._shifts:
             return p
-        if p not in self._materialized:
-            base, off = self._shifts[p]
-            self._materialized[p] = base if not off.any() else self.assign("vec3", f"{base} + {self.vec(off)}")
-        return self._materialized[p]
+        key = p if along is None else (p, np.asarray(along, dtype=np.float64).tobytes())
+        if key not in self._materialized:
+            base, off, lives = self._shifts[p]
+            axis = None if along is None else np.asarray(along, dtype=np.float64)
+            if self.origins is not None and base == self.origin_base:
+                code = self.assign("vec3", f"{base} + {self.origins.uniform(off, lives, axis)}")
+            else:
+                off = off if axis is None else (off @ axis) * axis
+                code = base if not off.any() else self.assign("vec3", f"{base} + {self.vec(off)}")
+            self._materialized[key] = code
+        return self._materialized[key]
 
     # -- colour and material -----------------------------------------------------------
     @contextlib.contextmanager
@@ -305,6 +373,9 @@ class ShaderSource:
     grid_min: int = 0   # the fewest instances a union kept as data had to have
     choice: str = "code"  # how the scene was written: "code", or "data (...)" when over the budget
     data_unions: int = 0  # unions kept as data (grids) in this shader
+    # a moving origin (see moving_origin): the offsets behind uOrg0, uOrg1, ... (origin_values
+    # turns them into uniform values); the source then does not depend on the origin
+    origin_offsets: tuple[OriginEntry, ...] | None = None
 
     def owner_of(self, line: int) -> str:
         """Who wrote 1-based source line ``line``."""
@@ -383,6 +454,11 @@ def analytic_shape(scene: Node) -> tuple[str, np.ndarray] | None:
     return "plane", np.array([*n, float(n @ point)])
 
 
+def analytic_relative(kind: str, v: np.ndarray, origin: np.ndarray) -> np.ndarray:
+    """An analytic shape's vec4 relative to the shader origin."""
+    return v - np.array([*origin, 0.0]) if kind == "sphere" else np.array([*v[:3], v[3] - v[:3] @ origin])
+
+
 def max_steps_of(settings: Settings, scale: float, lo: np.ndarray, hi: np.ndarray) -> int:
     """The loop limit the shader gets: max_steps, or enough fixed steps for "reference"."""
     if settings.method != "reference":
@@ -400,7 +476,8 @@ def ref_step(settings: Settings, scale: float) -> float:
 BOUNDS_PAD = 1e-3  # the ray clip box grows by this share of the scene size
 
 
-def _defines(scene: Node, settings: Settings, origin: np.ndarray, live: bool, projection: str) -> list[str]:
+def _defines(scene: Node, settings: Settings, origin: np.ndarray, live: bool, projection: str,
+             moving: bool = False) -> list[str]:
     lo, hi, scale = scene_frame(scene)
     pad = BOUNDS_PAD * scale
     bounds = (["#define BOUNDS_LO uBoundsLo", "#define BOUNDS_HI uBoundsHi"] if live else [
@@ -427,8 +504,9 @@ def _defines(scene: Node, settings: Settings, origin: np.ndarray, live: bool, pr
     shape = analytic_shape(scene) if settings.analytic else None
     if shape is not None:
         kind, v = shape
-        v = v - np.array([*origin, 0.0]) if kind == "sphere" else np.array([*v[:3], v[3] - v[:3] @ origin])
-        d.append(f"#define ANALYTIC_{kind.upper()} vec4({', '.join(glsl_float(x) for x in v)})")
+        v = analytic_relative(kind, v, origin)
+        d.append(f"#define ANALYTIC_{kind.upper()} " +
+                 ("uAnalytic" if moving else f"vec4({', '.join(glsl_float(x) for x in v)})"))
     if settings.shadows:
         d += ["#define SHADOWS", f"#define SHADOWS_{settings.shadows.upper()}"]
     if settings.ao:
@@ -511,9 +589,10 @@ def _surface_function(channels: Sequence[str]) -> str:
 
 def _emit_map(scene: Node, mode: str, origin: np.ndarray, params: list[Param], shared: set,
               grids: dict, use_grids: bool, helpers: dict, data: DataPool, data_min: int,
-              detail: bool = False, channel: str = "albedo",
+              origins: OriginOffsets | None, detail: bool = False, channel: str = "albedo",
               highlight: Node | None = None) -> tuple[Emitter, str]:
     em = Emitter(mode, params=params, channel=channel)
+    em.origins = origins
     em.data = data
     em.data_min = data_min
     em.highlight = highlight
@@ -522,8 +601,23 @@ def _emit_map(scene: Node, mode: str, origin: np.ndarray, params: list[Param], s
     em.shared_keys = shared
     em.grids = grids
     em.use_grids = use_grids
-    p = em.shift("p", origin) if origin.any() else "p"
+    if origins is not None:  # the origin is a uniform: every point from the root gets one
+        em.origin_base = "p"
+        p = em.shift("p", np.zeros(3))
+    else:
+        p = em.shift("p", origin) if origin.any() else "p"
     return em, scene.emit(em, p)
+
+
+def moving_origin(scene: Node, target: str = "render", dialect: str = "desktop") -> bool:
+    """Whether the shader origin of ``scene`` is a uniform (uOrgN offsets, bounds as
+    uniforms): rendering on the desktop an unbounded scene (the origin follows the eye) or
+    one with live parameters (it follows the box's centre). Elsewhere the origin is folded
+    into constants (a bounded scene is anchored at its fixed centre)."""
+    if target != "render" or dialect != "desktop":
+        return False
+    lo, hi = scene.bounds
+    return not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi))) or bool(scene.live_params())
 
 
 def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.0, 0.0),
@@ -545,11 +639,12 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     header = _dialect(dialect).header()
     if not isinstance(scene, Node):
         raise ParameterError(f"scene must be an sdfgl node, got {type(scene).__name__} {scene!r}")
-    return run_deep(scene, lambda: _generate(scene, settings, origin, target, header, projection, highlight))
+    moving = moving_origin(scene, target, dialect)
+    return run_deep(scene, lambda: _generate(scene, settings, origin, target, header, projection, highlight, moving))
 
 
 def _generate(scene: Node, settings: Settings, origin: Sequence[float], target: str, header: str,
-              projection: str, highlight: Node | None = None) -> ShaderSource:
+              projection: str, highlight: Node | None = None, moving: bool = False) -> ShaderSource:
     """generate(), within the code-size budget."""
     settings = settings.resolved(scene.exactness)
     if scene.exactness == IMPLICIT and target == "render" and settings.method in DISTANCE_METHODS:
@@ -559,15 +654,16 @@ def _generate(scene: Node, settings: Settings, origin: Sequence[float], target: 
     if (settings.debug == "select") != (highlight is not None and target == "render"):
         raise ParameterError("debug view 'select' needs a highlighted subtree (generate(..., highlight=node)), "
                              "and a highlight needs debug='select'")
-    org = np.asarray(origin, dtype=np.float64)
+    org = np.zeros(3) if moving else np.asarray(origin, dtype=np.float64)
     from .nodes.grid import GRID_MIN
     if settings.grid_min is not None:
         with grid_min_as(settings.grid_min):
-            src = _generate_once(scene, settings, org, target, header, projection, highlight=highlight)
+            src = _generate_once(scene, settings, org, target, header, projection, highlight=highlight,
+                                 moving=moving)
         scene.__dict__["_data_min"] = settings.grid_min  # the twin of this scene follows its last compile
         return _checked(dataclasses.replace(src, grid_min=settings.grid_min))
-    src = dataclasses.replace(_generate_once(scene, settings, org, target, header, projection, highlight=highlight),
-                              grid_min=GRID_MIN)
+    src = dataclasses.replace(_generate_once(scene, settings, org, target, header, projection,
+                                             highlight=highlight, moving=moving), grid_min=GRID_MIN)
     scene.__dict__.pop("_data_min", None)
     if src.code_size <= settings.code_budget or not settings.grid:
         return _checked(src)
@@ -575,7 +671,7 @@ def _generate(scene: Node, settings: Settings, origin: Sequence[float], target: 
     # and every node with more than a few constant rows keeps them in a texture
     with grid_min_as(BUDGET_GRID_MIN):
         small = _generate_once(scene, settings, org, target, header, projection, data_min=BUDGET_DATA_MIN,
-                               highlight=highlight)
+                               highlight=highlight, moving=moving)
     if small.code_size >= src.code_size:  # nothing to gain: the scene stays code
         return _checked(src)
     scene.__dict__["_data_min"] = BUDGET_GRID_MIN
@@ -595,13 +691,15 @@ def _checked(src: ShaderSource) -> ShaderSource:
 
 
 def _generate_once(scene: Node, settings: Settings, org: np.ndarray, target: str, header: str,
-                   projection: str, data_min: int = DATA_MIN, highlight: Node | None = None) -> ShaderSource:
+                   projection: str, data_min: int = DATA_MIN, highlight: Node | None = None,
+                   moving: bool = False) -> ShaderSource:
     params: list[Param] = []
+    origins = OriginOffsets() if moving else None
     shared = shared_subtrees(scene, settings.grid)
     grids: dict = {}
     helpers: dict = {}
     tex = DataPool()
-    ems = (org, params, shared, grids, settings.grid, helpers, tex, data_min)
+    ems = (org, params, shared, grids, settings.grid, helpers, tex, data_min, origins)
     dist, dist_result = _emit_map(scene, "dist", *ems, highlight=highlight if target == "render" else None)
     # a scene without any material node has one colour: mapColor() is that constant, not
     # another copy of the scene's code (which the driver would compile and llvmpipe JIT)
@@ -615,17 +713,23 @@ def _generate_once(scene: Node, settings: Settings, org: np.ndarray, target: str
     passes = {ch: _emit_map(scene, "color", *ems, channel=ch) for ch in channels}
     libs = list(dict.fromkeys(dist.libs + (color.libs if color else []) + (detail.libs if detail else [])
                               + [lib for em, _ in passes.values() for lib in em.libs]))
-    live = bool(params)
+    live = bool(params) or moving  # the box (and the ground) move with the parameters or the origin
+    rig = settings.lights if settings.lights is not None else DEFAULT_LIGHTS
+    lights_at = _light_positions(rig, org, origins) if target == "render" else {}
 
     b = _Builder()
     b.add(header, "(codegen)")
     b.add(f"// sdfgl scene: {scene.label()}  [{scene.exactness}, L={scene.lipschitz:g}]", "(codegen)")
-    b.add("\n".join(_defines(scene, settings, org, live, projection)), "(settings)")
+    b.add("\n".join(_defines(scene, settings, org, live, projection, moving)), "(settings)")
     for i, prm in enumerate(params):
         b.add(f"uniform {'vec3' if prm.dims == 3 else 'float'} uP{i};  // param {prm.label}", "(live parameters)")
     if live:
         b.add("uniform vec3 uBoundsLo;\nuniform vec3 uBoundsHi;\nuniform float uGroundY;\nuniform float uSceneScale;",
               "(live parameters)")
+    if origins is not None:
+        b.add("\n".join(f"uniform vec3 uOrg{i};" for i in range(len(origins.entries))) +
+              ("\nuniform vec4 uAnalytic;" if settings.analytic and analytic_shape(scene) is not None else ""),
+              "(moving origin)")
     b.add_file("common")
     for name in libs:
         b.add_file(f"lib/{name}")
@@ -645,12 +749,12 @@ def _generate_once(scene: Node, settings: Settings, org: np.ndarray, target: str
     if target == "evaluate":
         size = b.size_since(start)
         b.add_file("evaluate_main")
-        return _sized(b.build(params, live, data), size, grids)
+        return _sized(b.build(params, live, data), size, grids, origins)
     if target in ("mesh_grid", "mesh_gradient"):
         size = b.size_since(start)
         b.add_file("mesh_clip")
         b.add_file(f"{target}_main")
-        return _sized(b.build(params, live, data), size, grids)
+        return _sized(b.build(params, live, data), size, grids, origins)
     if color is None:
         b.add(f"vec3 mapColor(vec3 p) {{\n    return {_vec3_literal(DEFAULT_COLOR)};  // no material node: one colour\n}}",
               "(codegen: one colour)")
@@ -664,7 +768,7 @@ def _generate_once(scene: Node, settings: Settings, org: np.ndarray, target: str
         b.add(f"#define EVAL_CHANNEL {EVALUATE_CHANNELS[target]}", "(codegen)")
         size = b.size_since(start)
         b.add_file("evaluate_channel_main")
-        return _sized(b.build(params, live, data), size, grids)
+        return _sized(b.build(params, live, data), size, grids, origins)
     if detail is not None:
         _helpers(b, detail, done)
         _function(b, "float mapDetail(vec3 p)", detail, detail_result, "{}")
@@ -680,7 +784,6 @@ def _generate_once(scene: Node, settings: Settings, org: np.ndarray, target: str
         b.add_file(f"march_{MARCH_FILES.get(settings.method, settings.method)}")
     b.add_file("normal")
     implicit = scene.exactness == IMPLICIT
-    rig = settings.lights if settings.lights is not None else DEFAULT_LIGHTS
     for code, owner in shadow_code(shadow_kinds(rig, settings.shadows, implicit)):
         b.add(code, owner)
     if settings.ao:
@@ -689,19 +792,32 @@ def _generate_once(scene: Node, settings: Settings, org: np.ndarray, target: str
     b.add(_surface_function(channels), "(codegen: material)")
     b.add(*background_code(settings.background, glsl_float))
     b.add(shade_function(settings.lights, settings.ambient, settings.shadows, implicit, glsl_float,
-                         metals="surface" in channels), "(look: lights)")
+                         metals="surface" in channels, positions=lights_at), "(look: lights)")
     if settings.ground:
         b.add_file("ground")
     b.add_file("render_main_head")
     if settings.debug:
         b.add_file("debug")
     b.add_file("render_main")
-    return _sized(b.build(params, live, data), size, grids)
+    return _sized(b.build(params, live, data), size, grids, origins)
 
 
-def _sized(src: ShaderSource, size: int, grids: dict) -> ShaderSource:
-    """``src`` with its scene-code size and its count of unions kept as data."""
-    return dataclasses.replace(src, code_size=size, data_unions=len(grids))
+def _light_positions(rig: Sequence[Any], org: np.ndarray, origins: OriginOffsets | None) -> dict[int, str]:
+    """GLSL of each point light's position relative to the shader origin: a constant, or
+    minus the uOrgN uniform of offset -position when the origin moves."""
+    out = {}
+    for i, lt in enumerate(rig):
+        if lt.kind != "directional":
+            pos = np.asarray(lt.vector, dtype=np.float64)
+            out[i] = (f"(-{origins.uniform(-pos, ())})" if origins is not None
+                      else f"vec3({', '.join(glsl_float(x) for x in pos - org)})")
+    return out
+
+
+def _sized(src: ShaderSource, size: int, grids: dict, origins: OriginOffsets | None = None) -> ShaderSource:
+    """``src`` with its scene-code size, its count of unions kept as data and its origin offsets."""
+    return dataclasses.replace(src, code_size=size, data_unions=len(grids),
+                               origin_offsets=None if origins is None else tuple(origins.entries))
 
 
 def compile(scene: Node, **settings: object) -> str:  # noqa: A001 - public API name

@@ -230,6 +230,34 @@ def _on_surface() -> tuple[Node, Camera]:
     return box(2.0).translate((0, 0, -1)) | sphere(0.5).translate((0, 0, 3)), Camera.look_at((0, 0, 0), (0, 0, 1), fov=120)
 
 
+def _tilted_ground(r: float) -> Callable[[], tuple[Node, Camera]]:
+    def build() -> tuple[Node, Camera]:
+        n = np.array([0.12, 1.0, 0.07]) / np.linalg.norm([0.12, 1.0, 0.07])
+        o = r * np.array([0.8123456789, 0.3651234567, -0.4567891234])  # on no power-of-two grid
+        c = o + 0.018 * n
+        scene = plane(tuple(n), tuple(o)) | box(0.02).translate(tuple(c))
+        return scene, Camera.look_at(tuple(c + (0.026, 0.032, 0.04)), tuple(c - 0.006 * n), fov=60)
+    return build
+
+
+def _live_far() -> tuple[Node, Camera]:
+    from .params import param
+    c = 1e6 * np.array([0.8123456789, -0.4567891234, 0.3651234567])
+    where = param(tuple(c), "where")
+    radius = param(0.45, "radius")
+    scene = (box(0.8) | sphere(radius).translate((0.5, 0.3, 0.2))).translate(where)
+    return scene, OrbitCamera(target=tuple(c), distance=3, yaw=30, pitch=25)
+
+
+def _implicit(expr: str) -> Callable[[], tuple[Node, Camera]]:
+    def build() -> tuple[Node, Camera]:
+        from .nodes.implicit import implicit
+        # the rays start where f overflows float32 (|z| = 7); bounds keep the reference's fixed steps few
+        scene = implicit(expr, bounds=((-8.0, -8.0, -8.0), (8.0, 8.0, 8.0)))
+        return scene, Camera.look_at((4.4, 3.2, 6.8), (0.0, 0.0, 0.0), fov=24)
+    return build
+
+
 CASES: tuple[HardCase, ...] = (
     HardCase("grazing_sphere", "rays graze a sphere seen from just above its surface", _grazing_sphere),
     HardCase("horizon_plane", "a ground plane up to the horizon: ever shallower rays", _horizon_plane),
@@ -292,6 +320,12 @@ CASES: tuple[HardCase, ...] = (
              # the eye's own float32 rounding (8e-7 at 50) is 0.35 footprints at 64x48, 0.7 at 128x96
              expect=Expect(depth_px_median=1.0, depth_px_p99=1.0, surface_px_max=1.0)),
     HardCase("on_surface", "the eye exactly on a face: rays leaving the solid must go on", _on_surface),
+    # the moving shader origin (unbounded and live scenes) and implicit fields that overflow float32
+    *(HardCase(f"tilted_ground_{r:.0e}", f"a 0.02 cube on a tilted ground plane (unbounded) {r:.0e} out, off any grid",
+               _tilted_ground(r)) for r in (1e7,)),
+    HardCase("live_far_1e6", "live parameters (a translation, a radius) on a scene 1e6 out", _live_far),
+    HardCase("implicit_x64", "implicit x^64 + y^64 + z^64 = 1: f overflows float32 beyond |x| = 4",
+             _implicit("x**64 + y**64 + z**64 - 1"), settings={"method": "auto"}),  # auto: newton (implicit)
 )
 
 

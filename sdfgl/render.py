@@ -3,7 +3,6 @@ from __future__ import annotations
 
 import dataclasses
 import io
-import math
 import threading
 import time
 import weakref
@@ -15,7 +14,8 @@ import moderngl
 import numpy as np
 
 from .camera import Camera, OrbitCamera
-from .codegen import BOUNDS_PAD, GLSL_FAR, ShaderSource, generate, scene_frame
+from .codegen import (BOUNDS_PAD, GLSL_FAR, ShaderSource, analytic_relative, analytic_shape, generate, moving_origin,
+                      origin_values, scene_frame)
 from .errors import ParameterError, SdfglError
 from .gl.cache import CacheBudget, default_budget
 from .gl.context import CurrentContext, GLThread, describe, gl_thread
@@ -29,26 +29,23 @@ T = TypeVar("T")
 
 
 def shader_origin(scene: Node, eye: np.ndarray) -> np.ndarray:
-    """The world point the shader's float32 coordinates are taken relative to.
+    """The world point the shader's float32 coordinates are taken relative to: the centre
+    of the scene's box (at the parameters' current values), or the eye for an unbounded scene.
 
-    A bounded scene with no live parameters is anchored exactly at the centre of its box:
-    float32 then only has to resolve the scene relative to itself, the same at any
-    offset from the world origin (the offset is folded into the scene's translations in
-    float64), and the camera never changes the source. Where the box moves with live
-    parameters (its centre) or is unbounded (the eye), the anchor is snapped to a
-    power-of-two grid about 1/1000 of its distance wide beyond 1000 (0 within), so a
-    moving parameter or camera seldom changes the source.
+    float32 then only has to resolve the scene relative to that point, the same at any
+    offset from the world origin. A bounded scene without live parameters has the point
+    folded into its constants (it never moves); elsewhere (:func:`sdfgl.codegen.moving_origin`)
+    the shader reads it through uniforms summed in float64 at every draw
+    (:func:`origin_uniforms`), so a moving camera or parameter never changes the source.
     """
     lo, hi = scene.bounds
     bounded = np.all(np.isfinite(lo)) and np.all(np.isfinite(hi))
-    anchor = (lo + hi) / 2 if bounded else eye
-    if bounded and not scene.live_params():
-        return np.asarray(anchor, dtype=np.float64)
-    r = float(np.max(np.abs(anchor)))
-    if not r > 1000.0:
-        return np.zeros(3)
-    step = 2.0 ** math.ceil(math.log2(r * 1e-3))
-    return np.round(anchor / step) * step
+    return np.asarray((lo + hi) / 2 if bounded else eye, dtype=np.float64)
+
+
+def origin_key(scene: Node, origin: np.ndarray) -> bytes | None:
+    """What of ``origin`` the render source depends on (None where the origin is a uniform)."""
+    return None if moving_origin(scene) else np.asarray(origin, dtype=np.float64).tobytes()
 
 
 @dataclass
@@ -151,6 +148,23 @@ def scene_uniforms(prog: moderngl.Program, source: ShaderSource, scene: Node, or
     if source.live_bounds:
         for name, value in live_frame(scene, origin).items():
             _set_uniform(prog, name, value)
+    for name, value in origin_uniforms(source, scene, origin).items():
+        _set_uniform(prog, name, value)
+
+
+def origin_uniforms(source: ShaderSource, scene: Node, origin: np.ndarray) -> dict[str, tuple]:
+    """The uniforms of a moving origin (uOrgN, uAnalytic) for ``origin``, at the current parameter values."""
+    if source.origin_offsets is None:
+        return {}
+    out: dict[str, tuple] = dict(origin_values(source.origin_offsets, origin))
+    worst = max((max(abs(x) for x in v) for v in out.values()), default=0.0)
+    if not worst < 1e30:
+        raise ParameterError(f"render: the shader origin {tuple(np.asarray(origin).tolist())} (the eye of an unbounded "
+                             f"scene) lies {worst:g} from the scene's parts, beyond what float32 can hold (1e30)")
+    shape = analytic_shape(scene)
+    if shape is not None:
+        out["uAnalytic"] = tuple(float(x) for x in analytic_relative(shape[0], shape[1], origin))
+    return out
 
 
 def live_frame(scene: Node, origin: np.ndarray) -> dict[str, object]:
@@ -285,13 +299,14 @@ class Renderer:
         check_float32_camera(cam, origin)
 
         t0 = time.perf_counter()
-        key = (id(scene), st, origin.tobytes(), cam.projection)  # nodes are immutable, params are uniforms:
+        key = (id(scene), st, origin_key(scene, origin), cam.projection)  # nodes are immutable, params are uniforms:
         last = self._last_source                  # the same scene, settings and origin give the same source
         if last is not None and last[0] == key and last[1] is scene:
             source = last[2]
         else:
             source = generate(scene, st, origin, projection=cam.projection)
             self._last_source = (key, scene, source)
+        origin_uniforms(source, scene, origin)  # refuses an origin float32 cannot hold, before drawing
         t1 = time.perf_counter()
         res = self.run(self._draw, scene, cam, wh, st, source, origin)
         res.timings["codegen_s"] = t1 - t0

@@ -93,12 +93,26 @@ def test_no_nan_from_overflowing_fields_or_far_cameras():
         sg.render(sg.sphere(1), sg.Camera.look_at((0, 0, 1e300), (0, 0, 0)), (8, 6))
 
 
-@pytest.mark.xfail(strict=True, reason="known failure: where f and its gradient overflow float32 (x**64 at the "
-                   "camera's distance) Newton marching finds no hit; x**16 draws (579 hits at 48x36)")
-def test_overflowing_implicit_fields_are_drawn():
-    s = sg.implicit("x**64 + y**64 + z**64 - 1")
-    res = sg.render(s, size=(48, 36), outputs=("depth",), method="newton")
-    assert np.isfinite(res.depth).sum() > 60
+def test_overflowing_implicit_fields_are_drawn_at_the_right_depth():
+    # x**64 overflows float32 beyond |x| = 4 (its gradient sooner): such fields are written in
+    # extended range (m * 2^e), so f / |grad f| is finite wherever the ray starts
+    cam = sg.Camera.look_at((0.3, 0.2, 4), (0, 0, 0), fov=40)
+    o, d = cam.rays(32, 24)
+    for expr, exact_in in (("x**64 + y**64 + z**64 - 1", True), ("x**40 + y**40 + z**40 - 1", True),
+                           ("1e6*(x**2 + y**2 + z**2 - 1)", False),
+                           ("(x**2 + y**2 + z**2 - 1)*((x - 3)**2 + y**2 + z**2 - 1)", False)):
+        s = sg.implicit(expr)
+        assert s.extended == exact_in, expr
+        for method in ("auto", "forward_newton"):
+            res = sg.render(s, cam, (32, 24), outputs=DEPTH_NORMAL, method=method)
+            assert res.settings.method == ("newton" if method == "auto" else method)
+            assert not np.isnan(res.depth).any() and np.isfinite(res.normal).all()
+            hit = np.isfinite(res.depth)
+            assert hit.sum() > 150, (expr, method, hit.sum())
+            # the centre ray: the rounded cube's face z = 1 (x, y < 0.05 there), or the unit sphere
+            t = cf.sphere(o[12:13, 16], d[12:13, 16], (0, 0, 0), 1.0)[0][0] if not exact_in else \
+                (1.0 - o[12, 16, 2]) / d[12, 16, 2]
+            assert abs(float(res.depth[12, 16]) - t) < 1e-3 * t, (expr, method, res.depth[12, 16], t)
 
 
 def test_forward_newton_from_a_millionth_of_the_scene_size():
@@ -157,3 +171,22 @@ def test_sub_pixel_wire_stays_visible_with_anti_aliasing(aa):
     assert 0.5 * expected < rows.mean() < 2.0 * expected, rows.mean()
     seen = np.nonzero(rows > 0)[0]  # visible along its length, not in a few rows
     assert seen.size > 0.3 * rows.size and np.diff(seen).max() <= 4
+
+
+def test_extended_range_implicit_fields_match_the_twin_where_float32_overflows():
+    rng = np.random.default_rng(3)
+    pts = np.concatenate([rng.uniform(-1.2, 1.2, (400, 3)), rng.uniform(-300, 300, (400, 3))])
+    for expr in ("x**64 + y**64 + z**64 - 1", "x**9*y - z**3 + 2", "exp(x**2 + y**2 + z**2) - E",
+                 "cosh(x) + sqrt(y**2 + 1)*z**40 - 3", "(x**2 + y**2 + z**2 - 1)**12 - x*y"):
+        s = sg.implicit(expr)
+        assert s.extended, expr
+        gpu = sg.evaluate(s, pts).astype(np.float64)
+        twin = s.distance(pts)
+        ok = np.isfinite(twin) & (np.abs(twin) < 1e30)
+        assert np.isfinite(gpu[ok]).all(), expr
+        rel = np.abs(gpu[ok] - twin[ok]) / np.maximum(np.abs(twin[ok]), 1e-3)
+        assert np.percentile(rel, 99) < 1e-4, (expr, np.percentile(rel, 99))
+    plain = sg.implicit("tanh(x) + y**2 + z**2 - 1/E")  # tanh and E print in plain GLSL too
+    assert not plain.extended
+    near = pts[:400]
+    assert np.allclose(sg.evaluate(plain, near), plain.distance(near), rtol=1e-4, atol=1e-5)

@@ -31,13 +31,13 @@ def shadow_kinds(lights: tuple[Light, ...], setting: Any, implicit: bool) -> lis
     return sorted(kinds)
 
 
-def _light_block(i: int, lt: Light, kind: Any, f: Fmt) -> str:
+def _light_block(i: int, lt: Light, kind: Any, f: Fmt, at: str | None = None) -> str:
     rad = _vec3(lt.radiance(), f)
     if lt.kind == "directional":
         head = f"        vec3 L = {_vec3(lt.vector, f)};\n        float atten = 1.0;\n        float tmax = 1e30;\n"
     else:
         fall = "1.0" if lt.range is None else f"1.0 / (1.0 + dist * dist * {f(1.0 / lt.range ** 2)})"
-        head = (f"        vec3 toLight = {_vec3(lt.vector, f)} - pos;\n"
+        head = (f"        vec3 toLight = {at or _vec3(lt.vector, f)} - pos;\n"
                 f"        float dist = max(length(toLight), 1e-20);\n"
                 f"        vec3 L = toLight / dist;\n        float atten = {fall};\n        float tmax = dist;\n")
     if kind:
@@ -55,10 +55,11 @@ def _light_block(i: int, lt: Light, kind: Any, f: Fmt) -> str:
 
 
 def shade_function(lights: tuple[Light, ...] | None, ambient: Any, setting: Any, implicit: bool, f: Fmt,
-                   metals: bool = False) -> str:
+                   metals: bool = False, positions: dict[int, str] | None = None) -> str:
     """GLSL of ``vec3 shadeSurface(pos, nor, rd, Surface s, t)`` for these lights; with
     ``metals`` (some node sets surface fields), metallic surfaces reflect the background
-    along the mirror direction in place of the ambient light."""
+    along the mirror direction in place of the ambient light. ``positions``: GLSL of point
+    light i's position relative to the shader origin (default: its world position)."""
     rig = DEFAULT_LIGHTS if lights is None else lights
     sky, ground = DEFAULT_AMBIENT if ambient is None else ambient
     out = ["vec3 shadeSurface(vec3 pos, vec3 nor, vec3 rd, Surface s, float t) {",
@@ -68,7 +69,8 @@ def shade_function(lights: tuple[Light, ...] | None, ambient: Any, setting: Any,
            "    vec3 ambient = vec3(0.0);"]
     for i, lt in enumerate(rig):
         k = lt.shadow_kind(setting)
-        out.append(_light_block(i, lt, ("march" if implicit else k) if k else False, f).rstrip("\n"))
+        at = (positions or {}).get(i)
+        out.append(_light_block(i, lt, ("march" if implicit else k) if k else False, f, at).rstrip("\n"))
     if any(sky):
         out.append(f"    ambient += {_vec3(sky, f)} * ((0.5 + 0.5 * nor.y) * occ);")
     if any(ground):

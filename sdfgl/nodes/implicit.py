@@ -2,7 +2,8 @@
 with a Groebner basis (sympy).
 
 An implicit f(x, y, z) = 0 is rendered through f / |grad f|, a first-order distance
-estimate with the gradient derived symbolically. It is no guaranteed bound (exactness
+estimate with the gradient derived symbolically (in extended-range floats where f may
+overflow float32, see :mod:`.xfloat`). It is no guaranteed bound (exactness
 "implicit"), so the Newton methods or the reference march render it.
 """
 from __future__ import annotations
@@ -16,6 +17,7 @@ import numpy as np
 
 from .. import expr as ex
 from ..errors import ParameterError
+from . import xfloat
 from .base import IMPLICIT, Node
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -59,6 +61,19 @@ def _printer_class() -> type:
 
         def _print_Rational(self, expr: Any) -> str:  # noqa: N802
             return repr(float(expr))
+
+        def _print_Exp1(self, expr: Any) -> str:  # noqa: N802 - the constant E
+            return repr(float(expr))
+
+        # GLSL (3.30 and ES 3.00) has the hyperbolic functions; sympy's printer does not know it
+        def _print_sinh(self, expr: Any) -> str:
+            return f"sinh({self._print(expr.args[0])})"
+
+        def _print_cosh(self, expr: Any) -> str:
+            return f"cosh({self._print(expr.args[0])})"
+
+        def _print_tanh(self, expr: Any) -> str:
+            return f"tanh({self._print(expr.args[0])})"
 
     return _Printer
 
@@ -112,6 +127,8 @@ class Implicit(Node):
         super().__init__((), expr=str(f))
         self.f, self.grad, self.lo, self.hi = f, grad, lo, hi
         self._np = sp.lambdify((X, Y, Z), [f, *grad], "numpy")
+        # written with extended-range floats where f or grad f may overflow float32
+        self.extended = xfloat.needs_extended(f, grad)
 
     @property
     def exactness(self) -> str:
@@ -123,18 +140,38 @@ class Implicit(Node):
 
     def _emit(self, em: "Emitter", p: str) -> str:
         name = _stable_name("implicit", self.key)
-        body = (f"float {name}(vec3 p) {{\n    float x = p.x;\n    float y = p.y;\n    float z = p.z;\n"
-                f"    float f = {self._glsl[0]};\n"
-                f"    vec3 g = vec3({', '.join(self._glsl[1])});\n"
-                f"    return f / max(length(g), 1e-12);\n}}")
-        em.helper(name, f"// f = {self.f}  (an implicit surface, as f / |grad f|)\n{body}")
+        if self.extended:
+            em.require("xfloat")
+            f, gx, gy, gz = (xfloat.glsl(e) for e in (self.f, *self.grad))
+            body = (f"float {name}(vec3 p) {{\n    vec2 X = xfNorm(p.x, 0.0);\n    vec2 Y = xfNorm(p.y, 0.0);\n"
+                    f"    vec2 Z = xfNorm(p.z, 0.0);\n    return xfRatio({f},\n        {gx},\n        {gy},\n"
+                    f"        {gz});\n}}")
+            what = "in extended range: its values overflow float32"
+        else:
+            body = (f"float {name}(vec3 p) {{\n    float x = p.x;\n    float y = p.y;\n    float z = p.z;\n"
+                    f"    float f = {self._glsl[0]};\n"
+                    f"    vec3 g = vec3({', '.join(self._glsl[1])});\n"
+                    f"    return f / max(length(g), 1e-12);\n}}")
+            what = "an implicit surface"
+        em.helper(name, f"// f = {self.f}  ({what}, as f / |grad f|)\n{body}")
         return em.with_color(em.assign("float", f"{name}({em.point(p)})"))
 
     def _distance(self, p: np.ndarray) -> np.ndarray:
-        vals = [np.broadcast_to(np.asarray(v, dtype=np.float64), p.shape[:-1])
+        with np.errstate(over="ignore", invalid="ignore"):
+            d = self._ratio(p, np.float64)
+            bad = ~np.isfinite(d) & np.all(np.isfinite(p), axis=-1)
+            if bad.any():  # f or grad f overflows float64 (x**64 beyond 6e4): again in long double
+                d[bad] = self._ratio(p[bad].astype(np.longdouble), np.longdouble)
+        return d
+
+    def _ratio(self, p: np.ndarray, dtype: type) -> np.ndarray:
+        """f / |grad f| at ``p`` computed in ``dtype``, as float64."""
+        vals = [np.array(np.broadcast_to(np.asarray(v, dtype=dtype), p.shape[:-1]))
                 for v in self._np(p[..., 0], p[..., 1], p[..., 2])]
-        g = np.sqrt(vals[1] ** 2 + vals[2] ** 2 + vals[3] ** 2)
-        return vals[0] / np.maximum(g, 1e-12)
+        big = np.maximum(np.maximum(np.abs(vals[1]), np.abs(vals[2])), np.abs(vals[3]))
+        unit = np.where(big > 0, big, 1.0)  # |grad f| without squaring it (no overflow)
+        g = big * np.sqrt((vals[1] / unit) ** 2 + (vals[2] / unit) ** 2 + (vals[3] / unit) ** 2)
+        return np.asarray(vals[0] / np.maximum(g, 1e-12), dtype=np.float64)
 
     @property
     def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
@@ -150,8 +187,10 @@ def implicit(expr: Any, bounds: tuple[Sequence[float], Sequence[float]] | None =
             or a sympy expression over those. Nothing in it is run as code.
         bounds: (lo, hi) corners of a box that clips the rays (strongly advised), or None.
 
-    Implicit: no distance guarantee; render with ``method="newton"`` or ``"forward_newton"``
-    (and ``ao=False``). Needs the ``implicit`` extra (sympy).
+    Implicit: no distance guarantee; the default method ("auto") renders it with
+    ``"newton"`` (or pass ``"forward_newton"``). A field that may overflow float32 (a high
+    power such as ``x**64``, an ``exp``) is evaluated in extended range (``node.extended``;
+    :mod:`sdfgl.nodes.xfloat`). Needs the ``implicit`` extra (sympy).
 
     Example:
         >>> s = sg.implicit("x**2 + y**2 + z**2 - 1", bounds=((-1, -1, -1), (1, 1, 1)))

@@ -115,6 +115,16 @@ class Plane(Primitive):
         n = f"normalize({em.vec(self.n)})" if isinstance(self.n, Live) else em.vec(self.n)
         return f"sdPlane({p}, {n}, {em.vec(self.o)})"
 
+    def _emit(self, em: "Emitter", p: str) -> str:
+        if isinstance(self.n, Live) or isinstance(self.o, Live):
+            return super()._emit(em, p)
+        # dot(p - o, n) with o folded into the point's offset along n only (float64): exact
+        # to float32 rounding of p however far o and the shader origin lie from each other
+        n = self._unit_normal()
+        q = em.point(em.shift(p, -np.asarray(self.o, dtype=np.float64)), along=n)
+        em.require(*self.lib)
+        return em.with_color(em.assign("float", f"sdPlane({q}, {em.vec(n)}, vec3(0.0))"))
+
     def _distance(self, p: np.ndarray) -> np.ndarray:
         return (p - self.o) @ self._unit_normal()
 

@@ -27,7 +27,8 @@ class Translate(Unary):
 
     def _emit(self, em: "Emitter", p: str) -> str:
         if isinstance(self.offset, Live):
-            return self.child.emit(em, em.assign("vec3", f"{em.point(p)} - {em.vec(self.offset)}"))
+            q = em.shift_live(p, self.offset)  # folded with a moving origin on the CPU, else a GLSL sum
+            return self.child.emit(em, q if q is not None else em.assign("vec3", f"{em.point(p)} - {em.vec(self.offset)}"))
         return self.child.emit(em, em.shift(p, -self.offset))
 
     def _distance(self, p: np.ndarray) -> np.ndarray:

@@ -475,8 +475,8 @@ class Viewer:
         if self._shown is None:
             return
         scene, lane, key, source, origin = self._shown
-        if self._pending is None and not np.array_equal(shader_origin(scene, self.camera.eye), origin):
-            self._request(scene, self.state.settings, "origin")  # far scenes: re-anchor float32 coordinates
+        if source.origin_offsets is not None:  # the origin is a uniform: it follows the camera and the
+            origin = shader_origin(scene, self.camera.eye)  # parameters with no recompile (else it is fixed)
         self._version += 1
         spec = FrameSpec(self._version, lane, key, source, scene, origin, copy.deepcopy(self.camera), view[2:],
                          moving, self.max_samples, self.target_ms, self.adaptive)
