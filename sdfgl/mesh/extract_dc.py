@@ -100,7 +100,52 @@ def dual_contour(chunks, lat: Lattice, field: GPUField) -> tuple[np.ndarray, np.
     x = np.clip(_solve(ata, atb, mass), -REACH, 1.0 + REACH)
     verts = lat.start + (cell_lo + x) * h
     quads = np.where(inside[:, None], inv, inv[:, ::-1])
-    return verts, split_quads(verts, quads)
+    points = lat.start + (low + np.eye(3)[axis] * t[:, None]) * h
+    extra, polygons, plain = unpinch(quads, len(verts), low, axis, inside, points)
+    verts = np.concatenate([verts, extra])
+    return verts, np.concatenate([split_quads(verts, quads[plain]), polygons])
+
+
+def unpinch(quads: np.ndarray, n: int, low: np.ndarray, axis: np.ndarray, inside: np.ndarray,
+            points: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Keep the mesh manifold where two cells share an ambiguous face and each holds one piece
+    through both of its segments: the two vertices are then joined by one dual edge per
+    segment, i.e. four quads on one edge. Each segment gets its own vertex on the face (the
+    mean of its two crossings, put on the surface later), inserted into the two quads of
+    that segment, which become pentagons (fanned from the new vertex). Returns (new vertices
+    (K, 3), numbered from ``n``, the triangles of the changed quads, mask of the quads left as
+    they were). ``quads[i]`` is the dual polygon of crossing edge i (lower end ``low[i]`` on ``axis[i]``)."""
+    a, b = quads, np.roll(quads, -1, axis=1)
+    key = np.minimum(a, b) * n + np.maximum(a, b)                       # (E, 4) undirected sides
+    uk, inv, counts = np.unique(key.ravel(), return_inverse=True, return_counts=True)
+    over = np.nonzero(counts[inv] > 2)[0]
+    plain = np.ones(len(quads), bool)
+    if len(over) == 0:
+        return np.zeros((0, 3)), np.zeros((0, 3), np.int64), plain
+    q, side = over // 4, over % 4
+    # a segment joins the two crossing edges of the face that meet at an outside corner
+    end = low[q] + np.eye(3, dtype=np.int64)[axis[q]] * inside[q][:, None]  # the outside end
+    group = np.unique(np.column_stack([inv[over], end]), axis=0, return_inverse=True)[1].ravel()
+    order = np.argsort(group, kind="stable")
+    if np.any(np.bincount(group) != 2):
+        raise AssertionError("dual contouring: an over-used edge whose segments do not pair up")
+    first, second = order[0::2], order[1::2]
+    extra = (points[q[first]] + points[q[second]]) / 2
+    inserted: dict[int, list[tuple[int, int]]] = {}
+    for k, (i, j) in enumerate(zip(first, second)):
+        for m in (i, j):
+            inserted.setdefault(int(q[m]), []).append((int(side[m]), n + k))
+    tris = []
+    for quad, sides in inserted.items():
+        plain[quad] = False
+        ring: list[int] = []
+        for s in range(4):
+            ring.append(int(quads[quad, s]))
+            ring += [v for s2, v in sides if s2 == s]
+        start = ring.index(sides[0][1])
+        ring = ring[start:] + ring[:start]
+        tris += [(ring[0], ring[i], ring[i + 1]) for i in range(1, len(ring) - 1)]
+    return extra, np.array(tris, np.int64).reshape(-1, 3), plain
 
 
 def split_quads(verts: np.ndarray, quads: np.ndarray) -> np.ndarray:
