@@ -24,20 +24,31 @@ SVD_CUT = 0.1  # singular values below this share of the largest are dropped
 REACH = 1.0
 
 
-def refine(field: GPUField, lat: Lattice, low: np.ndarray, axis: np.ndarray, t: np.ndarray,
-           iterations: int = 2) -> tuple[np.ndarray, np.ndarray]:
-    """Crossing points put on the surface along their edges (Newton steps kept in the edge;
-    linear interpolation is off where the field bends, as it does beside an edge of the solid),
-    and the field gradient there."""
+def refine(field: GPUField, lat: Lattice, low: np.ndarray, axis: np.ndarray, t: np.ndarray, inside: np.ndarray,
+           iterations: int = 6) -> tuple[np.ndarray, np.ndarray]:
+    """Crossing points put on the surface along their edges, and the field gradient there.
+
+    Linear interpolation is off where the field bends, as it does beside an edge or a corner of
+    the solid; Newton steps along the edge fix that, kept inside the bracket that the signs
+    seen so far allow (a step that would leave it bisects instead: inside a box near a corner
+    the slope along the edge can be nearly zero). Points within ``1e-4`` cell stop early."""
     h = lat.step
-    rows = np.arange(len(t))
-    for i in range(iterations + 1):
-        f, grad = field.gradient(lat.start + (low + np.eye(3)[axis] * t[:, None]) * h, 0.02 * h)
-        if i == iterations:
+    unit = np.eye(3)[axis]
+    lo, hi = np.zeros_like(t), np.ones_like(t)
+    f, grad = field.gradient(lat.start + (low + unit * t[:, None]) * h, 0.02 * h)
+    for _ in range(iterations):
+        todo = np.nonzero(np.abs(f) > 1e-4 * h)[0]
+        if len(todo) == 0:
             break
-        slope = grad[rows, axis] * h
-        ok = np.abs(slope) > 1e-3 * h
-        t = np.where(ok, np.clip(t - f / np.where(ok, slope, 1.0), 0.0, 1.0), t)
+        tt, ff = t[todo], f[todo]
+        beyond = (ff < 0) == inside[todo]  # same sign as the lower end: the root lies above
+        lo[todo] = np.where(beyond, tt, lo[todo])
+        hi[todo] = np.where(beyond, hi[todo], tt)
+        slope = grad[todo, axis[todo]] * h
+        newton = tt - ff / np.where(slope != 0, slope, 1.0)
+        good = (slope != 0) & (newton > lo[todo]) & (newton < hi[todo])
+        t[todo] = np.where(good, newton, (lo[todo] + hi[todo]) / 2)
+        f[todo], grad[todo] = field.gradient(lat.start + (low[todo] + unit[todo] * t[todo, None]) * h, 0.02 * h)
     return t, grad
 
 
@@ -73,7 +84,7 @@ def dual_contour(chunks, lat: Lattice, field: GPUField) -> tuple[np.ndarray, np.
         return np.zeros((0, 3)), np.zeros((0, 3), np.int64)
     low, axis, t, inside, cell_keys, cell_cases, _ = found
     h = lat.step
-    t, grad = refine(field, lat, low, axis, t)
+    t, grad = refine(field, lat, low, axis, t, inside)
     n = grad / np.maximum(np.linalg.norm(grad, axis=1, keepdims=True), 1e-30)
     cells, local_edge = _quad_cells(low, axis)           # (E, 4, 3), (E, 4)
     nc = np.asarray(lat.cells, np.int64)
