@@ -18,7 +18,7 @@ from .crossings import crossings
 from .lattice import BLOCK, Lattice
 from .sample import GPUField
 
-SVD_CUT = 0.1  # singular values below this share of the largest are dropped
+SVD_CUT = 0.03  # singular values below this share of the largest are dropped
 # how far (cells) a vertex may leave its cell: a corner that pokes into a cell without crossing
 # any of its edges is found from the cells beside it
 REACH = 1.0
