@@ -141,7 +141,7 @@ def _zoo():
 # Marching cubes at 48 cells misses it by > 1 % on these (measured, see docs/notes): it cuts
 # every sharp edge (a chamfer ~ cell^2 per unit of edge length), which on thin bars, small
 # copies and bent slabs is > 1 % of the solid; the sharp mode keeps those edges. (symmetric is
-# on the edge: -0.9 % against this reference, -1.13 % against the 384^3-effective one.)
+# on the edge: -0.45 % against this cheap reference, -1.13 % against the 384^3-effective one.)
 MC_OVER_1PC = {"box_frame", "bend", "repeat_finite", "repeat_finite_cheap", "difference_circular", "repeat_polar",
                "elongate", "sierpinski", "tree", "noise_field", "extrude_scale2d_axes",
                "extrude_round_onion2d", "extrude_arc", "extrude_star", "extrude_twist", "bend_x", "bend_y", "tube",
