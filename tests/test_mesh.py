@@ -173,26 +173,94 @@ def _zoo():
     return out
 
 
-# Scenes whose mesh at 48 cells misses the twin's volume by more than 1 % (measured: thin
-# bars, slivers and small copies the lattice under-resolves, and bends whose twin integral
-# at 96^3 is itself ~1 % off): checked for topology only. Open work, see the closing note.
-THIN = {"box_frame", "bend", "repeat_finite", "repeat_finite_cheap", "difference_circular", "repeat_polar",
-        "elongate", "sierpinski", "tree", "noise_field",
-        # node kinds of issue 15 (thin tubes, arcs, stars, onion walls, bends about x/y): measured
-        # 1.6 % to 2.5 % off the twin's volume at 48 cells when the two branches were merged
-        "extrude_scale2d_axes", "extrude_round_onion2d", "extrude_arc", "extrude_star", "extrude_twist", "bend_x",
-        "bend_y", "tube", "bezier_tube", "capped_torus"}
+# Volumes are held against the twin's adaptive integral (48^3 cells, those the surface may cross
+# halved once: 96^3 effective; kept cheap for CI, see docs/notes for the finer levels).
+# Marching cubes at 48 cells misses it by > 1 % on these (measured, see docs/notes): it cuts
+# every sharp edge (a chamfer ~ cell^2 per unit of edge length), which on thin bars, small
+# copies and bent slabs is > 1 % of the solid; the sharp mode keeps those edges. (symmetric is
+# on the edge: -0.45 % against this cheap reference, -1.13 % against the 384^3-effective one.)
+MC_OVER_1PC = {"box_frame", "bend", "repeat_finite", "repeat_finite_cheap", "difference_circular", "repeat_polar",
+               "elongate", "sierpinski", "tree", "noise_field", "extrude_scale2d_axes",
+               "extrude_round_onion2d", "extrude_arc", "extrude_star", "extrude_twist", "bend_x", "bend_y", "tube",
+               "bezier_tube", "capped_torus"}
+# still > 1 % in the sharp mode at 48 cells: features about a cell thin or thinner (tree twigs of
+# radius 0.02 in a 0.125 cell: its bounds are loose; sierpinski's smallest tetrahedra; a sliver
+# left by the circular blend; the cheap repeat's copies; the elongated torus's 0.1 tube; thin tubes;
+# box_frame's bars, -1.1 % since the crossings are bracketed: -0.17 % before, open work)
+SHARP_OVER_1PC = {"repeat_finite_cheap", "difference_circular", "elongate", "sierpinski", "tree", "tube", "bezier_tube",
+                  "box_frame"}
 
 
-@pytest.mark.parametrize("node", _zoo())
-def test_every_bounded_node_kind_meshes_closed_with_the_twins_volume(node, request):
-    name = request.node.callspec.id
-    m = sg.mesh(node, resolution=48, colors=False)
-    assert len(m.faces) > 0
-    assert closed(m) == (True, True), "not watertight / winding inconsistent"
-    if name not in THIN:
-        tv = Twin(node, m.lattice.box).integrate(96)
-        assert abs(volume(m.vertices, m.faces) - tv) < 0.01 * tv
+def edge_and_vertex_manifold(m) -> bool:
+    """Every edge on two faces, one winding, and the faces around each vertex one fan."""
+    if closed(m) != (True, True):
+        return False
+    f = m.faces
+    link = np.concatenate([f, np.roll(f, -1, axis=1), np.roll(f, -2, axis=1)])
+    link = link[np.argsort(link[:, 0], kind="stable")]
+    starts = np.searchsorted(link[:, 0], np.arange(len(m.vertices) + 1))
+    for v in range(len(m.vertices)):
+        ring = link[starts[v]:starts[v + 1], 1:]
+        nxt = dict(ring.tolist())
+        x, steps = ring[0, 0], 0
+        while steps <= len(ring):
+            x, steps = nxt.get(x, -1), steps + 1
+            if x == ring[0, 0] or x == -1:
+                break
+        if len(nxt) != len(ring) or x != ring[0, 0] or steps != len(ring):
+            return False
+    return True
+
+
+_ZOO: dict = {}
+
+
+def _zoo_mesh(node, name: str, mode: str) -> tuple[int, tuple[bool, bool], float, float]:
+    """(faces, closed(), volume, the twin's volume) of one kind's mesh at 48 cells, made once for
+    the topology and the volume tests."""
+    if (name, mode) not in _ZOO:
+        m = sg.mesh(node, resolution=48, colors=False, mode=mode)
+        _ZOO[name, mode] = (len(m.faces), closed(m), volume(m.vertices, m.faces),
+                            Twin(node, m.lattice.box).integrate(48, levels=1))
+    return _ZOO[name, mode]
+
+
+def _zoo_modes():
+    return [pytest.param(p.values[0], "mc", id=f"mc-{p.id}") for p in _zoo()] + [
+        pytest.param(p.values[0], "sharp", id=f"sharp-{p.id}") for p in _zoo() if p.id in MC_OVER_1PC]
+
+
+@pytest.mark.parametrize("node, mode", _zoo_modes())
+def test_every_bounded_node_kind_meshes_closed(node, mode, request):
+    faces, topology, _, _ = _zoo_mesh(node, request.node.callspec.id.split("-", 1)[1], mode)
+    assert faces > 0
+    assert topology == (True, True), "not watertight / winding inconsistent"
+
+
+@pytest.mark.parametrize("node, mode", _zoo_modes())
+def test_every_bounded_node_kind_has_the_twins_volume(node, mode, request):
+    name = request.node.callspec.id.split("-", 1)[1]
+    if name in (MC_OVER_1PC if mode == "mc" else SHARP_OVER_1PC):
+        request.applymarker(pytest.mark.xfail(strict=True, reason="features thinner than a cell at 48 cells"))
+    _, _, mesh_volume, twin_volume = _zoo_mesh(node, name, mode)
+    assert abs(mesh_volume - twin_volume) < 0.01 * twin_volume
+
+
+def test_twin_volume_integral_is_accurate():
+    lat = make_lattice(sg.torus(0.8, 0.03), resolution=48)
+    exact = 2 * np.pi ** 2 * 0.8 * 0.03 ** 2      # a tube 0.6 cells thick at 48 cells
+    assert abs(Twin(sg.torus(0.8, 0.03), lat.box).integrate(48, levels=2) - exact) < 0.01 * exact
+    s = sg.implicit("x**2 + y**2/0.5 + z**2 - 1", bounds=((-1.2, -1, -1.2), (1.2, 1, 1.2)))  # no Lipschitz bound
+    lat = make_lattice(s, resolution=32)
+    exact = 4 / 3 * np.pi * np.sqrt(0.5)
+    assert abs(Twin(s, lat.box).integrate(32, levels=2) - exact) < 1e-3 * exact
+
+
+def test_sharp_mode_is_manifold_where_two_cells_share_an_ambiguous_face():
+    # sierpinski at 48 cells has ~80 faces whose two cells each join both segments of the face
+    # into one piece; plain per-piece dual contouring puts four quads on one edge there
+    m = sg.mesh(sg.sierpinski(4, 1.0), resolution=48, mode="sharp", colors=False)
+    assert edge_and_vertex_manifold(m)
 
 
 def test_sampling_box_closes_a_cut_solid():
@@ -234,9 +302,10 @@ def test_sharp_mode_keeps_box_edges_and_corners():
     assert np.allclose(box.distance(to_world(corners)), 0, atol=1e-9)
     d_corner = distance_to_mesh(to_world(corners), m.vertices, m.faces) / m.step
     d_edge = distance_to_mesh(to_world(edges), m.vertices, m.faces) / m.step
-    # measured: edges max 0.13, median 0; corners max 0.17 cell (a corner poking into a cell
-    # none of whose edges it crosses is placed from the cells beside it)
-    assert np.median(d_edge) <= 0.01 and d_edge.max() <= 0.15 and d_corner.max() <= 0.2
+    # measured: edges max 0.047, median 0; corners max 0.025 cell (before the crossings were
+    # refined inside their sign bracket: 0.13 / 0.17; over 30 random boxes at 32 cells a corner
+    # still reaches 0.21 cell where its tip pokes into a cell without crossing any of its edges)
+    assert np.median(d_edge) <= 0.01 and d_edge.max() <= 0.1 and d_corner.max() <= 0.1
     # marching cubes cuts edges and corners: the sharp mode is what keeps them
     mc = sg.mesh(box, resolution=32)
     assert np.median(distance_to_mesh(to_world(edges), mc.vertices, mc.faces)) > 0.2 * mc.step

@@ -18,26 +18,37 @@ from .crossings import crossings
 from .lattice import BLOCK, Lattice
 from .sample import GPUField
 
-SVD_CUT = 0.1  # singular values below this share of the largest are dropped
+SVD_CUT = 0.03  # singular values below this share of the largest are dropped
 # how far (cells) a vertex may leave its cell: a corner that pokes into a cell without crossing
 # any of its edges is found from the cells beside it
 REACH = 1.0
 
 
-def refine(field: GPUField, lat: Lattice, low: np.ndarray, axis: np.ndarray, t: np.ndarray,
-           iterations: int = 2) -> tuple[np.ndarray, np.ndarray]:
-    """Crossing points put on the surface along their edges (Newton steps kept in the edge;
-    linear interpolation is off where the field bends, as it does beside an edge of the solid),
-    and the field gradient there."""
+def refine(field: GPUField, lat: Lattice, low: np.ndarray, axis: np.ndarray, t: np.ndarray, inside: np.ndarray,
+           iterations: int = 6) -> tuple[np.ndarray, np.ndarray]:
+    """Crossing points put on the surface along their edges, and the field gradient there.
+
+    Linear interpolation is off where the field bends, as it does beside an edge or a corner of
+    the solid; Newton steps along the edge fix that, kept inside the bracket that the signs
+    seen so far allow (a step that would leave it bisects instead: inside a box near a corner
+    the slope along the edge can be nearly zero). Points within ``1e-4`` cell stop early."""
     h = lat.step
-    rows = np.arange(len(t))
-    for i in range(iterations + 1):
-        f, grad = field.gradient(lat.start + (low + np.eye(3)[axis] * t[:, None]) * h, 0.02 * h)
-        if i == iterations:
+    unit = np.eye(3)[axis]
+    lo, hi = np.zeros_like(t), np.ones_like(t)
+    f, grad = field.gradient(lat.start + (low + unit * t[:, None]) * h, 0.02 * h)
+    for _ in range(iterations):
+        todo = np.nonzero(np.abs(f) > 1e-4 * h)[0]
+        if len(todo) == 0:
             break
-        slope = grad[rows, axis] * h
-        ok = np.abs(slope) > 1e-3 * h
-        t = np.where(ok, np.clip(t - f / np.where(ok, slope, 1.0), 0.0, 1.0), t)
+        tt, ff = t[todo], f[todo]
+        beyond = (ff < 0) == inside[todo]  # same sign as the lower end: the root lies above
+        lo[todo] = np.where(beyond, tt, lo[todo])
+        hi[todo] = np.where(beyond, hi[todo], tt)
+        slope = grad[todo, axis[todo]] * h
+        newton = tt - ff / np.where(slope != 0, slope, 1.0)
+        good = (slope != 0) & (newton > lo[todo]) & (newton < hi[todo])
+        t[todo] = np.where(good, newton, (lo[todo] + hi[todo]) / 2)
+        f[todo], grad[todo] = field.gradient(lat.start + (low[todo] + unit[todo] * t[todo, None]) * h, 0.02 * h)
     return t, grad
 
 
@@ -73,7 +84,7 @@ def dual_contour(chunks, lat: Lattice, field: GPUField) -> tuple[np.ndarray, np.
         return np.zeros((0, 3)), np.zeros((0, 3), np.int64)
     low, axis, t, inside, cell_keys, cell_cases, _ = found
     h = lat.step
-    t, grad = refine(field, lat, low, axis, t)
+    t, grad = refine(field, lat, low, axis, t, inside)
     n = grad / np.maximum(np.linalg.norm(grad, axis=1, keepdims=True), 1e-30)
     cells, local_edge = _quad_cells(low, axis)           # (E, 4, 3), (E, 4)
     nc = np.asarray(lat.cells, np.int64)
@@ -100,7 +111,52 @@ def dual_contour(chunks, lat: Lattice, field: GPUField) -> tuple[np.ndarray, np.
     x = np.clip(_solve(ata, atb, mass), -REACH, 1.0 + REACH)
     verts = lat.start + (cell_lo + x) * h
     quads = np.where(inside[:, None], inv, inv[:, ::-1])
-    return verts, split_quads(verts, quads)
+    points = lat.start + (low + np.eye(3)[axis] * t[:, None]) * h
+    extra, polygons, plain = unpinch(quads, len(verts), low, axis, inside, points)
+    verts = np.concatenate([verts, extra])
+    return verts, np.concatenate([split_quads(verts, quads[plain]), polygons])
+
+
+def unpinch(quads: np.ndarray, n: int, low: np.ndarray, axis: np.ndarray, inside: np.ndarray,
+            points: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Keep the mesh manifold where two cells share an ambiguous face and each holds one piece
+    through both of its segments: the two vertices are then joined by one dual edge per
+    segment, i.e. four quads on one edge. Each segment gets its own vertex on the face (the
+    mean of its two crossings, put on the surface later), inserted into the two quads of
+    that segment, which become pentagons (fanned from the new vertex). Returns (new vertices
+    (K, 3), numbered from ``n``, the triangles of the changed quads, mask of the quads left as
+    they were). ``quads[i]`` is the dual polygon of crossing edge i (lower end ``low[i]`` on ``axis[i]``)."""
+    a, b = quads, np.roll(quads, -1, axis=1)
+    key = np.minimum(a, b) * n + np.maximum(a, b)                       # (E, 4) undirected sides
+    uk, inv, counts = np.unique(key.ravel(), return_inverse=True, return_counts=True)
+    over = np.nonzero(counts[inv] > 2)[0]
+    plain = np.ones(len(quads), bool)
+    if len(over) == 0:
+        return np.zeros((0, 3)), np.zeros((0, 3), np.int64), plain
+    q, side = over // 4, over % 4
+    # a segment joins the two crossing edges of the face that meet at an outside corner
+    end = low[q] + np.eye(3, dtype=np.int64)[axis[q]] * inside[q][:, None]  # the outside end
+    group = np.unique(np.column_stack([inv[over], end]), axis=0, return_inverse=True)[1].ravel()
+    order = np.argsort(group, kind="stable")
+    if np.any(np.bincount(group) != 2):
+        raise AssertionError("dual contouring: an over-used edge whose segments do not pair up")
+    first, second = order[0::2], order[1::2]
+    extra = (points[q[first]] + points[q[second]]) / 2
+    inserted: dict[int, list[tuple[int, int]]] = {}
+    for k, (i, j) in enumerate(zip(first, second)):
+        for m in (i, j):
+            inserted.setdefault(int(q[m]), []).append((int(side[m]), n + k))
+    tris = []
+    for quad, sides in inserted.items():
+        plain[quad] = False
+        ring: list[int] = []
+        for s in range(4):
+            ring.append(int(quads[quad, s]))
+            ring += [v for s2, v in sides if s2 == s]
+        start = ring.index(sides[0][1])
+        ring = ring[start:] + ring[:start]
+        tris += [(ring[0], ring[i], ring[i + 1]) for i in range(1, len(ring) - 1)]
+    return extra, np.array(tris, np.int64).reshape(-1, 3), plain
 
 
 def split_quads(verts: np.ndarray, quads: np.ndarray) -> np.ndarray:

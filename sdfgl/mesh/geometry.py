@@ -51,15 +51,38 @@ def _point_triangle(p: np.ndarray, a: np.ndarray, b: np.ndarray, c: np.ndarray) 
     return np.linalg.norm(p - q, axis=1)
 
 
-def distance_to_mesh(points: np.ndarray, verts: np.ndarray, faces: np.ndarray, k: int = 16) -> np.ndarray:
-    """Unsigned distance from points to the mesh: exact to the nearest of the ``k`` triangles whose
-    centroids are nearest (triangles are about one cell across, so the nearest is among them)."""
-    tree = require("scipy.spatial").cKDTree(verts[faces].mean(axis=1))
+def distance_to_mesh(points: np.ndarray, verts: np.ndarray, faces: np.ndarray, k: int = 8) -> np.ndarray:
+    """Exact unsigned distance from points to the mesh (to the nearest triangle, not a sample).
+
+    A KD-tree over triangle centroids: the exact distance to the ``k`` triangles whose centroids
+    are nearest gives an upper bound d; no triangle can come closer than (centroid distance -
+    R), R the largest centroid-to-corner distance of any triangle, so a point is settled when
+    its k-th centroid lies beyond d + R, and otherwise every triangle with a centroid within
+    d + R is checked.
+    """
+    points = np.asarray(points, np.float64).reshape(-1, 3)
+    if len(points) == 0 or len(faces) == 0:
+        return np.full(len(points), np.inf)
+    tri = verts[faces]
+    centroid = tri.mean(axis=1)
+    reach = float(np.linalg.norm(tri - centroid[:, None], axis=2).max())
+    tree = require("scipy.spatial").cKDTree(centroid)
     k = min(k, len(faces))
-    _, idx = tree.query(points, k=k)
-    idx = np.asarray(idx).reshape(len(points), k)
+    dist, idx = tree.query(points, k=k)
+    dist, idx = np.asarray(dist).reshape(len(points), k), np.asarray(idx).reshape(len(points), k)
     best = np.full(len(points), np.inf)
     for j in range(k):
         f = faces[idx[:, j]]
         best = np.minimum(best, _point_triangle(points, verts[f[:, 0]], verts[f[:, 1]], verts[f[:, 2]]))
+    open_ = np.nonzero(dist[:, -1] < best + reach)[0] if k < len(faces) else np.zeros(0, np.int64)
+    if len(open_):
+        lists = tree.query_ball_point(points[open_], best[open_] + reach)
+        sizes = np.array([len(c) for c in lists])
+        cand = np.concatenate([np.asarray(c, np.int64) for c in lists])
+        owner = np.repeat(np.arange(len(open_)), sizes)
+        f = faces[cand]
+        d = _point_triangle(points[open_][owner], verts[f[:, 0]], verts[f[:, 1]], verts[f[:, 2]])
+        near = np.full(len(open_), np.inf)
+        np.minimum.at(near, owner, d)
+        best[open_] = np.minimum(best[open_], near)
     return best

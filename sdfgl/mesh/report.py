@@ -4,8 +4,8 @@
 - Hausdorff distance both ways: mesh -> surface is |f| / |grad f| at points sampled on the
   triangles, surface -> mesh is the distance from points put on the twin's surface (Newton
   steps from seeds spread over the box and the mesh) to the nearest triangle;
-- volume of the mesh against the twin's integration (a one-cell linear ramp of the field over
-  a ``volume_resolution``^3 grid of cell centres);
+- volume of the mesh against the twin's integration (adaptive: cells the surface may cross,
+  by the Lipschitz bound, are refined three times from a ``volume_resolution``^3 grid);
 - topology: every edge on exactly two faces (watertight), no directed edge twice (winding).
 """
 from __future__ import annotations
@@ -84,21 +84,51 @@ class Twin:
             p -= d * np.minimum(1.0, 4 * step / np.maximum(n, 1e-300))
         return p[np.abs(self(p)) < 1e-6 * step]
 
-    def integrate(self, resolution: int) -> float:
-        """Volume of {f < 0}: a linear ramp one cell wide, summed over cell centres, by slabs."""
+    def integrate(self, resolution: int = 48, levels: int = 3, batch: int = 1 << 18) -> float:
+        """Volume of {f < 0}, adaptively: ``resolution``^3 cells, of which those the surface may
+        pass through are halved ``levels`` times (effective ``resolution * 2**levels``).
+
+        A cell is settled by the sign at its centre when |f| there exceeds twice the field's
+        Lipschitz factor times the cell's half-diagonal (no surface can reach into it; the factor
+        2 covers warps whose stated factor is optimistic). Fields without a finite factor
+        (implicit ones) use twice the largest gradient seen on the first grid. Cells still open
+        at the finest level count the inside share of a plane at f / |grad f| from the centre
+        (a one-cell linear ramp), so non-distance fields are not biased by their gradient norm.
+        """
         n = resolution
         h = (self.hi - self.lo) / n
         axes = [self.lo[i] + (np.arange(n) + 0.5) * h[i] for i in range(3)]
-        yz = np.stack(np.meshgrid(axes[1], axes[2], indexing="ij"), -1).reshape(-1, 2)
-        width = float(np.linalg.norm(h)) / np.sqrt(3)
+        centres = np.stack(np.meshgrid(*axes, indexing="ij"), -1).reshape(-1, 3)
+        f = np.concatenate([self(centres[i:i + batch]) for i in range(0, len(centres), batch)])
+        lip = float(self.scene.lipschitz)
+        if not np.isfinite(lip):
+            g = np.abs(np.diff(f.reshape(n, n, n), axis=0)).max() / h[0], \
+                np.abs(np.diff(f.reshape(n, n, n), axis=1)).max() / h[1], \
+                np.abs(np.diff(f.reshape(n, n, n), axis=2)).max() / h[2]
+            lip = float(np.linalg.norm(g))
+        lip = 2.0 * max(lip, 1.0)
         total = 0.0
-        for x in axes[0]:
-            p = np.column_stack([np.full(len(yz), x), yz])
-            total += float(np.clip(0.5 - self(p) / width, 0, 1).sum())
-        return total * float(np.prod(h))
+        offsets = (np.array([[i & 1, i >> 1 & 1, i >> 2 & 1] for i in range(8)]) - 0.5) / 2
+        for level in range(levels + 1):
+            cell = float(np.prod(h))
+            open_ = np.abs(f) < lip * 0.5 * float(np.linalg.norm(h))
+            total += cell * float(np.count_nonzero((f < 0) & ~open_))
+            centres = centres[open_]
+            if level == levels:
+                break
+            centres = (centres[:, None, :] + offsets * h).reshape(-1, 3)
+            h = h / 2
+            f = np.concatenate([self(centres[i:i + batch]) for i in range(0, len(centres), batch)])
+        width = float(np.linalg.norm(h)) / np.sqrt(3)
+        f = f[open_]
+        for i in range(0, len(centres), batch):
+            p, fp = centres[i:i + batch], f[i:i + batch]
+            g = np.linalg.norm(self.gradient(p, 1e-2 * width), axis=1)
+            total += cell * float(np.clip(0.5 - fp / np.maximum(g, 1e-12) / width, 0, 1).sum())
+        return total
 
 
-def measure(mesh, twin_samples: int = 20000, volume_resolution: int = 128, seed: int = 0) -> MeshReport:  # noqa: ANN001
+def measure(mesh, twin_samples: int = 20000, volume_resolution: int = 48, seed: int = 0) -> MeshReport:  # noqa: ANN001
     """The report of ``mesh`` (see the module docstring)."""
     import time
     t0 = time.perf_counter()

@@ -72,7 +72,7 @@ class Mesh:
         from .writers import write
         return write(self, Path(path), **options)
 
-    def report(self, twin_samples: int = 20000, volume_resolution: int = 128) -> MeshReport:
+    def report(self, twin_samples: int = 20000, volume_resolution: int = 48) -> MeshReport:
         """Accuracy of the mesh against the float64 twin (see :class:`sdfgl.mesh.report.MeshReport`)."""
         from .report import measure
         return measure(self, twin_samples, volume_resolution)
