@@ -325,6 +325,14 @@ def test_vertex_colours_come_from_the_scene():
     assert np.allclose(m.colors[right], (0, 0, 1), atol=1e-3)
 
 
+def test_a_scene_without_colours_gets_the_colour_its_shader_draws():
+    scene = sg.sphere(1) & sg.box(1.5)  # no material node: no colour pass, the one colour
+    m = sg.mesh(scene, resolution=24)
+    drawn = GPUField(scene, *m.lattice.box).colors(m.vertices)
+    assert m.colors.dtype == np.float32 and m.colors.shape == (len(m.vertices), 3)
+    assert np.array_equal(m.colors, drawn)
+
+
 @pytest.mark.parametrize("suffix", [".stl", ".obj", ".ply", ".glb", ".gltf", ".3mf"])
 def test_every_format_reads_back_in_trimesh(tmp_path, suffix):
     m = sg.mesh(two_colours(), resolution=24)

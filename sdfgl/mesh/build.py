@@ -7,8 +7,10 @@ from typing import Sequence
 
 import numpy as np
 
+from ..codegen import DEFAULT_COLOR
 from ..errors import ParameterError
 from ..nodes.base import Node
+from ..nodes.traverse import fact
 from .lattice import make_lattice
 from .project import project
 from .sample import GPUField
@@ -16,6 +18,14 @@ from .sparse import Progress, chunks
 from .topology import clean
 
 MODES = ("mc", "sharp")
+
+
+def _colors(scene: Node, field: GPUField, verts: np.ndarray) -> np.ndarray:
+    """The scene's colour at each vertex: from the GPU colour field, or, for a scene with no
+    material node, its one colour (no draw)."""
+    if fact(scene, "_fields"):
+        return field.colors(verts)
+    return np.tile(np.asarray(DEFAULT_COLOR, np.float32), (len(verts), 1))
 
 
 def mesh(scene: Node, step: float | None = None, resolution: int | None = None, samples: int | None = None,
@@ -51,7 +61,7 @@ def mesh(scene: Node, step: float | None = None, resolution: int | None = None, 
     verts, normals = project(field, verts, lat.step)
     if mode != "mc":  # march() leaves no degenerate or repeated triangles and no unused vertex
         verts, faces, normals = clean(verts, faces, normals)
-    rgb = field.colors(verts) if colors and len(verts) else None
+    rgb = _colors(scene, field, verts) if colors and len(verts) else None
     t2 = time.perf_counter()
     timings = {"extract_s": t1 - t0, "project_s": t2 - t1, "total_s": t2 - t0}
     return Mesh(verts, faces, normals, rgb, scene=scene, lattice=lat, mode=mode, timings=timings,
