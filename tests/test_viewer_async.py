@@ -108,6 +108,8 @@ def test_window_answers_input_during_a_slow_compile(display, tmp_path):
         # the bound: redraws follow input within 100 ms (median; the p90 and the maximum are
         # printed: on this shared 2-core machine a busy neighbour can delay any one frame)
         assert statistics.median(lat) < 0.1, figures
+        if figures["load"] < (os.cpu_count() or 1):  # a machine not shared with other work: 9 in 10 inputs too
+            assert figures["latency_ms"]["p90"] < 100, figures  # (idle here: p90 22-24 ms, median 20 ms)
         # no phase of the compile stalls the window (the first draw of the new program used to take seconds)
         assert max(m for m in figures["median_ms_by_phase"].values() if m is not None) < 100, figures
     finally:
