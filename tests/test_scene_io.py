@@ -78,7 +78,8 @@ def test_lights_and_orthographic_cameras_round_trip():
 
 
 def test_every_registered_kind_round_trips_and_pickles():
-    from sdfgl.scene_io.encode import _recorded_in, bound_arguments
+    from sdfgl.nodes.record import recorded_in
+    from sdfgl.scene_io.encode import bound_arguments
     from tests.nodes_zoo import all_nodes
     angle = sg.param(30.0, name="angle")
     scenes = {**all_nodes(), "live_rotate": sg.box(0.5).rotate(angle, (0, 1, 0)).translate(sg.param((0, 1, 0))),
@@ -90,7 +91,7 @@ def test_every_registered_kind_round_trips_and_pickles():
             n = stack.pop()
             kinds.add(n.kind)
             saveable &= n.serializable
-            stack.extend(c for v in bound_arguments(n).values() for c in _recorded_in(v))
+            stack.extend(c for v in bound_arguments(n).values() for c in recorded_in(v))
         if not saveable:  # user GLSL (test_user_glsl_is_never_saved_nor_loaded_but_pickles)
             continue
         st = {"method": "newton", "ao": False} if node.exactness == sg.IMPLICIT else {}

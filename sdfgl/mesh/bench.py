@@ -136,14 +136,17 @@ def run_mesh(samples: int = 2 ** 22, rounds: int = 3, big: int | None = 1024,
     mesh(scene, samples=1 << 12, mode="sharp", progress=False)
     tools["sdfgl"] = timed("sdfgl", "mc")
     tools["sdfgl sharp"] = timed("sdfgl sharp", "sharp")
-    if _available("sdf"):
-        def fog() -> tuple[float, float] | str:
-            r = _peer(FOGLEMAN, samples, box)
+    def peer(name: str, code: str, env: dict | None = None) -> Callable[[], tuple[float, float] | str]:
+        def run() -> tuple[float, float] | str:  # (wall, CPU), keeping the peer's vertices
+            r = _peer(code, samples, box, env)
             if isinstance(r, str):
                 return r
-            corners["fogleman/sdf"] = r[1]
+            corners[name] = r[1]
             return r[0]
-        tools["fogleman/sdf"] = fog
+        return run
+
+    if _available("sdf"):
+        tools["fogleman/sdf"] = peer("fogleman/sdf", FOGLEMAN)
     else:
         notes.append("fogleman/sdf skipped: not installed (pip install sdf-fork)")
     xvfb, display = (None, "")
@@ -152,13 +155,7 @@ def run_mesh(samples: int = 2 ** 22, rounds: int = 3, big: int | None = 1024,
         if not display:
             notes.append("DistForge skipped: it needs a display and Xvfb is not installed")
         else:
-            def dist() -> tuple[float, float] | str:
-                r = _peer(DISTFORGE, samples, box, {"DISPLAY": display})
-                if isinstance(r, str):
-                    return r
-                corners["DistForge"] = r[1]
-                return r[0]
-            tools["DistForge"] = dist
+            tools["DistForge"] = peer("DistForge", DISTFORGE, {"DISPLAY": display})
     else:
         notes.append("DistForge skipped: not installed (pip install distforge)")
     try:

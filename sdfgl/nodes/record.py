@@ -98,17 +98,18 @@ class _Ref:
         return (_Ref, (self.index,))
 
 
-def _nested(value: Any) -> list["Recorded"]:
-    """The recorded objects inside a constructor argument (in lists, tuples and dicts)."""
+def recorded_in(value: Any) -> list["Recorded"]:
+    """The recorded objects (nodes, 2D shapes) inside a constructor argument, in order
+    (through lists, tuples and dict values); pickling and scene documents both use it."""
     out, stack = [], [value]
     while stack:
         v = stack.pop()
         if isinstance(v, Recorded):
             out.append(v)
         elif isinstance(v, (list, tuple)):
-            stack.extend(v)
+            stack.extend(reversed(v))
         elif isinstance(v, dict):
-            stack.extend(v.values())
+            stack.extend(reversed(list(v.values())))
     return out
 
 
@@ -116,15 +117,15 @@ def _postorder(root: "Recorded") -> list["Recorded"]:
     """Every recorded object reachable through constructor arguments, each after those it
     was built from (iterative)."""
     from .traverse import walk
-    return walk(root, lambda n: _nested(n.constructor[1:]))[0]
+    return walk(root, lambda n: recorded_in(n.constructor[1:]))[0]
 
 
 def _to_refs(value: Any, index: dict[int, int]) -> Any:
     if isinstance(value, Recorded):
         return _Ref(index[id(value)])
-    if isinstance(value, (list, tuple)) and _nested(value):
+    if isinstance(value, (list, tuple)) and recorded_in(value):
         return type(value)(_to_refs(v, index) for v in value) if type(value) in (list, tuple) else value
-    if isinstance(value, dict) and _nested(value):
+    if isinstance(value, dict) and recorded_in(value):
         return {k: _to_refs(v, index) for k, v in value.items()}
     return value
 

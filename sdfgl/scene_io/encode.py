@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import ParameterError
-from ..nodes.record import Recorded
+from ..nodes.record import Recorded, recorded_in
 from ..nodes.traverse import walk
 from ..params import Live, Param
 from .limits import FORMAT, INLINE_HEIGHT, VERSION
@@ -39,18 +39,6 @@ def bound_arguments(obj: Recorded) -> dict[str, Any]:
         return dict(signature(cls).bind(*args, **kwargs).arguments)
     except TypeError as exc:  # pragma: no cover - the call succeeded, so it binds
         raise ParameterError(f"{obj.kind}: cannot name the constructor arguments: {exc}") from None
-
-
-def _recorded_in(value: Any) -> list[Recorded]:
-    """The nodes (and 2D shapes) inside an argument value, in order."""
-    out, stack = [], [value]
-    while stack:
-        v = stack.pop()
-        if isinstance(v, Recorded):
-            out.append(v)
-        elif isinstance(v, (list, tuple)):
-            stack.extend(reversed(v))
-    return out
 
 
 class Encoder:
@@ -75,7 +63,7 @@ class Encoder:
     @staticmethod
     def _postorder(root: Recorded) -> tuple[list[Recorded], dict[int, int]]:
         """Nodes children first (in argument order) and how often each is referenced."""
-        return walk(root, lambda n: [c for v in bound_arguments(n).values() for c in _recorded_in(v)])
+        return walk(root, lambda n: [c for v in bound_arguments(n).values() for c in recorded_in(v)])
 
     def _encode_node(self, node: Recorded, shared: bool) -> None:
         if not node.serializable:
