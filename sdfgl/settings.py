@@ -57,7 +57,10 @@ class Settings:
     ref_step: the step of "reference" (default: the scene size / 512).
     newton_cap: the Newton methods' step is at most this many times the field value
         (default 2; None for the seed thesis's uncapped Newton step).
-    max_steps: map() evaluations a primary ray may spend.
+    max_steps: marching iterations a primary ray may spend (default 1024); an iteration
+        near a surface may take a few map() calls (the sign test's probe). A ray that
+        runs out is drawn as a miss. Rays through fields of many small parts at low
+        angles pass close to dozens of surfaces and need several hundred.
     hit: "cone" (distance below hit_scale pixel footprints), "relative" (below
         hit_scale * t) or "absolute" (below hit_scale).
     hit_scale: the factor of the hit test.
@@ -96,7 +99,7 @@ class Settings:
     omega: Any = None
     ref_step: Any = None
     newton_cap: Any = 2.0
-    max_steps: int = 256
+    max_steps: int = 1024
     hit: str = "cone"
     hit_scale: float = 0.25
     max_dist: float = 1000.0
