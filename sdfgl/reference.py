@@ -11,8 +11,9 @@ A float32 renderer cannot decide a ray that grazes the solid: one that dips belo
 by less than float32 rounding and comes out again is a hit or a miss by rounding alone.
 Such rays (on fields with a Lipschitz bound) are marked undecided, like rays the
 reference cannot settle, and left out of the figures: the band is ``ROUNDING`` times the
-ray's distance from the scene centre, a few float32 ulps of the positions the shader
-evaluates. Rays that touch f = 0 without going below stay misses (a sheet where two
+ray's distance from the scene centre (a few float32 ulps of the positions the shader
+evaluates) times the field's Lipschitz factor (a warp magnifies position rounding by up
+to that factor). Rays that touch f = 0 without going below stay misses (a sheet where two
 faces coincide is no surface: drawing it is a false hit).
 """
 from __future__ import annotations
@@ -80,8 +81,10 @@ def trace_rays(scene: Node, o: np.ndarray, d: np.ndarray, max_dist: float = 1000
     near = 1e-7 * scale
     fixed = step if step is not None else scale / 2000.0
     bounded = np.isfinite(lip)
-    reach = np.linalg.norm(o - 0.5 * (lo + hi), axis=-1) if np.all(np.isfinite(lo + hi)) \
-        else np.linalg.norm(o, axis=-1)
+    # positions the shader evaluates are relative to an origin at the scene's centre, or, for an
+    # unbounded scene, one that moves with the camera
+    reach = np.linalg.norm(o - 0.5 * (lo + hi), axis=-1) if np.all(np.isfinite(scene.bounds)) \
+        else np.zeros(n)
 
     idx = np.nonzero(tmin <= tmax)[0]
     t = tmin[idx].copy()
@@ -105,7 +108,7 @@ def trace_rays(scene: Node, o: np.ndarray, d: np.ndarray, max_dist: float = 1000
         idx, t, f = idx[~gone], t_new[~gone], f_new[~gone]
     undecided[idx] = True
     if bounded:
-        undecided |= _shallow(scene, o, d, t_hit, ROUNDING * (reach + t_hit), lip, near)
+        undecided |= _shallow(scene, o, d, t_hit, ROUNDING * max(lip, 1.0) * (reach + t_hit), lip, near)
     return t_hit, undecided
 
 
