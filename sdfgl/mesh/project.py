@@ -17,15 +17,16 @@ def project(field: GPUField, verts: np.ndarray, step: float, iterations: int = 4
     v = np.array(verts, dtype=np.float64)
     eps = 0.05 * step
     f, g = field.gradient(v, eps)
+    todo = np.nonzero(np.abs(f) > TOLERANCE * step)[0]  # only moved vertices can change
     for _ in range(iterations):
-        todo = np.abs(f) > TOLERANCE * step
-        if not todo.any():
+        if not len(todo):
             break
-        gg = np.maximum(np.einsum("ij,ij->i", g[todo], g[todo]), 1e-12)
-        d = (f[todo] / gg)[:, None] * g[todo]
-        length = np.linalg.norm(d, axis=1, keepdims=True)
+        gt = g[todo]
+        d = (f[todo] / np.maximum(np.einsum("ij,ij->i", gt, gt), 1e-12))[:, None] * gt
+        length = np.sqrt(np.einsum("ij,ij->i", d, d))[:, None]
         d *= np.minimum(1.0, 0.5 * step / np.maximum(length, 1e-300))
         v[todo] -= d
         f[todo], g[todo] = field.gradient(v[todo], eps)
-    norm = np.linalg.norm(g, axis=1, keepdims=True)
-    return v, g / np.maximum(norm, 1e-30)
+        todo = todo[np.abs(f[todo]) > TOLERANCE * step]
+    g /= np.maximum(np.sqrt(np.einsum("ij,ij->i", g, g)), 1e-30)[:, None]
+    return v, g
