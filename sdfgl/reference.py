@@ -28,7 +28,8 @@ from .nodes.base import Node
 from .render import RenderResult
 
 MAX_ITERATIONS = 200_000
-ROUNDING = 2.0 ** -22   # the float32 band around f = 0, relative to |o - centre| + t
+ROUNDING = 2.0 ** -21   # the float32 band below f = 0: 8 unit roundoffs of |o - centre| + t (the
+                        # ray position takes two roundings, the field a few more)
 
 
 @dataclass
