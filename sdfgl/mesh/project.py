@@ -12,20 +12,8 @@ def project(field: GPUField, verts: np.ndarray, step: float, iterations: int = 4
     """(vertices on the surface, unit outward normals there).
 
     Each step moves a vertex by -f grad / |grad|^2, at most half a cell, so a vertex near a
-    thin wall or a crease stays on its own side of it.
+    thin wall or a crease stays on its own side of it. All steps run in one GPU draw
+    (GPUField.project).
     """
-    v = np.array(verts, dtype=np.float64)
-    eps = 0.05 * step
-    f, g = field.gradient(v, eps)
-    for _ in range(iterations):
-        todo = np.abs(f) > TOLERANCE * step
-        if not todo.any():
-            break
-        gg = np.maximum(np.einsum("ij,ij->i", g[todo], g[todo]), 1e-12)
-        d = (f[todo] / gg)[:, None] * g[todo]
-        length = np.linalg.norm(d, axis=1, keepdims=True)
-        d *= np.minimum(1.0, 0.5 * step / np.maximum(length, 1e-300))
-        v[todo] -= d
-        f[todo], g[todo] = field.gradient(v[todo], eps)
-    norm = np.linalg.norm(g, axis=1, keepdims=True)
-    return v, g / np.maximum(norm, 1e-30)
+    move, normals = field.project(verts, 0.05 * step, TOLERANCE * step, 0.5 * step, iterations)
+    return np.asarray(verts, np.float64) + move, normals
