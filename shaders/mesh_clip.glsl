@@ -9,3 +9,14 @@ float clippedMap(vec3 p) {
     float box = length(max(q, 0.0)) + min(max(q.x, max(q.y, q.z)), 0.0);
     return max(map(p), box);
 }
+
+// (gradient, value) of the clipped field at p: the value at p and the tetrahedral central
+// difference of IQ's normal, with spacing eps.
+vec4 clippedGradient(vec3 p, float eps) {
+    const vec2 k = vec2(1.0, -1.0);
+    float a = clippedMap(p + k.xyy * eps);
+    float b = clippedMap(p + k.yyx * eps);
+    float c = clippedMap(p + k.yxy * eps);
+    float d = clippedMap(p + k.xxx * eps);
+    return vec4((k.xyy * a + k.yyx * b + k.yxy * c + k.xxx * d) / (4.0 * eps), clippedMap(p));
+}

@@ -253,6 +253,29 @@ def headless_context() -> moderngl.Context:
     return gl_thread().ctx
 
 
+def _gl_finish_fn() -> Callable[[], None] | None:
+    if _EGL is None:
+        return None
+    get = _EGL.eglGetProcAddress
+    get.restype, get.argtypes = ctypes.c_void_p, [ctypes.c_char_p]
+    address = get(b"glFinish")
+    return ctypes.CFUNCTYPE(None)(address) if address else None
+
+
+_GL_FINISH = _gl_finish_fn()
+
+
+def finish(ctx: moderngl.Context) -> None:
+    """Wait for the GL work queued on the calling (GL) thread's context, letting other Python
+    threads run meanwhile: moderngl holds the GIL while it waits (in ctx.finish() or a read),
+    a ctypes call does not, so numpy work on another thread overlaps llvmpipe's rasterizing.
+    (A context EGL did not make, e.g. a window's, waits through moderngl.)"""
+    if _GL_FINISH is not None and _EGL.eglGetCurrentContext():
+        _GL_FINISH()
+    else:
+        ctx.finish()
+
+
 def describe(ctx: moderngl.Context) -> str:
     """One line naming the GL implementation, e.g. 'llvmpipe (LLVM 15.0.6) / OpenGL 4.5'."""
     info = ctx.info

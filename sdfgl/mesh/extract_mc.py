@@ -25,6 +25,7 @@ from .crossings import separate
 from .lattice import BLOCK, CHUNK, Lattice
 from .sparse import analysed
 
+WORKERS = 2            # threads extracting chunks while the GPU samples the next ones
 _CELLS = CHUNK * BLOCK  # cells per chunk side
 _S = _CELLS + 1         # side of a chunk's vertex table: one layer more, always empty (next chunk)
 # the vertices a cell owns: its crossing edges among edges 0, 4, 8 (from corner 0 along x, y, z)
@@ -144,9 +145,11 @@ def _chunk(ch, lat: Lattice) -> Part:  # noqa: ANN001
     separate(v1, h)
     origin = np.asarray(ch.origin, np.int64) * BLOCK
     lv = local[vc]
-    p = lv + origin.astype(np.float64)
-    p[np.arange(len(va)), va] += v0 / (v0.astype(np.float64) - v1)
-    verts = lat.start + p * h
+    verts = lv.astype(np.float64)
+    verts += origin
+    verts.reshape(-1)[np.arange(0, 3 * len(va), 3) + va] += v0 / (v0.astype(np.float64) - v1)
+    verts *= h
+    verts += lat.start
     # triangles: table edges -> entries of the chunk's vertex table
     cnt = _TRI_COUNT[cc]
     first = np.cumsum(cnt, dtype=np.int32) - cnt                           # first triangle of each cell
@@ -156,11 +159,12 @@ def _chunk(ch, lat: Lattice) -> Part:  # noqa: ANN001
     entry = 3 * cf[vc] + va
     table = _take_table()
     table[entry] = np.arange(len(entry), dtype=np.int32)
-    faces = table[(3 * cf)[ci][:, None] + steps].reshape(-1)
+    steps += (3 * cf)[ci][:, None]
+    faces = np.take(table, steps.reshape(-1))
     table[entry] = -1  # (a table an exception leaves dirty is not given back)
     _give_table(table)
     ext = np.flatnonzero(faces < 0)  # vertices a cell of the next chunk holds
-    e_ext = _STEP_EDGE[steps.reshape(-1)[ext]]
+    e_ext = _STEP_EDGE[steps.reshape(-1)[ext] - 3 * cf[ci[ext // 3]]]
     ext_key = edge_keys(origin + local[ci[ext // 3]] + EDGE_OFFSET[e_ext], EDGE_AXIS[e_ext], lat.cells)
     seam_vid = np.flatnonzero(lv[:, 0] * lv[:, 1] * lv[:, 2] == 0)  # vertices on the chunk's lower faces
     seam_key = edge_keys(origin + lv[seam_vid], va[seam_vid], lat.cells)
@@ -210,7 +214,7 @@ def march(chunks, lat: Lattice) -> tuple[np.ndarray, np.ndarray]:  # noqa: ANN00
     """(vertices (N, 3) world, triangles (M, 3) int64, wound counter-clockwise seen from
     outside; no degenerate or repeated triangles, every vertex used unless a crossing edge
     lies in a block the skip test dropped, whose triangles are then left out)."""
-    parts = [p for p in analysed(chunks, _chunk, lat) if len(p.verts)]
+    parts = [p for p in analysed(chunks, _chunk, lat, workers=WORKERS) if len(p.verts)]
     if not parts:
         return np.zeros((0, 3)), np.zeros((0, 3), np.int64)
     return _merge(parts)

@@ -1,7 +1,8 @@
 """The scene's generated map() on the GPU, as the mesh exporter needs it.
 
-Three draws, all from the same codegen as render() (targets mesh_grid, mesh_gradient, evaluate_color):
-lattice blocks of field values, value + gradient at points, colour at points. The field is
+Four draws, all from the same codegen as render() (targets mesh_grid, mesh_gradient, mesh_project,
+evaluate_color): lattice blocks of field values, value + gradient at points, points moved onto the
+surface, colour at points. The field is
 map() cut by the sampling box (shaders/mesh_clip.glsl), so solids that leave the box close.
 """
 from __future__ import annotations
@@ -9,6 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..codegen import generate
+from ..gl.context import finish
 from ..nodes.base import Node
 from ..render import Renderer, default_renderer, scene_uniforms, shader_origin
 from ..settings import Settings
@@ -44,7 +46,10 @@ class GPUField:
         return prog
 
     def _draw(self, prog, w: int, h: int, comps: int, inputs: np.ndarray | None = None,
-              input_width: int = 0) -> np.ndarray:
+              input_width: int = 0, outputs: int = 1) -> np.ndarray:
+        """One full-screen draw of ``prog`` into ``outputs`` float targets of ``comps`` channels,
+        ``inputs`` (N, 3) given as a texture ``input_width`` texels wide: (w * h, comps) read
+        back, or (outputs, w * h, comps) when ``outputs`` > 1."""
         ctx = self.r.ctx
         tex = None
         if inputs is not None:
@@ -54,18 +59,21 @@ class GPUField:
             data[:len(inputs), :3] = inputs
             tex = ctx.texture((iw, ih), 4, data.tobytes(), dtype="f4")
             tex.filter = (ctx.NEAREST, ctx.NEAREST)
-        out = ctx.texture((w, h), comps, dtype="f4")
-        fbo = ctx.framebuffer(color_attachments=[out])
+        outs = [ctx.texture((w, h), comps, dtype="f4") for _ in range(outputs)]
+        fbo = ctx.framebuffer(color_attachments=outs)
         try:
             if tex is not None:
                 tex.use(0)
             fbo.use()
             ctx.viewport = (0, 0, w, h)
             self.r.vao(prog).render(vertices=3)
-            return np.frombuffer(out.read(), dtype=np.float32).reshape(-1, comps)
+            finish(ctx)  # rasterizes with the GIL released: the extraction thread runs meanwhile
+            got = [np.frombuffer(o.read(), dtype=np.float32).reshape(-1, comps) for o in outs]
+            return got[0] if outputs == 1 else np.stack(got)
         finally:
             fbo.release()
-            out.release()
+            for o in outs:
+                o.release()
             if tex is not None:
                 tex.release()
 
@@ -101,33 +109,48 @@ class GPUField:
         self.samples += len(corners) * per
         return out
 
-    def _at_points(self, target: str, points: np.ndarray, comps: int, eps: float = 0.0) -> np.ndarray:
-        return self.r.run(self._at_points_gl, target, points, comps, eps)
+    def _at_points(self, target: str, points: np.ndarray, comps: int, outputs: int = 1,
+                   **uniforms: float) -> np.ndarray:
+        return self.r.run(self._at_points_gl, target, points, comps, outputs, uniforms)
 
-    def _at_points_gl(self, target: str, points: np.ndarray, comps: int, eps: float) -> np.ndarray:
+    def _at_points_gl(self, target: str, points: np.ndarray, comps: int, outputs: int,
+                      uniforms: dict[str, float]) -> np.ndarray:
+        """(outputs, N, comps) float32: ``target``'s outputs at points, ``uniforms`` set by name."""
         pts = np.asarray(points, np.float64).reshape(-1, 3)
-        out = np.empty((len(pts), comps), np.float32)
+        out = np.empty((outputs, len(pts), comps), np.float32)
         if len(pts) == 0:
             return out
         prog = self._program(target)
-        if "uEps" in prog:
-            prog["uEps"].value = float(eps)
+        for name, value in uniforms.items():
+            if name in prog:
+                prog[name].value = value
         if "uPoints" in prog:
             prog["uPoints"].value = 0
         for s in range(0, len(pts), MAX_TEXELS):
             part = pts[s:s + MAX_TEXELS]
             w = min(len(part), _WIDTH)
             h = -(-len(part) // w)
-            out[s:s + len(part)] = self._draw(prog, w, h, comps if comps != 3 else 4, part - self.origin, w)[
-                :len(part), :comps]
+            got = self._draw(prog, w, h, comps if comps != 3 else 4, part - self.origin, w, outputs)
+            out[:, s:s + len(part)] = got.reshape(outputs, -1, got.shape[-1])[:, :len(part), :comps]
         return out
 
     def gradient(self, points: np.ndarray, eps: float) -> tuple[np.ndarray, np.ndarray]:
         """(value (N,), gradient (N, 3)) of the clipped field at points; differences ``eps`` wide."""
-        v = self._at_points("mesh_gradient", points, 4, eps)
+        v = self._at_points("mesh_gradient", points, 4, uEps=float(eps))[0]
         self.point_samples += 5 * len(v)
         return v[:, 3].astype(np.float64), v[:, :3].astype(np.float64)
 
+    def project(self, points: np.ndarray, eps: float, tolerance: float, max_move: float,
+                iterations: int) -> tuple[np.ndarray, np.ndarray]:
+        """Newton steps onto the surface, all in one draw (shaders/mesh_project_main.glsl):
+        (move to add to each point (N, 3) float64, unit gradient at the moved point (N, 3)). Each
+        step moves a point by -f grad / |grad|^2, at most ``max_move``; a point stops when
+        |f| <= ``tolerance`` or after ``iterations`` steps; gradients are differences ``eps`` wide."""
+        move, normal = self._at_points("mesh_project", points, 4, 2, uEps=float(eps), uTol=float(tolerance),
+                                     uMaxMove=float(max_move), uIterations=int(iterations))
+        self.point_samples += 5 * int(move[:, 3].sum())
+        return move[:, :3].astype(np.float64), normal[:, :3].astype(np.float64)
+
     def colors(self, points: np.ndarray) -> np.ndarray:
         """The scene's colour field (linear RGB in 0..1, float32 (N, 3)) at points."""
-        return self._at_points("evaluate_color", points, 3)
+        return self._at_points("evaluate_color", points, 3)[0]
