@@ -57,10 +57,9 @@ class Settings:
     ref_step: the step of "reference" (default: the scene size / 512).
     newton_cap: the Newton methods' step is at most this many times the field value
         (default 2; None for the seed thesis's uncapped Newton step).
-    max_steps: marching iterations a primary ray may spend (default 1024); an iteration
-        near a surface may take a few map() calls (the sign test's probe). A ray that
-        runs out is drawn as a miss. Rays through fields of many small parts at low
-        angles pass close to dozens of surfaces and need several hundred.
+    max_steps: the marching budget of a primary ray: loop rounds away from surfaces (one
+        map() call each, a few more with a probe); the rounds that settle a ray near a
+        surface (near misses) are counted apart, up to 2 max_steps rounds in all.
     hit: "cone" (distance below hit_scale pixel footprints), "relative" (below
         hit_scale * t) or "absolute" (below hit_scale).
     hit_scale: the factor of the hit test.

@@ -16,7 +16,8 @@
 // product of SDFs); can take a far root when a step jumps a whole object. NEWTON_CAP (a
 // setting, 2 by default) caps a Newton step at that many times the field value, which
 // keeps it from jumping thin parts of fields that are near-distances (an implicit
-// surface's f / |grad f|).
+// surface's f / |grad f|). Budget as in march_relaxed.glsl: MAX_STEPS rounds away from
+// surfaces, the rounds that start within the hit threshold counted apart (2 MAX_STEPS in all).
 float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
     float roLen = length(ro);
 #ifdef FORWARD_NEWTON
@@ -30,7 +31,9 @@ float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
     float fCarry = 0.0;
     int rounds = 0;
     float rRound = 3.0e38;  // the field when rounds last restarted
-    for (int i = 0; i < MAX_STEPS; i++) {
+    int nearRounds = 0;     // rounds that started within the hit threshold: counted apart
+    for (int i = 0; i < 2 * MAX_STEPS; i++) {
+        if (i - nearRounds >= MAX_STEPS) break;  // out of steps away from surfaces
         float f = fCarry;
         if (!carry) {
             f = map(ro + rd * t);
@@ -52,6 +55,7 @@ float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
         }
         float df = rayDerivative(ro, rd, t, f, steps);
         if (f < hitEpsilon(t)) {
+            nearRounds++;
             float ms = minProbe(t, roLen);
             float b = t + probeStep(f, -df, ms);
             float fb = UNSAMPLED;

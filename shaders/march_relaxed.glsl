@@ -13,9 +13,12 @@
 // The hit test (refine.glsl): a sample within the hit threshold (hitEpsilon) of a
 // surface probes past the root the slope predicts and needs a sign change; a near miss
 // goes on marching. A sample below 0 brackets the root. Far from the surface, a ray
-// closing in at a shallow angle probes the predicted root every fourth step. A ray
-// that runs out of steps is a miss: undecided, it is not drawn as a surface that may
-// not be there.
+// closing in at a shallow angle probes the predicted root every fourth step.
+// Budget: at most MAX_STEPS loop rounds away from surfaces and 2 MAX_STEPS in all; the
+// rounds that start within the hit threshold (near misses, probes from closer in) are
+// counted apart, so a ray that passes near many surfaces (a repetition seen at a low
+// angle) keeps the sphere steps a ray without near misses has. A ray out of steps is a
+// miss: undecided, it is not drawn as a surface that may not be there.
 float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
     float roLen = length(ro);
     float t = tmin;
@@ -30,7 +33,9 @@ float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
     float rRound = 3.0e38;   // r when rounds last restarted
     int sinceProbe = 0;      // steps since the last shallow-angle probe
     int nearSteps = 0;
-    for (int i = 0; i < MAX_STEPS; i++) {
+    int nearRounds = 0;      // rounds that started within the hit threshold
+    for (int i = 0; i < 2 * MAX_STEPS; i++) {
+        if (i - nearRounds >= MAX_STEPS) break;  // out of steps away from surfaces
         float r = rCarry;
         if (!carry) {
             r = map(ro + rd * t);
@@ -50,6 +55,7 @@ float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
         float eps = hitEpsilon(t);
         float s = rPrev >= 0.0 ? (rPrev - r) / max(t - tPrev, 1e-30) : 0.0;
         if (r < eps) {
+            nearRounds++;
             if (s < 0.5 && (++nearSteps & 1) == 0) {
                 tPrev = t;  // at a shallow angle, every other step near the surface is a
                 rPrev = r;  // plain one: most such rays pass by
