@@ -35,10 +35,10 @@ def _add_settings(p: argparse.ArgumentParser) -> None:
     p.add_argument("--ground", action="store_true", help="add an analytic ground plane under the scene")
     p.add_argument("--method", choices=METHODS, default="auto", help="marching method (default auto: enhanced, "
                    "newton for implicit fields)")
-    p.add_argument("--max-steps", type=int, default=1024, help="marching iterations per primary ray, 1..100000 (default 1024)")
+    p.add_argument("--max-steps", type=int, default=256, help="marching rounds per primary ray away from surfaces, 1..100000 (default 256; near-surface rounds are counted apart, up to twice that in all)")
 
 
-CLI_DEFAULTS = {"aa": 1, "shadows": "soft", "ao": True, "ground": False, "method": "auto", "max_steps": 1024}
+CLI_DEFAULTS = {"aa": 1, "shadows": "soft", "ao": True, "ground": False, "method": "auto", "max_steps": 256}
 
 
 def _overrides(a: argparse.Namespace) -> dict[str, object]:

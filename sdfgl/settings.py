@@ -98,7 +98,7 @@ class Settings:
     omega: Any = None
     ref_step: Any = None
     newton_cap: Any = 2.0
-    max_steps: int = 1024
+    max_steps: int = 256
     hit: str = "cone"
     hit_scale: float = 0.25
     max_dist: float = 1000.0

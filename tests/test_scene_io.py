@@ -286,7 +286,7 @@ def test_cli_renders_and_prints_a_json_scene(tmp_path):
                        timeout=120)
     assert r.returncode == 0, r.stderr
     assert r.stdout == sg.compile(sf.scene, aa=1, ao=False, shadows="soft", ground=False, method="enhanced",
-                                  max_steps=1024)
+                                  max_steps=256)
     bad = tmp_path / "bad.json"
     bad.write_text(_doc({"kind": "sphere", "radius": "x"}))
     r = subprocess.run([sys.executable, "-m", "sdfgl", "render", str(bad), "-o", str(tmp_path / "o.png")],
