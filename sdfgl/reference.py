@@ -120,19 +120,16 @@ def _shallow(scene: Node, o: np.ndarray, d: np.ndarray, t_hit: np.ndarray, band:
     out = np.zeros(t_hit.shape, dtype=bool)
     idx = np.nonzero(np.isfinite(t_hit))[0]
     t = t_hit[idx] + near
-    f = scene.distance(o[idx] + d[idx] * t[:, None])
-    keep = f > -band[idx]
-    idx, t, f = idx[keep], t[keep], f[keep]
     for _ in range(limit):
         if idx.size == 0:
             break
+        f = scene.distance(o[idx] + d[idx] * t[:, None])
+        keep = f > -band[idx]  # deeper than the band: a plain hit, no longer followed
+        idx, t, f = idx[keep], t[keep], f[keep]
         left = f >= 0
         out[idx[left]] = True  # out again without going deeper than the band
         idx, t, f = idx[~left], t[~left], f[~left]
         t = t + np.maximum(np.abs(f) / lip, near)
-        f = scene.distance(o[idx] + d[idx] * t[:, None])
-        keep = f > -band[idx]
-        idx, t, f = idx[keep], t[keep], f[keep]
     return out
 
 
