@@ -21,8 +21,8 @@ from .lattice import BLOCK, Lattice
 from .sample import GPUField
 
 SVD_CUT = 0.03  # singular values below this share of the largest are dropped
-# how far (cells) a vertex may leave its cell: a corner that pokes into a cell without crossing
-# any of its edges is found from the cells beside it
+# how far (cells) a vertex may leave its cell: the planes of a cell often meet at a corner or
+# edge just beside it (clipped to the cell, 45 of 60 random boxes had a corner > 0.1 cell off)
 REACH = 1.0
 EPS = 0.02  # gradient stencils this share of a cell wide
 
