@@ -11,12 +11,17 @@ float clippedMap(vec3 p) {
 }
 
 // (gradient, value) of the clipped field at p: the value at p and the tetrahedral central
-// difference of IQ's normal, with spacing eps.
-vec4 clippedGradient(vec3 p, float eps) {
+// difference of IQ's normal, with spacing eps. bend: the mean of the four samples minus the
+// value at p; zero where the field is linear across the stencil, about eps^2 / 2 times the
+// Laplacian where it is smooth, and of order eps where the stencil straddles a crease of the
+// field (a box edge, a CSG cut): there the difference mixes the two sides' gradients.
+vec4 clippedGradient(vec3 p, float eps, out float bend) {
     const vec2 k = vec2(1.0, -1.0);
     float a = clippedMap(p + k.xyy * eps);
     float b = clippedMap(p + k.yyx * eps);
     float c = clippedMap(p + k.yxy * eps);
     float d = clippedMap(p + k.xxx * eps);
-    return vec4((k.xyy * a + k.yyx * b + k.yxy * c + k.xxx * d) / (4.0 * eps), clippedMap(p));
+    float f = clippedMap(p);
+    bend = 0.25 * (a + b + c + d) - f;
+    return vec4((k.xyy * a + k.yyx * b + k.yxy * c + k.xxx * d) / (4.0 * eps), f);
 }

@@ -14,13 +14,14 @@ layout(location = 1) out vec4 outNormal;  // (unit gradient at the end point, va
 void main() {
     vec3 p0 = texelFetch(uPoints, ivec2(gl_FragCoord.xy), 0).xyz;
     vec3 move = vec3(0.0);
-    vec4 gf = clippedGradient(p0, uEps);
+    float bend;  // unused here
+    vec4 gf = clippedGradient(p0, uEps, bend);
     int calls = 1;
     for (int i = 0; i < uIterations && abs(gf.w) > uTol; i++) {
         vec3 d = gf.w / max(dot(gf.xyz, gf.xyz), 1e-12) * gf.xyz;
         d *= min(1.0, uMaxMove / max(length(d), 1e-30));
         move -= d;
-        gf = clippedGradient(p0 + move, uEps);
+        gf = clippedGradient(p0 + move, uEps, bend);
         calls++;
     }
     outMove = vec4(move, float(calls));

@@ -1,8 +1,9 @@
 """Dual contouring (Ju et al. 2002), vectorised: sharp edges and corners from field gradients.
 
 Every lattice edge whose ends differ in sign gives a crossing point (linear interpolation
-of the samples) and a normal (the GPU gradient there). Each cell that touches crossing
-edges gets one vertex, the minimiser of the quadric sum((n_i . (x - p_i))^2), solved with
+of the samples, then Newton steps along the edge) and a normal (the GPU gradient there; a
+crossing on a crease of the field gets its faces' normals instead, sdfgl.mesh.creases). Each
+cell that touches crossing edges gets one vertex, the minimiser of the quadric sum((n_i . (x - p_i))^2), solved with
 small singular values cut (so flat and edge cells fall back towards the crossings' mean,
 as in Lindstrom's and Ju's treatment) and kept inside the cell. Each crossing edge gives
 one quad over the four cells around it, wound so it faces increasing field. A cell that
@@ -14,28 +15,31 @@ from __future__ import annotations
 import numpy as np
 
 from .cells import COMPONENT, edge_index
+from .creases import planes
 from .crossings import crossings
 from .lattice import BLOCK, Lattice
 from .sample import GPUField
 
 SVD_CUT = 0.03  # singular values below this share of the largest are dropped
-# how far (cells) a vertex may leave its cell: a corner that pokes into a cell without crossing
-# any of its edges is found from the cells beside it
+# how far (cells) a vertex may leave its cell: the planes of a cell often meet at a corner or
+# edge just beside it (clipped to the cell, 45 of 60 random boxes had a corner > 0.1 cell off)
 REACH = 1.0
+EPS = 0.02  # gradient stencils this share of a cell wide
 
 
 def refine(field: GPUField, lat: Lattice, low: np.ndarray, axis: np.ndarray, t: np.ndarray, inside: np.ndarray,
-           iterations: int = 6) -> tuple[np.ndarray, np.ndarray]:
-    """Crossing points put on the surface along their edges, and the field gradient there.
+           iterations: int = 6) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Crossing points put on the surface along their edges and the field gradient there.
 
     Linear interpolation is off where the field bends, as it does beside an edge or a corner of
     the solid; Newton steps along the edge fix that, kept inside the bracket that the signs
     seen so far allow (a step that would leave it bisects instead: inside a box near a corner
-    the slope along the edge can be nearly zero). Points within ``1e-4`` cell stop early."""
+    the slope along the edge can be nearly zero). Points within ``1e-4`` cell stop early.
+    Returns (t, gradient, bend of its stencil: see sdfgl.mesh.creases)."""
     h = lat.step
     unit = np.eye(3)[axis]
     lo, hi = np.zeros_like(t), np.ones_like(t)
-    f, grad = field.gradient(lat.start + (low + unit * t[:, None]) * h, 0.02 * h)
+    f, grad, bend = field.gradient_bend(lat.start + (low + unit * t[:, None]) * h, EPS * h)
     for _ in range(iterations):
         todo = np.nonzero(np.abs(f) > 1e-4 * h)[0]
         if len(todo) == 0:
@@ -48,8 +52,9 @@ def refine(field: GPUField, lat: Lattice, low: np.ndarray, axis: np.ndarray, t: 
         newton = tt - ff / np.where(slope != 0, slope, 1.0)
         good = (slope != 0) & (newton > lo[todo]) & (newton < hi[todo])
         t[todo] = np.where(good, newton, (lo[todo] + hi[todo]) / 2)
-        f[todo], grad[todo] = field.gradient(lat.start + (low[todo] + unit[todo] * t[todo, None]) * h, 0.02 * h)
-    return t, grad
+        f[todo], grad[todo], bend[todo] = field.gradient_bend(
+            lat.start + (low[todo] + unit[todo] * t[todo, None]) * h, EPS * h)
+    return t, grad, bend
 
 
 RING = np.array([(-1, -1), (0, -1), (0, 0), (-1, 0)])
@@ -84,8 +89,9 @@ def dual_contour(chunks, lat: Lattice, field: GPUField) -> tuple[np.ndarray, np.
         return np.zeros((0, 3)), np.zeros((0, 3), np.int64)
     low, axis, t, inside, cell_keys, cell_cases, _ = found
     h = lat.step
-    t, grad = refine(field, lat, low, axis, t, inside)
-    n = grad / np.maximum(np.linalg.norm(grad, axis=1, keepdims=True), 1e-30)
+    t, grad, bend = refine(field, lat, low, axis, t, inside)
+    points = lat.start + (low + np.eye(3)[axis] * t[:, None]) * h
+    owner, n, w = planes(field, points, grad, bend, EPS * h)
     cells, local_edge = _quad_cells(low, axis)           # (E, 4, 3), (E, 4)
     nc = np.asarray(lat.cells, np.int64)
     keys = (cells[..., 0] * nc[1] + cells[..., 1]) * nc[2] + cells[..., 2]
@@ -96,22 +102,23 @@ def dual_contour(chunks, lat: Lattice, field: GPUField) -> tuple[np.ndarray, np.
     uk //= 4
     # quadric of each vertex, accumulated over its crossing edges (in cell units about the cell corner)
     cell_lo = np.stack([uk // (nc[1] * nc[2]), (uk // nc[2]) % nc[1], uk % nc[2]], 1)
-    idx = inv.ravel()
-    local = (np.repeat(low + np.eye(3)[axis] * t[:, None], 4, axis=0) - cell_lo[idx])
+    idx = inv[owner].ravel()
+    local = (np.repeat((low + np.eye(3)[axis] * t[:, None])[owner], 4, axis=0) - cell_lo[idx])
     nn = np.repeat(n, 4, axis=0)
+    w = np.repeat(w, 4)
     m = len(uk)
     ata = np.empty((m, 3, 3))
     for i in range(3):
         for j in range(i, 3):
-            ata[:, i, j] = ata[:, j, i] = np.bincount(idx, nn[:, i] * nn[:, j], m)
-    d = np.einsum("ij,ij->i", nn, local)
+            ata[:, i, j] = ata[:, j, i] = np.bincount(idx, w * nn[:, i] * nn[:, j], m)
+    d = np.einsum("ij,ij->i", nn, local) * w
     atb = np.stack([np.bincount(idx, nn[:, i] * d, m) for i in range(3)], 1)
-    cnt = np.bincount(idx, minlength=m)[:, None]
-    mass = np.stack([np.bincount(idx, local[:, i], m) for i in range(3)], 1) / cnt
+    first = slice(0, 4 * len(t))  # the crossings' own rows, one each: the mass point
+    cnt = np.bincount(idx[first], minlength=m)[:, None]
+    mass = np.stack([np.bincount(idx[first], local[first, i], m) for i in range(3)], 1) / cnt
     x = np.clip(_solve(ata, atb, mass), -REACH, 1.0 + REACH)
     verts = lat.start + (cell_lo + x) * h
     quads = np.where(inside[:, None], inv, inv[:, ::-1])
-    points = lat.start + (low + np.eye(3)[axis] * t[:, None]) * h
     extra, polygons, plain = unpinch(quads, len(verts), low, axis, inside, points)
     verts = np.concatenate([verts, extra])
     return verts, np.concatenate([split_quads(verts, quads[plain]), polygons])

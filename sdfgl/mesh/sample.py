@@ -140,6 +140,14 @@ class GPUField:
         self.point_samples += 5 * len(v)
         return v[:, 3].astype(np.float64), v[:, :3].astype(np.float64)
 
+    def gradient_bend(self, points: np.ndarray, eps: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(value (N,), gradient (N, 3), bend (N,)): as gradient(), plus the stencil's bend, the
+        mean of its four samples minus the value (shaders/mesh_clip.glsl); ``|bend|`` of order
+        ``eps |gradient|`` says the stencil straddles a crease and the gradient mixes its sides."""
+        v, b = self._at_points("mesh_gradient", points, 4, 2, uEps=float(eps))
+        self.point_samples += 5 * len(v)
+        return v[:, 3].astype(np.float64), v[:, :3].astype(np.float64), b[:, 0].astype(np.float64)
+
     def project(self, points: np.ndarray, eps: float, tolerance: float, max_move: float,
                 iterations: int) -> tuple[np.ndarray, np.ndarray]:
         """Newton steps onto the surface, all in one draw (shaders/mesh_project_main.glsl):
