@@ -11,13 +11,20 @@ from ..codegen import DEFAULT_COLOR
 from ..errors import ParameterError
 from ..nodes.base import Node
 from ..nodes.traverse import fact
-from .lattice import make_lattice
+from .deficit import volume_error
+from .lattice import Lattice, make_lattice
 from .project import project
 from .sample import GPUField
 from .sparse import Progress, chunks
 from .topology import clean
 
 MODES = ("mc", "sharp")
+# With no step, resolution or samples given, a mesh whose volume is estimated off by more than
+# VOLUME_TARGET (thin parts, small curved features) is made again at a finer step, at most
+# REFINE_PASSES times and never finer than 1 / FINEST of the default step.
+VOLUME_TARGET = 0.0025
+REFINE_PASSES = 2
+FINEST = 4
 
 
 def _colors(scene: Node, field: GPUField, verts: np.ndarray) -> np.ndarray:
@@ -34,7 +41,10 @@ def mesh(scene: Node, step: float | None = None, resolution: int | None = None, 
     """Triangle mesh of ``scene``'s solid from its generated map() sampled on the GPU.
 
     Give one of ``step`` (cell size), ``resolution`` (cells along the longest side of the
-    box) or ``samples`` (dense sample count, as fogleman/sdf counts; default 2^22).
+    box) or ``samples`` (dense sample count, as fogleman/sdf counts). With none of them the
+    mesh starts at 2^22 samples and, where its volume is then estimated off by more than
+    0.25 % (thin or small curved parts; sdfgl.mesh.deficit), is made again at a finer step,
+    up to 4x finer (the result's ``default_step`` is then the step it started from).
     ``bounds=(lo, hi)`` is the box to mesh (default: the scene's bounds padded by one cell;
     required for unbounded scenes); the solid is closed where the box cuts it.
     ``mode="mc"`` is marching cubes (smooth shapes, always manifold); ``"sharp"`` is dual
@@ -48,8 +58,33 @@ def mesh(scene: Node, step: float | None = None, resolution: int | None = None, 
         raise ParameterError(f"mesh: 'mode' must be one of {', '.join(MODES)}, got {mode!r}")
     t0 = time.perf_counter()
     lat = make_lattice(scene, step, resolution, samples, bounds)
-    field = GPUField(scene, *lat.box)
     show = sys.stderr.isatty() if progress is None else progress
+    verts, faces, normals, field, t1 = _extract(scene, lat, mode, show)
+    taken, default_step = field.samples, None
+    if step is None and resolution is None and samples is None:
+        for _ in range(REFINE_PASSES):
+            finer = _finer_step(field, verts, faces, lat.step, default_step or lat.step)
+            if finer is None:
+                break
+            try:
+                lat_finer = make_lattice(scene, step=finer, bounds=bounds)
+            except ParameterError:  # past MAX_CELLS: keep the mesh we have
+                break
+            default_step = default_step or lat.step
+            lat = lat_finer
+            verts, faces, normals, field, t1 = _extract(scene, lat, mode, show)
+            taken += field.samples
+    rgb = _colors(scene, field, verts) if colors and len(verts) else None
+    t2 = time.perf_counter()
+    timings = {"extract_s": t1[0] - t0, "project_s": t1[1], "total_s": t2 - t0}
+    return Mesh(verts, faces, normals, rgb, scene=scene, lattice=lat, mode=mode, timings=timings,
+                samples=taken, default_step=default_step)
+
+
+def _extract(scene: Node, lat: Lattice, mode: str, show: bool):
+    """(vertices, faces, normals, the GPUField, (time extraction ended, projection seconds)) of
+    one lattice."""
+    field = GPUField(scene, *lat.box)
     parts = chunks(field, lat, scene.lipschitz, Progress(sys.stderr if show else None))
     if mode == "mc":
         from .extract_mc import march
@@ -61,8 +96,16 @@ def mesh(scene: Node, step: float | None = None, resolution: int | None = None, 
     verts, normals = project(field, verts, lat.step)
     if mode != "mc":  # march() leaves no degenerate or repeated triangles and no unused vertex
         verts, faces, normals = clean(verts, faces, normals)
-    rgb = _colors(scene, field, verts) if colors and len(verts) else None
-    t2 = time.perf_counter()
-    timings = {"extract_s": t1 - t0, "project_s": t2 - t1, "total_s": t2 - t0}
-    return Mesh(verts, faces, normals, rgb, scene=scene, lattice=lat, mode=mode, timings=timings,
-                samples=field.samples)
+    return verts, faces, normals, field, (t1, time.perf_counter() - t1)
+
+
+def _finer_step(field: GPUField, verts: np.ndarray, faces: np.ndarray, step: float, first: float) -> float | None:
+    """The step to mesh again at when the default step leaves the volume off by more than
+    VOLUME_TARGET (estimated, sdfgl.mesh.deficit; the error falls with the step squared), or
+    None. Never finer than FINEST times the default step."""
+    if step <= first / FINEST * (1 + 1e-9):
+        return None
+    err = abs(volume_error(field, verts, faces, step))
+    if err <= VOLUME_TARGET:
+        return None
+    return max(step * 0.9 * (VOLUME_TARGET / err) ** 0.5, first / FINEST)

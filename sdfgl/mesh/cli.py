@@ -37,7 +37,8 @@ def cmd_mesh(a: argparse.Namespace) -> int:
         raise SdfglError("the scene has no surface inside the box: nothing to write")
     path = m.save(a.output)
     t = time.perf_counter() - t0
-    print(f"wrote {path}: {len(m.vertices)} vertices, {len(m.faces)} triangles, cell {m.step:.4g}, "
+    refined = "" if m.default_step is None else f" (refined from {m.default_step:.4g} for thin or small curved parts)"
+    print(f"wrote {path}: {len(m.vertices)} vertices, {len(m.faces)} triangles, cell {m.step:.4g}{refined}, "
           f"{m.timings['total_s']:.2f} s meshing, {t:.2f} s with writing")
     if not a.no_report:
         print(f"report: {m.report()}")

@@ -27,7 +27,9 @@ class Mesh:
         scene: the node it was meshed from; lattice: the sampling lattice (``step`` is its
             cell size); mode: "mc" (marching cubes) or "sharp" (dual contouring).
         timings: seconds per stage (``extract_s``, ``project_s``, ``total_s``).
-        samples: field samples the extraction took.
+        samples: field samples the extraction took (every pass).
+        default_step: with no size given, the default step the mesher refined from because
+            the volume was estimated off by more than 0.25 % there; None otherwise.
 
     ``save(path)`` writes STL/OBJ/PLY/glTF/3MF by suffix, ``to_trimesh()`` hands it to
     trimesh, ``report()`` measures it against the field.
@@ -49,6 +51,7 @@ class Mesh:
     mode: str = "mc"
     timings: dict[str, float] = field(default_factory=dict)
     samples: int = 0  # lattice samples it took (the dense lattice has lattice.samples)
+    default_step: float | None = None
 
     def __repr__(self) -> str:
         return f"Mesh({len(self.vertices)} vertices, {len(self.faces)} triangles, mode={self.mode!r})"

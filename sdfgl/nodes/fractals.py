@@ -54,6 +54,9 @@ class Sierpinski(Primitive):
         return np.full(3, -self.size), np.full(3, self.size)
 
 
+SPELLED = 6  # tree levels whose branches the bounds list one by one (4^6 of them at the deepest)
+
+
 class Tree(Primitive):
     """A branching tree: a trunk of ``height`` and ``radius`` on the origin, and ``levels``
     of four branches each, leaning out by ``angle`` degrees and shrinking by ``shrink``."""
@@ -102,8 +105,24 @@ class Tree(Primitive):
 
     @property
     def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
-        reach = (self.h + self.r) / (1.0 - self.k)  # the branches' lengths sum to less than this
-        return np.array([-reach, -self.r, -reach]), np.array([reach, reach, reach])
+        """Box of every branch's end points (the first ``SPELLED`` levels one by one, 4 ** level
+        of them, each mapped back through the folds), padded by the trunk's radius and, past
+        those levels, by the lengths the smaller branches can still add."""
+        ends = np.array([[0.0, 0.0, 0.0], [0.0, self.h, 0.0]])
+        c, s, k = self.c, self.s, self.k
+        found = [ends]
+        for level in range(1, min(self.levels, SPELLED) + 1):
+            q = ends
+            for _ in range(level):  # from the level's own frame to the parent's, up to the trunk's
+                u = k * q
+                y, z = -s * u[:, 2] + c * u[:, 1], c * u[:, 2] + s * u[:, 1]
+                x, y = c * u[:, 0] + s * y, -s * u[:, 0] + c * y
+                q = np.concatenate([np.stack([sx * x, y + self.h, sz * z], 1)
+                                    for sx in (1, -1) for sz in (1, -1)])
+            found.append(q)
+        pts = np.concatenate(found)
+        pad = self.r + ((self.h + self.r) * k ** (SPELLED + 1) / (1 - k) if self.levels > SPELLED else 0.0)
+        return pts.min(axis=0) - pad, pts.max(axis=0) + pad
 
 
 def sierpinski(levels: int = 5, size: float = 1.0) -> Sierpinski:
