@@ -631,8 +631,7 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     channel and map() at given points: see EVALUATE_CHANNELS; mesh colours and path-traced
     materials use them), or one of the mesh exporter's samplers (sdfgl.mesh: same map(), other main()s):
     ``"mesh_grid"`` (a lattice of blocks), ``"mesh_gradient"`` (value and gradient at points),
-    ``"mesh_project"`` (points moved onto the surface by Newton steps), ``"mesh_thickness"``
-    (the solid's half-thickness under surface points);
+    ``"mesh_project"`` (points moved onto the surface by Newton steps);
     ``dialect`` is ``"desktop"`` (GLSL 3.30) or ``"webgl2"`` (GLSL ES 3.00): the same
     code under another header (see :mod:`sdfgl.gl.dialect`); ``projection`` is the
     camera's ("perspective" or "orthographic": it shapes the rays). ``highlight`` is the
@@ -752,7 +751,7 @@ def _generate_once(scene: Node, settings: Settings, org: np.ndarray, target: str
         size = b.size_since(start)
         b.add_file("evaluate_main")
         return _sized(b.build(params, live, data), size, grids, origins)
-    if target in ("mesh_grid", "mesh_gradient", "mesh_project", "mesh_thickness"):
+    if target in ("mesh_grid", "mesh_gradient", "mesh_project"):
         size = b.size_since(start)
         b.add_file("mesh_clip")
         b.add_file(f"{target}_main")

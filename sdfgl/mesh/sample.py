@@ -1,8 +1,8 @@
 """The scene's generated map() on the GPU, as the mesh exporter needs it.
 
-Five draws, all from the same codegen as render() (targets mesh_grid, mesh_gradient, mesh_project,
-mesh_thickness, evaluate_color): lattice blocks of field values, value + gradient at points, points
-moved onto the surface, the solid's half-thickness under surface points, colour at points. The field is
+Four draws, all from the same codegen as render() (targets mesh_grid, mesh_gradient, mesh_project,
+evaluate_color): lattice blocks of field values, value + gradient at points, points moved onto the
+surface, colour at points. The field is
 map() cut by the sampling box (shaders/mesh_clip.glsl), so solids that leave the box close.
 """
 from __future__ import annotations
@@ -158,15 +158,6 @@ class GPUField:
                                      uMaxMove=float(max_move), uIterations=int(iterations))
         self.point_samples += 5 * int(move[:, 3].sum())
         return move[:, :3].astype(np.float64), normal[:, :3].astype(np.float64)
-
-    def thickness(self, points: np.ndarray, step: float, reach: float) -> np.ndarray:
-        """Half-thickness (N,) of the solid under surface points: the depth of the field's
-        minimum along the inward normal where it rises again within ``reach`` (samples ``step``
-        apart; shaders/mesh_thickness_main.glsl), 0 where the solid is thicker than that."""
-        v = self._at_points("mesh_thickness", points, 4, uEps=0.05 * float(step), uStep=float(step),
-                            uReach=float(reach))[0]
-        self.point_samples += int(v[:, 1].sum())
-        return v[:, 0].astype(np.float64)
 
     def colors(self, points: np.ndarray) -> np.ndarray:
         """The scene's colour field (linear RGB in 0..1, float32 (N, 3)) at points."""
