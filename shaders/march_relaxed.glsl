@@ -129,8 +129,8 @@ float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
             if (inside || near || shallow) {
                 if (shallow) sinceProbe = 0;
                 ms = minProbe(t, roLen);
-                S = inside ? settleStart(tPrev, rPrev, t, r)
-                           : settleStart(t, r, t + probeStep(r, s, ms), UNSAMPLED);
+                S = settleStart(inside ? tPrev : t, inside ? rPrev : r,  // (WebGL: no ?: on structs)
+                                inside ? t : t + probeStep(r, s, ms), inside ? r : UNSAMPLED);
                 settling = inside ? 1 : near ? 2 : 3;
                 sProbe = s;
                 continue;
