@@ -71,10 +71,10 @@ bool nearMiss(float t, float r, float b, float fb, float minStep, int rounds) {
 // scan the bracket is kept only if the first secant sample agrees with the straight line
 // (|f| below half of fa there, as on a face seen at a grazing angle), else -2.0: the
 // marcher steps closer in and probes again.
-// settle() runs this as a loop of its own; a marcher can instead take the samples in its
-// own loop (settleStart, then settlePoint / settleUpdate once a round), so that the shader
-// holds one copy of map() and the SIMD lanes of a block all sample in the same round
-// whether they march or settle (llvmpipe runs a nested loop for every lane of the block).
+// A marcher takes these samples in its own loop (settleStart, then settlePoint and
+// settleUpdate once a round, each map() call counted in steps): llvmpipe runs every branch
+// of a loop body for the whole block of pixels and a nested loop's body at least once per
+// round, so a settle() loop inside the marching loop cost a map() per marching step.
 #define SETTLE_MORE -4.0   // settleUpdate: the settling needs another sample
 
 struct Settle {
@@ -156,18 +156,4 @@ float settleUpdate(inout Settle S, float c, float fc) {
         if (S.b - S.a <= tol) S.calls = SETTLE_CALLS;  // the bracket is small enough: done
     }
     return S.calls < SETTLE_CALLS ? SETTLE_MORE : settleEnd(S);
-}
-
-// settle() in a loop of its own (one copy of map()); its map() calls are counted in steps.
-float settle(vec3 ro, vec3 rd, float a, float fa, float b, inout float fb, inout int steps) {
-    Settle S = settleStart(a, fa, b, fb);
-    float th = SETTLE_MORE;
-    for (int i = uZero; i < SETTLE_CALLS && th < -3.5; i++) {
-        float c = settlePoint(S);
-        float fc = map(ro + rd * c);
-        steps++;
-        th = settleUpdate(S, c, fc);
-    }
-    fb = S.fb;
-    return th;
 }
