@@ -19,6 +19,12 @@
 // counted apart, so a ray that passes near many surfaces (a repetition seen at a low
 // angle) keeps the sphere steps a ray without near misses has. A ray out of steps is a
 // miss: undecided, it is not drawn as a surface that may not be there.
+// One loop and one map() call a loop round: a round either samples t (a marching round)
+// or takes the next sample of a settling (settleUpdate); a settling that ends with the
+// field known where marching goes on (the probe, the sample before a dip) starts the next
+// marching round at once, with no sample of its own. On llvmpipe the lanes of a block then
+// share every round whether they march or settle, where a nested settle() loop made the
+// marching lanes wait and each call site added a copy of map().
 float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
     float roLen = length(ro);
     float t = tmin;
@@ -27,94 +33,106 @@ float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
     bool over = false;       // the step to t was longer than rPrev: check the spheres overlap
     bool relax = true;       // relaxed: false once a step failed
     bool haveSlope = false;  // enhanced: the previous sample is usable
-    bool carry = false;      // f(t) is known already (rCarry), from settle()'s probe
-    float rCarry = 0.0;
     int rounds = 0;          // probes from closer in while r stopped shrinking
     float rRound = 3.0e38;   // r when rounds last restarted
     int sinceProbe = 0;      // steps since the last shallow-angle probe
     int nearSteps = 0;
+    int marchRounds = 0;
     int nearRounds = 0;      // rounds that started within the hit threshold
-    for (int i = 0; i < 2 * MAX_STEPS; i++) {
-        if (i - nearRounds >= MAX_STEPS) break;  // out of steps away from surfaces
-        float r = rCarry;
-        if (!carry) {
-            r = map(ro + rd * t);
-            steps++;
-        }
-        carry = false;
-        if (over && abs(r) + rPrev < t - tPrev) {
-            t = tPrev + rPrev;  // back to where a plain step stands
-            over = relax = haveSlope = false;
-            continue;
-        }
-        if (r < 0.0) {
-            if (rPrev < 0.0) return t;  // the ray starts inside
-            float fb = r;
-            return settle(ro, rd, tPrev, rPrev, t, fb, steps);
-        }
-        float eps = hitEpsilon(t);
-        float s = rPrev >= 0.0 ? (rPrev - r) / max(t - tPrev, 1e-30) : 0.0;
-        if (r < eps) {
-            nearRounds++;
-            if (s < 0.5 && (++nearSteps & 1) == 0) {
-                tPrev = t;  // at a shallow angle, every other step near the surface is a
-                rPrev = r;  // plain one: most such rays pass by
-                t += r;
+    int settling = 0;        // 0: marching; 1: a bracketed root, 2: a near probe, 3: a shallow-angle probe
+    Settle S = settleStart(0.0, 0.0, 0.0, 0.0);
+    float ms = 0.0;          // a near probe's minimum step
+    float sProbe = 0.0;      // a shallow-angle probe's slope
+    for (int i = uZero; i < 2 * MAX_STEPS * (SETTLE_CALLS + 1); i++) {
+        if (settling == 0 && (marchRounds >= 2 * MAX_STEPS || marchRounds - nearRounds >= MAX_STEPS)) break;
+        float c = settling == 0 ? t : settlePoint(S);
+        float r = map(ro + rd * c);
+        steps++;
+        float s = 0.0;
+        bool stepOnly = false;  // the shallow-angle probe found no way on: the round's usual step
+        if (settling != 0) {
+            float th = settleUpdate(S, c, r);
+            if (th < -3.5) continue;
+            int kind = settling;
+            settling = 0;
+            if (kind == 1 || th >= 0.0) {
+                return kind == 1 || th <= tmax ? th : -1.0;
+            }
+            float r0 = S.fa0;  // f(t): the sample the probe started from
+            // (S.b, S.fb): the probe and f there, read only when th is -1.0
+            if (kind == 2) {
+                tPrev = t;
+                rPrev = r0;
                 over = false;
                 haveSlope = true;
-                continue;
-            }
-            float ms = minProbe(t, roLen);
-            float b = t + probeStep(r, s, ms);
-            float fb = UNSAMPLED;
-            float th = settle(ro, rd, t, r, b, fb, steps);
-            if (th >= 0.0) {
-                return th <= tmax ? th : -1.0;
-            }
-            tPrev = t;
-            rPrev = r;
-            over = false;
-            haveSlope = true;
-            if (th < -2.5) {
-                t = settleT;  // the probe's scan saw the field dip: go on from before the dip
-                carry = true;
-                rCarry = settleF;
-            } else if (th > -1.5 && nearMiss(t, r, b, fb, ms, rounds)) {
-                t = b;  // go on from the probe
-                carry = true;
-                rCarry = fb;
-                rounds = 0;
-                rRound = 3.0e38;
-            } else {
-                t += max(r, ms);  // a thin part may lie in the gap: the safe step (never 0), then probe again
-                if (r < 0.9 * rRound) {
-                    rRound = r;  // still closing in: not stuck
+                bool on = true;  // marching goes on with f known: r
+                if (th < -2.5) {
+                    t = settleT;  // the probe's scan saw the field dip: go on from before the dip
+                    r = settleF;
+                } else if (th > -1.5 && nearMiss(t, r0, S.b, S.fb, ms, rounds)) {
+                    t = S.b;  // go on from the probe
+                    r = S.fb;
                     rounds = 0;
+                    rRound = 3.0e38;
                 } else {
-                    rounds++;
+                    t += max(r0, ms);  // a thin part may lie in the gap: the safe step (never 0), then probe again
+                    on = false;
+                    if (r0 < 0.9 * rRound) {
+                        rRound = r0;  // still closing in: not stuck
+                        rounds = 0;
+                    } else {
+                        rounds++;
+                    }
                 }
-            }
-            if (t > tmax) return -1.0;
-            continue;
-        }
-        if (s > 1e-3 && s < 0.5 && ++sinceProbe >= 4) {
-            // closing in at a shallow angle: every fourth step, probe past the root the
-            // slope predicts (a plane seen at 0.5 degrees would take hundreds of steps)
-            sinceProbe = 0;
-            float b = t + probeStep(r, s, minProbe(t, roLen));
-            float fb = UNSAMPLED;
-            float th = settle(ro, rd, t, r, b, fb, steps);
-            if (th >= 0.0) {
-                return th <= tmax ? th : -1.0;
-            }
-            if (th < -2.5 || (th > -1.5 && r + fb >= 0.999 * (b - t))) {
-                tPrev = t;  // the spheres cover the way: go on from the probe (or from
-                rPrev = r;  // before the dip the probe's scan saw)
-                t = th < -2.5 ? settleT : b;
-                carry = true;
-                rCarry = th < -2.5 ? settleF : fb;
+                if (t > tmax) return -1.0;
+                if (!on) continue;
+            } else if (th < -2.5 || (th > -1.5 && r0 + S.fb >= 0.999 * (S.b - t))) {
+                tPrev = t;   // the spheres cover the way: go on from the probe (or from
+                rPrev = r0;  // before the dip the probe's scan saw)
+                t = th < -2.5 ? settleT : S.b;
+                r = th < -2.5 ? settleF : S.fb;
                 over = false;
                 if (t > tmax) return -1.0;
+            } else {
+                r = r0;
+                s = sProbe;
+                stepOnly = true;
+            }
+            if (!stepOnly && (marchRounds >= 2 * MAX_STEPS || marchRounds - nearRounds >= MAX_STEPS)) break;
+        }
+        if (!stepOnly) {
+            marchRounds++;
+            if (over && abs(r) + rPrev < t - tPrev) {
+                t = tPrev + rPrev;  // back to where a plain step stands
+                over = relax = haveSlope = false;
+                continue;
+            }
+            bool inside = r < 0.0;  // a bracketed root
+            if (inside && rPrev < 0.0) return t;  // the ray starts inside
+            s = rPrev >= 0.0 ? (rPrev - r) / max(t - tPrev, 1e-30) : 0.0;
+            bool near = !inside && r < hitEpsilon(t);
+            if (near) {
+                nearRounds++;
+                if (s < 0.5 && (++nearSteps & 1) == 0) {
+                    tPrev = t;  // at a shallow angle, every other step near the surface is a
+                    rPrev = r;  // plain one: most such rays pass by
+                    t += r;
+                    over = false;
+                    haveSlope = true;
+                    continue;
+                }
+            }
+            // far from the surface, closing in at a shallow angle: every fourth step, probe
+            // past the root the slope predicts (a plane seen at 0.5 degrees would take
+            // hundreds of steps)
+            bool shallow = !inside && !near && s > 1e-3 && s < 0.5 && ++sinceProbe >= 4;
+            if (inside || near || shallow) {
+                if (shallow) sinceProbe = 0;
+                ms = minProbe(t, roLen);
+                S = settleStart(inside ? tPrev : t, inside ? rPrev : r,  // (WebGL: no ?: on structs)
+                                inside ? t : t + probeStep(r, s, ms), inside ? r : UNSAMPLED);
+                settling = inside ? 1 : near ? 2 : 3;
+                sProbe = s;
                 continue;
             }
         }

@@ -70,76 +70,90 @@ bool nearMiss(float t, float r, float b, float fb, float minStep, int rounds) {
 // it that did not (marching goes on from there), or -2.0 when that is a itself. After the
 // scan the bracket is kept only if the first secant sample agrees with the straight line
 // (|f| below half of fa there, as on a face seen at a grazing angle), else -2.0: the
-// marcher steps closer in and probes again. All map() calls are in one loop (one copy of
-// map()) and counted in steps.
-float settle(vec3 ro, vec3 rd, float a, float fa, float b, inout float fb, inout int steps) {
-    int side = 0;
-    bool check = false;
-    int scan = 0;         // scan samples still to take
-    float scanStep = 0.0;
-    float a0 = a;         // the straight line the scan is held to: (a0, fa0) to (c0, 0)
-    float fa0 = fa;
-    float c0 = b;
-    for (int i = uZero; i < SETTLE_CALLS; i++) {
-        bool probing = fb >= UNSAMPLED;
-        float c = b;
-        if (scan > 0) {
-            c = a + scanStep;
-        } else if (!probing) {
-            c = b - fb * (b - a) / (fb - fa);
-            c = clamp(c, a + 0.01 * (b - a), b - 0.01 * (b - a));
+// marcher steps closer in and probes again.
+// A marcher takes these samples in its own loop (settleStart, then settlePoint and
+// settleUpdate once a round, each map() call counted in steps): llvmpipe runs every branch
+// of a loop body for the whole block of pixels and a nested loop's body at least once per
+// round, so a settle() loop inside the marching loop cost a map() per marching step.
+#define SETTLE_MORE -4.0   // settleUpdate: the settling needs another sample
+
+struct Settle {
+    float a, fa, b, fb;   // the bracket (fb = UNSAMPLED: b is a probe not sampled yet)
+    int side;             // Illinois: the side the last secant sample replaced
+    bool check;           // the next secant sample must agree with the straight line
+    int scan;             // scan samples still to take
+    float scanStep;
+    float a0, fa0, c0;    // the straight line the scan is held to: (a0, fa0) to (c0, 0)
+    int calls;            // samples taken
+};
+
+Settle settleStart(float a, float fa, float b, float fb) {
+    return Settle(a, fa, b, fb, 0, false, 0, 0.0, a, fa, b, 0);
+}
+
+// The ray parameter of the next sample.
+float settlePoint(Settle S) {
+    if (S.scan > 0) return S.a + S.scanStep;
+    if (S.fb >= UNSAMPLED) return S.b;
+    float c = S.b - S.fb * (S.b - S.a) / (S.fb - S.fa);
+    return clamp(c, S.a + 0.01 * (S.b - S.a), S.b - 0.01 * (S.b - S.a));
+}
+
+// The root where the bracket ends: its straight line's zero.
+float settleEnd(Settle S) {
+    return S.a + S.fa * (S.b - S.a) / (S.fa - S.fb);
+}
+
+// Takes the sample fc = f(c) at c = settlePoint(S): the result as settle() describes it,
+// or SETTLE_MORE while another sample is needed (at most SETTLE_CALLS in all).
+float settleUpdate(inout Settle S, float c, float fc) {
+    S.calls++;
+    if (S.scan > 0) {
+        S.scan--;
+        if (fc < 0.0) {
+            S.b = c;  // an earlier surface: the bracket ends at the first sample inside
+            S.fb = fc;
+            S.scan = 0;
+            S.check = false;
+        } else if (fc < SCAN_DIP * S.fa0 * (S.c0 - c) / (S.c0 - S.a0)) {
+            settleT = S.a;
+            settleF = S.fa;
+            return S.a > S.a0 ? -3.0 : -2.0;
+        } else {
+            S.a = c;
+            S.fa = fc;
         }
-        float fc = map(ro + rd * c);
-        steps++;
-        if (scan > 0) {
-            scan--;
-            if (fc < 0.0) {
-                b = c;  // an earlier surface: the bracket ends at the first sample inside
-                fb = fc;
-                scan = 0;
-                check = false;
-            } else if (fc < SCAN_DIP * fa0 * (c0 - c) / (c0 - a0)) {
-                settleT = a;
-                settleF = fa;
-                return a > a0 ? -3.0 : -2.0;
-            } else {
-                a = c;
-                fa = fc;
-            }
-            continue;
+    } else if (S.fb >= UNSAMPLED) {
+        S.fb = fc;
+        if (fc >= 0.0) return -1.0;
+        S.check = S.fa - fc < 0.999 * (S.b - S.a);
+        if (S.check) {
+            S.c0 = S.a + S.fa * (S.b - S.a) / (S.fa - fc);
+            S.scan = min(SCAN_POINTS, int((S.c0 - S.a) / (SCAN_SPACING * hitEpsilon(S.a))));
+            S.scanStep = (S.c0 - S.a) / float(S.scan + 1);
         }
-        if (probing) {
-            fb = fc;
-            if (fc >= 0.0) return -1.0;
-            check = fa - fc < 0.999 * (b - a);
-            if (check) {
-                c0 = a + fa * (b - a) / (fa - fc);
-                scan = min(SCAN_POINTS, int((c0 - a) / (SCAN_SPACING * hitEpsilon(a))));
-                scanStep = (c0 - a) / float(scan + 1);
-            }
-            continue;
-        }
+    } else {
         float tol = SETTLE_TOL * hitEpsilon(c);
-        if (check && abs(fc) > max(0.5 * fa, tol)) return -2.0;  // (within tol of 0 is a root anyway)
-        check = false;
-        float sLeft = (fa - fc) / (c - a);
-        float sRight = (fc - fb) / (b - c);
+        if (S.check && abs(fc) > max(0.5 * S.fa, tol)) return -2.0;  // (within tol of 0 is a root anyway)
+        S.check = false;
+        float sLeft = (S.fa - fc) / (c - S.a);
+        float sRight = (fc - S.fb) / (S.b - c);
         float sMin = min(sLeft, sRight);
         if (sMin > 0.0 && max(sLeft, sRight) < 2.0 * sMin && abs(fc) <= tol * sMin) {
             return c;  // f is near linear across the bracket and c within tol of its root
         }
         if (fc < 0.0) {
-            b = c;
-            fb = fc;
-            if (side == -1) fa *= 0.5;
-            side = -1;
+            S.b = c;
+            S.fb = fc;
+            if (S.side == -1) S.fa *= 0.5;
+            S.side = -1;
         } else {
-            a = c;
-            fa = fc;
-            if (side == 1) fb *= 0.5;
-            side = 1;
+            S.a = c;
+            S.fa = fc;
+            if (S.side == 1) S.fb *= 0.5;
+            S.side = 1;
         }
-        if (b - a <= tol) break;
+        if (S.b - S.a <= tol) S.calls = SETTLE_CALLS;  // the bracket is small enough: done
     }
-    return a + fa * (b - a) / (fa - fb);
+    return S.calls < SETTLE_CALLS ? SETTLE_MORE : settleEnd(S);
 }

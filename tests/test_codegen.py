@@ -1,6 +1,7 @@
 """Generated GLSL: determinism, only what the scene uses, features absent when off,
 every #define combination compiles on the real driver (and in glslangValidator)."""
 import itertools
+import re
 
 import numpy as np
 import subprocess
@@ -128,4 +129,12 @@ def test_map_is_called_in_loops_that_cannot_be_unrolled():
     # Mesa inlines every call: six normal taps written out would be six copies of map()
     src = sg.compile(scene(), ao=True, shadows="soft")
     assert "for (int i = uZero; i < 6; i++)" in src and "for (int i = uZero; i < 5; i++)" in src
-    assert "for (int i = uZero; i < SETTLE_CALLS; i++)" in src  # the hit probe and its refinement
+    # one map() call site in the marching loop: settling (the hit probe, its refinement)
+    # takes its samples in that loop, since llvmpipe runs every call site for every pixel
+    for method, shape in (("enhanced", scene()), ("newton", sg.product(sg.sphere(1), sg.box(1)))):
+        src = sg.compile(shape, method=method, analytic=False)
+        bodies = dict(re.findall(r"\n\w+ (\w+)\([^)]*\) \{\n(.*?)\n\}\n", src, re.S))
+        march = bodies["march"]
+        sampling = [f for f, body in bodies.items() if "map(" in body and f not in ("map", "march")]
+        assert march.count("map(") == 1, method
+        assert not [f for f in sampling if f + "(" in march], method  # no nested loop around another map()
