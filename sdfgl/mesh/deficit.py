@@ -15,7 +15,7 @@ import numpy as np
 from .sample import GPUField
 
 
-SAMPLED_FACES = 40000  # faces the estimate looks at (a fixed random subset of larger meshes)
+SAMPLED_FACES = 12000  # faces the estimate looks at (a fixed random subset of larger meshes)
 
 
 def volume_error(field: GPUField, verts: np.ndarray, faces: np.ndarray, step: float) -> float:
@@ -26,7 +26,9 @@ def volume_error(field: GPUField, verts: np.ndarray, faces: np.ndarray, step: fl
     (a field whose gradient vanishes there says nothing about distance)."""
     if len(faces) == 0:
         return 0.0
-    volume = np.einsum("ij,ij->", verts[faces[:, 0]], np.cross(verts[faces[:, 1]], verts[faces[:, 2]])) / 6.0
+    x, y, z = (np.ascontiguousarray(verts[:, i])[faces] for i in range(3))  # divergence theorem along z
+    volume = np.sum(((x[:, 1] - x[:, 0]) * (y[:, 2] - y[:, 0]) - (y[:, 1] - y[:, 0]) * (x[:, 2] - x[:, 0]))
+                    * z.sum(axis=1)) / 6.0
     if volume <= 0:
         return 0.0
     pick = np.arange(len(faces))
