@@ -57,22 +57,3 @@ def test_unions_with_unpackable_or_too_few_children_stay_code():
     mixed = sg.union(*[sg.sphere(0.3).translate((i, 0, 0)) for i in range(GRID_MIN)], sg.plane())
     assert mixed.grid is not None and len(mixed.grid.children) == GRID_MIN
     assert "sdPlane" in sg.compile(mixed)  # an unbounded child stays code beside the grid
-
-
-def test_cell_caps_bound_every_unlisted_instance_and_grow_in_empty_space():
-    # a shell of spheres with a cluster inside: cells in the hollow are far from any instance
-    rng = np.random.default_rng(5)
-    v = rng.normal(size=(300, 3))
-    pts = 3.0 * v / np.linalg.norm(v, axis=1)[:, None]
-    pts[:60] = rng.normal(size=(60, 3)) * 0.3 + (1.0, 0.0, 0.0)
-    s = sg.union(*[sg.sphere(0.1).translate(p) for p in pts])
-    g = s.grid
-    caps = g.cell_caps()
-    assert caps.min() >= np.float32(g.margin) * (1 - 1e-6) and caps.max() > 2 * g.margin
-    q = rng.uniform(g.lo - 1.0, g.lo + g.dims * g.cell + 1.0, (4000, 3))
-    cap = g.cap(q)
-    cell = np.clip(np.floor((q - g.lo) / g.cell), 0, g.dims - 1).astype(np.int64)
-    a, b = g._ranges()
-    for i, c in enumerate(g.children):
-        unlisted = ~np.all((cell >= a[i]) & (cell <= b[i]), axis=1)
-        assert np.all(c.distance(q[unlisted]) >= cap[unlisted] - 1e-9)

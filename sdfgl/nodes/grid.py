@@ -16,8 +16,7 @@ cell) of it, with the instance's data (inverse transform, parameters, colour) in
 so the shader runs one tight loop per type over what is near a point: no type branches
 run masked, and a list entry costs one to four texel fetches (shaders/grid_union.glsl
 finds the cell). The field is min(listed, cap), where every unlisted instance is at least
-``cap`` away (the cell's own cap, kept in its table: the margin, or more in empty space);
-the float64 twin computes min(all children, cap) with the same cap.
+``cap`` away; the float64 twin computes min(all children, cap) with the same cap.
 """
 from __future__ import annotations
 
@@ -43,7 +42,6 @@ MAX_TYPES = 16      # more distinct types than this stay code
 # chosen on the growth scene (1024 spheres; see the closing note of issue 12)
 CELL_FACTOR = 0.5  # cell edge / (volume per instance)^(1/3)
 MARGIN = 0.5       # in cells: how near an instance's bounds must come to a cell to be listed
-CAP_REACH = 1      # in cells: how far round a cell its cap looks at instances' bounds (cell_caps)
 
 
 def unwrap(node: Node) -> tuple[Node, np.ndarray, np.ndarray, float, tuple[float, float, float] | None] | None:
@@ -208,13 +206,10 @@ class Grid:
         self.centre = lo + 0.5 * self.dims * cell  # data and code are relative to it (float32 precision)
         self._los, self._his = los, his
         self._textures: dict[tuple, dict[str, np.ndarray]] = {}
-        self._cell_caps: np.ndarray | None = None
 
     # -- the twin's cap (the same number the shader computes) --------------------------
     def cap(self, p: np.ndarray) -> np.ndarray:
-        """The distance below which every unlisted instance lies, at (..., 3) points:
-        the cap of p's cell (cell_caps) less how far p lies outside that cell, or the
-        distance to the grid box if that is more."""
+        """The distance below which every unlisted instance lies, at (..., 3) points."""
         rel = (p - self.lo) / self.cell
         cell = np.clip(np.floor(rel), 0, self.dims - 1)
         cell_lo = self.lo + cell * self.cell
@@ -222,59 +217,7 @@ class Grid:
         half = 0.5 * self.dims * self.cell
         k = np.abs(p - (self.lo + half)) - half
         box = np.sqrt(np.sum(np.maximum(k, 0.0) ** 2, axis=-1)) + np.minimum(k.max(axis=-1), 0.0)
-        c = cell.astype(np.int64)
-        own = self.cell_caps()[(c[..., 2] * self.dims[1] + c[..., 1]) * self.dims[0] + c[..., 0]]
-        return np.maximum(own - np.sqrt(np.sum(outside ** 2, axis=-1)), box)
-
-    def cell_caps(self) -> np.ndarray:
-        """Per cell (flat index), a lower bound on the distance from the cell to every
-        instance it does not list, rounded down to float32 (the shader reads these):
-        the gap between the cell and the bounds of each unlisted instance within
-        CAP_REACH cells of it, at most CAP_REACH cells (anything farther is that far), or
-        (m - 1) cells where the nearest cell any instance's bounds touch is m cells away
-        (chessboard). So a ray crosses the empty space between instances in strides of
-        up to a cell or more, not half a cell (the margin), which every cap is at least."""
-        if self._cell_caps is None:
-            ncell = int(np.prod(self.dims))
-            touched = np.zeros(tuple(self.dims[::-1]), dtype=bool)  # (z, y, x)
-            touched.reshape(-1)[self._entries(0.0)[0]] = True
-            far = (self._chessboard(touched).reshape(-1) - 1) * self.cell
-            caps = np.maximum(CAP_REACH * self.cell, far)
-            a, b = self._ranges(0.0)
-            la, lb = self._ranges()
-            reach = (np.maximum(a - CAP_REACH, 0), np.minimum(b + CAP_REACH, self.dims - 1))
-            for lo_i in range(0, len(self.children), 4096):  # bounded memory at any size
-                sl = slice(lo_i, lo_i + 4096)
-                xyz, child = _expand(reach[0][sl], reach[1][sl])
-                child += lo_i
-                unlisted = np.any((xyz < la[child]) | (xyz > lb[child]), axis=1)
-                xyz, child = xyz[unlisted], child[unlisted]
-                cell_lo = self.lo + xyz * self.cell
-                gap = np.maximum(np.maximum(cell_lo - self._his[child], self._los[child] - cell_lo - self.cell), 0.0)
-                flat = (xyz[:, 2] * self.dims[1] + xyz[:, 1]) * self.dims[0] + xyz[:, 0]
-                np.minimum.at(caps, flat, np.sqrt(np.sum(gap ** 2, axis=1)))
-            exact = np.maximum(self.margin, caps)
-            low = exact.astype(np.float32)
-            over = low.astype(np.float64) > exact
-            low[over] = np.nextafter(low[over], np.float32(0))
-            self._cell_caps = low.astype(np.float64)
-        return self._cell_caps
-
-    @staticmethod
-    def _chessboard(touched: np.ndarray) -> np.ndarray:
-        """Per cell, the chessboard distance (in cells) to the nearest ``touched`` cell."""
-        dist = np.where(touched, 0, -1)
-        front, m = touched, 0
-        while (dist < 0).any():
-            m += 1
-            front = front.copy()
-            for axis in range(3):  # dilation by one cell is separable
-                a = np.moveaxis(front, axis, 0)
-                prev = a.copy()
-                a[1:] |= prev[:-1]
-                a[:-1] |= prev[1:]
-            dist[(dist < 0) & front] = m
-        return dist
+        return np.maximum(self.margin - np.sqrt(np.sum(outside ** 2, axis=-1)), box)
 
     def field(self, p: np.ndarray) -> np.ndarray:
         """The float64 twin of the shader's loop: min over the instances listed in each
@@ -289,19 +232,25 @@ class Grid:
                 d[m] = np.minimum(d[m], c._distance(flat[m]))
         return d.reshape(p.shape[:-1])
 
-    def _ranges(self, margin: float | None = None) -> tuple[np.ndarray, np.ndarray]:
-        """Per instance, the first and last cell (per axis) whose list holds it (that its
-        bounds come within ``margin``, default the grid's, of)."""
-        margin = self.margin if margin is None else margin
-        a = np.clip(np.floor((self._los - margin - self.lo) / self.cell).astype(np.int64), 0, self.dims - 1)
-        b = np.clip(np.floor((self._his + margin - self.lo) / self.cell).astype(np.int64), 0, self.dims - 1)
+    def _ranges(self) -> tuple[np.ndarray, np.ndarray]:
+        """Per instance, the first and last cell (per axis) whose list holds it."""
+        a = np.clip(np.floor((self._los - self.margin - self.lo) / self.cell).astype(np.int64), 0, self.dims - 1)
+        b = np.clip(np.floor((self._his + self.margin - self.lo) / self.cell).astype(np.int64), 0, self.dims - 1)
         return a, b
 
     # -- data ------------------------------------------------------------------------
-    def _entries(self, margin: float | None = None) -> tuple[np.ndarray, np.ndarray]:
+    def _entries(self) -> tuple[np.ndarray, np.ndarray]:
         """(cell index, child index) of every list entry, sorted by cell."""
-        xyz, child = _expand(*self._ranges(margin))
-        x, y, z = xyz[:, 0], xyz[:, 1], xyz[:, 2]
+        a, b = self._ranges()
+        n = b - a + 1
+        counts = n.prod(axis=1)
+        child = np.repeat(np.arange(len(self.children)), counts)
+        start = np.concatenate([[0], np.cumsum(counts)[:-1]])
+        local = np.arange(counts.sum()) - np.repeat(start, counts)
+        nx, ny = np.repeat(n[:, 0], counts), np.repeat(n[:, 1], counts)
+        x = np.repeat(a[:, 0], counts) + local % nx
+        y = np.repeat(a[:, 1], counts) + (local // nx) % ny
+        z = np.repeat(a[:, 2], counts) + local // (nx * ny)
         cells = (z * self.dims[1] + y) * self.dims[0] + x
         order = np.argsort(cells, kind="stable")
         return cells[order], child[order]
@@ -329,8 +278,8 @@ class Grid:
         return out.astype(np.float32).reshape(len(t.members), texels, 4)
 
     def textures(self, default_color: tuple[float, float, float]) -> dict[str, np.ndarray]:
-        """float32 RGBA arrays (rows, LIST_WIDTH, 4): per cell, (first texel, count) pairs
-        per type then the cell's cap (cell_caps), and the list records."""
+        """float32 RGBA arrays (rows, LIST_WIDTH, 4): per cell and type (first texel, count)
+        pairs, and the list records."""
         key = tuple(default_color)
         if key in self._textures:
             return self._textures[key]
@@ -357,7 +306,7 @@ class Grid:
             rows = offset[sel][:, None] + np.arange(r.shape[1])[None, :]
             lst[rows.ravel()] = r[local[child[sel]]].reshape(-1, 4)
         ntypes = len(self.types)
-        per_cell = _per_cell(ntypes)
+        per_cell = -(-ntypes // 2)
         ncell = int(np.prod(self.dims))
         table = np.zeros((ncell, per_cell * 2, 2), dtype=np.float64)
         flat = cells * ntypes + etype
@@ -366,7 +315,6 @@ class Grid:
         firsts[flat[::-1]] = offset[::-1]  # the first entry of each (cell, type) group
         table[:, :ntypes, 0] = firsts.reshape(ncell, ntypes)
         table[:, :ntypes, 1] = counts.reshape(ncell, ntypes)
-        table[:, ntypes, 0] = self.cell_caps()
         cell_tex = np.zeros((-(-ncell * per_cell // LIST_WIDTH) * LIST_WIDTH, 4), dtype=np.float32)
         cell_tex[:ncell * per_cell] = table.reshape(ncell * per_cell, 4)
         out = {"Cells": cell_tex.reshape(-1, LIST_WIDTH, 4), "List": lst.reshape(-1, LIST_WIDTH, 4)}
@@ -403,22 +351,19 @@ class Grid:
         head = shaderlib.read("grid_union").replace("GRIDID", gid)
         defs = (f"#define {gid}_LO vec3({', '.join(em.num(x) for x in self.lo - self.centre)})\n"
                 f"#define {gid}_CELL {em.num(self.cell)}\n"
+                f"#define {gid}_MARGIN {em.num(self.margin)}\n"
                 f"#define {gid}_DIMS ivec3({', '.join(str(int(x)) for x in self.dims)})\n"
-                f"#define {gid}_PER_CELL {_per_cell(len(self.types))}\n"
+                f"#define {gid}_PER_CELL {-(-len(self.types) // 2)}\n"
                 f"#define {gid}_CELLS {cells}\n#define {gid}_LIST {lists}")
         em.helper(f"{gid}_grid", defs + "\n" + head)
         rtype = "vec4" if color else "float"
         best = "vec4(0.0, 0.0, 0.0, cap)" if color else "cap"
-        ntypes = len(self.types)
-        fetch = [(f"    vec4 s{j} = dataFetch({gid}_CELLS + cell + {j});", owner) for j in range(_per_cell(ntypes))]
-        own = f"s{ntypes // 2}.{'xz'[ntypes % 2]}"
+        fetch = [(f"    vec4 s{j} = dataFetch({gid}_CELLS + cell + {j});", owner) for j in range(-(-len(self.types) // 2))]
         return [(f"{rtype} {fn}(vec3 p) {{", owner),
-                ("    float outside, boxDist;", owner),
-                (f"    int cell = {gid}Cell(p, outside, boxDist) * {gid}_PER_CELL;", owner),
-                *fetch,
-                (f"    float cap = max({own} - outside, boxDist);", owner),
+                ("    float cap;", owner),
+                (f"    int cell = {gid}Cell(p, cap) * {gid}_PER_CELL;", owner),
                 (f"    {rtype} best = {best};", owner),
-                *loops,
+                *fetch, *loops,
                 ("    return best;", owner), ("}", owner)]
 
     def _loop(self, em: "Emitter", t: _Type, ti: int, color: bool, owner: str) -> list[tuple[str, str]]:
@@ -474,25 +419,6 @@ class Grid:
             out.append((f"        best = min(best, {d});", owner))
         out += [("    }", owner), ("    }", owner)]
         return out
-
-
-def _expand(a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Every (cell, instance) pair of per-instance cell ranges [a, b] (n, 3): cells (m, 3)
-    and instance indices (m,)."""
-    n = b - a + 1
-    counts = n.prod(axis=1)
-    child = np.repeat(np.arange(len(a)), counts)
-    start = np.concatenate([[0], np.cumsum(counts)[:-1]])
-    local = np.arange(counts.sum()) - np.repeat(start, counts)
-    nx, ny = np.repeat(n[:, 0], counts), np.repeat(n[:, 1], counts)
-    xyz = np.stack([np.repeat(a[:, 0], counts) + local % nx, np.repeat(a[:, 1], counts) + (local // nx) % ny,
-                    np.repeat(a[:, 2], counts) + local // (nx * ny)], axis=1)
-    return xyz, child
-
-
-def _per_cell(ntypes: int) -> int:
-    """Texels per cell in the cell table: a (first, count) pair per type, then the cap."""
-    return ntypes // 2 + 1
 
 
 def _template(prim: Node, slots: list[str], at: int) -> Node:
