@@ -59,7 +59,7 @@ def mesh(scene: Node, step: float | None = None, resolution: int | None = None, 
     t0 = time.perf_counter()
     lat = make_lattice(scene, step, resolution, samples, bounds)
     show = sys.stderr.isatty() if progress is None else progress
-    verts, faces, normals, field, t1 = _extract(scene, lat, mode, show)
+    verts, faces, normals, field, took = _extract(scene, lat, mode, show)
     taken, default_step = field.samples, None
     if step is None and resolution is None and samples is None:
         for _ in range(REFINE_PASSES):
@@ -72,18 +72,20 @@ def mesh(scene: Node, step: float | None = None, resolution: int | None = None, 
                 break
             default_step = default_step or lat.step
             lat = lat_finer
-            verts, faces, normals, field, t1 = _extract(scene, lat, mode, show)
+            verts, faces, normals, field, more = _extract(scene, lat, mode, show)
+            took = [a + b for a, b in zip(took, more)]
             taken += field.samples
     rgb = _colors(scene, field, verts) if colors and len(verts) else None
     t2 = time.perf_counter()
-    timings = {"extract_s": t1[0] - t0, "project_s": t1[1], "total_s": t2 - t0}
+    timings = {"extract_s": took[0], "project_s": took[1], "total_s": t2 - t0}
     return Mesh(verts, faces, normals, rgb, scene=scene, lattice=lat, mode=mode, timings=timings,
                 samples=taken, default_step=default_step)
 
 
 def _extract(scene: Node, lat: Lattice, mode: str, show: bool):
-    """(vertices, faces, normals, the GPUField, (time extraction ended, projection seconds)) of
+    """(vertices, faces, normals, the GPUField, [extraction seconds, projection seconds]) of
     one lattice."""
+    t0 = time.perf_counter()
     field = GPUField(scene, *lat.box)
     parts = chunks(field, lat, scene.lipschitz, Progress(sys.stderr if show else None))
     if mode == "mc":
@@ -96,7 +98,7 @@ def _extract(scene: Node, lat: Lattice, mode: str, show: bool):
     verts, normals = project(field, verts, lat.step)
     if mode != "mc":  # march() leaves no degenerate or repeated triangles and no unused vertex
         verts, faces, normals = clean(verts, faces, normals)
-    return verts, faces, normals, field, (t1, time.perf_counter() - t1)
+    return verts, faces, normals, field, [t1 - t0, time.perf_counter() - t1]
 
 
 def _finer_step(field: GPUField, verts: np.ndarray, faces: np.ndarray, step: float, first: float) -> float | None:

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .geometry import volume as mesh_volume
 from .sample import GPUField
 
 
@@ -23,18 +24,15 @@ def volume_error(field: GPUField, verts: np.ndarray, faces: np.ndarray, step: fl
 
     Larger meshes are estimated from about SAMPLED_FACES faces picked by where they are (the
     same surface gives the same figure, whatever the order of its faces), scaled by the share
-    of faces they are. A gap is clipped to one cell
-    (a field whose gradient vanishes there says nothing about distance)."""
+    of faces they are. A gap is clipped to one cell (a field whose gradient vanishes there
+    says nothing about distance)."""
     if len(faces) == 0:
         return 0.0
-    x, y, z = (np.ascontiguousarray(verts[:, i])[faces] for i in range(3))  # divergence theorem along z
-    volume = np.sum(((x[:, 1] - x[:, 0]) * (y[:, 2] - y[:, 0]) - (y[:, 1] - y[:, 0]) * (x[:, 2] - x[:, 0]))
-                    * z.sum(axis=1)) / 6.0
+    volume = mesh_volume(verts, faces)
     if volume <= 0:
         return 0.0
-    pick = np.arange(len(faces))
-    if len(faces) > SAMPLED_FACES:
-        pick = _spread(x, y, z, step, len(faces) // SAMPLED_FACES)
+    pick = _spread(verts, faces, step, len(faces) // SAMPLED_FACES) if len(faces) > SAMPLED_FACES \
+        else np.arange(len(faces))
     v = verts[faces[pick]]
     area = 0.5 * np.linalg.norm(np.cross(v[:, 1] - v[:, 0], v[:, 2] - v[:, 0]), axis=1)
     mids = (v + np.roll(v, -1, axis=1)) / 2  # (F, 3 edges, 3)
@@ -46,9 +44,11 @@ def volume_error(field: GPUField, verts: np.ndarray, faces: np.ndarray, step: fl
     return float(np.sum(area * gap) * (len(faces) / max(len(pick), 1)) / volume)
 
 
-def _spread(x: np.ndarray, y: np.ndarray, z: np.ndarray, step: float, every: int) -> np.ndarray:
-    """Indices of about one face in ``every``, chosen by a hash of its centroid on a grid of
-    quarter cells: spread over the surface and independent of the faces' order."""
-    q = [np.floor(c.sum(axis=1) * (4.0 / (3.0 * step))).astype(np.int64) for c in (x, y, z)]
-    h = (q[0] * 73856093) ^ (q[1] * 19349663) ^ (q[2] * 83492791)
+def _spread(verts: np.ndarray, faces: np.ndarray, step: float, every: int) -> np.ndarray:
+    """Indices of about one face in ``every``, chosen by a hash of where its corners lie (on a
+    grid of quarter cells): spread over the surface, independent of the order of the faces
+    and of their corners."""
+    q = np.floor(verts * (4.0 / step)).astype(np.int64)
+    at = (q[:, 0] * 73856093) ^ (q[:, 1] * 19349663) ^ (q[:, 2] * 83492791)
+    h = at[faces[:, 0]] ^ at[faces[:, 1]] ^ at[faces[:, 2]]
     return np.nonzero(h % every == 0)[0]

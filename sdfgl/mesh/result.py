@@ -26,7 +26,8 @@ class Mesh:
             None when meshed with ``colors=False``.
         scene: the node it was meshed from; lattice: the sampling lattice (``step`` is its
             cell size); mode: "mc" (marching cubes) or "sharp" (dual contouring).
-        timings: seconds per stage (``extract_s``, ``project_s``, ``total_s``).
+        timings: seconds per stage (``extract_s``, ``project_s``: summed over the passes of
+            a refined mesh; ``total_s``: all of it, estimates included).
         samples: field samples the extraction took (every pass).
         default_step: with no size given, the default step the mesher refined from because
             the volume was estimated off by more than 0.25 % there; None otherwise.

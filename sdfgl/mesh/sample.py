@@ -134,15 +134,10 @@ class GPUField:
             out[:, s:s + len(part)] = got.reshape(outputs, -1, got.shape[-1])[:, :len(part), :comps]
         return out
 
-    def gradient(self, points: np.ndarray, eps: float) -> tuple[np.ndarray, np.ndarray]:
-        """(value (N,), gradient (N, 3)) of the clipped field at points; differences ``eps`` wide."""
-        v = self._at_points("mesh_gradient", points, 4, uEps=float(eps))[0]
-        self.point_samples += 5 * len(v)
-        return v[:, 3].astype(np.float64), v[:, :3].astype(np.float64)
-
     def gradient_bend(self, points: np.ndarray, eps: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """(value (N,), gradient (N, 3), bend (N,)): as gradient(), plus the stencil's bend, the
-        mean of its four samples minus the value (shaders/mesh_clip.glsl); ``|bend|`` of order
+        """(value (N,), gradient (N, 3), bend (N,)) of the clipped field at points, differences
+        ``eps`` wide (IQ's tetrahedral stencil), and the stencil's bend, the mean of its four
+        samples minus the value (shaders/mesh_clip.glsl); ``|bend|`` of order
         ``eps |gradient|`` says the stencil straddles a crease and the gradient mixes its sides."""
         v, b = self._at_points("mesh_gradient", points, 4, 2, uEps=float(eps))
         self.point_samples += 5 * len(v)

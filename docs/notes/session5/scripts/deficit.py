@@ -16,10 +16,10 @@ for k in sys.argv[3:]:
     v = m.vertices[m.faces]
     c = v.mean(1)
     a = 0.5 * np.linalg.norm(np.cross(v[:, 1] - v[:, 0], v[:, 2] - v[:, 0]), axis=1)
-    f, g = field.gradient(c, 0.05 * h); f = f / np.maximum(np.linalg.norm(g, axis=1), 1e-30)
+    f, g, _ = field.gradient_bend(c, 0.05 * h); f = f / np.maximum(np.linalg.norm(g, axis=1), 1e-30)
     # mid-edge samples: exact mean of a quadratic over the triangle
     mids = np.concatenate([(v[:, 0] + v[:, 1]) / 2, (v[:, 1] + v[:, 2]) / 2, (v[:, 2] + v[:, 0]) / 2])
-    fm, gm = field.gradient(mids, 0.05 * h); fm = fm / np.maximum(np.linalg.norm(gm, axis=1), 1e-30)
+    fm, gm, _ = field.gradient_bend(mids, 0.05 * h); fm = fm / np.maximum(np.linalg.norm(gm, axis=1), 1e-30)
     fm = fm.reshape(3, -1).mean(0)
     vol = volume(m.vertices, m.faces)
     ref = Twin(node, m.lattice.box).integrate(48, levels=3)
