@@ -18,7 +18,7 @@ import numpy as np
 
 from . import shaderlib
 from .errors import ParameterError
-from .gl.dialect import dialect as _dialect
+from .gl.dialect import Dialect, dialect as _dialect
 from .nodes.base import IMPLICIT, Node, grid_min_as
 from .nodes.traverse import FACTS, fact, run_deep
 from .params import Live, Param
@@ -637,14 +637,14 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     camera's ("perspective" or "orthographic": it shapes the rays). ``highlight`` is the
     subtree the "select" debug view tints.
     """
-    header = _dialect(dialect).header()
+    lang = _dialect(dialect)
     if not isinstance(scene, Node):
         raise ParameterError(f"scene must be an sdfgl node, got {type(scene).__name__} {scene!r}")
     moving = moving_origin(scene, target, dialect)
-    return run_deep(scene, lambda: _generate(scene, settings, origin, target, header, projection, highlight, moving))
+    return run_deep(scene, lambda: _generate(scene, settings, origin, target, lang, projection, highlight, moving))
 
 
-def _generate(scene: Node, settings: Settings, origin: Sequence[float], target: str, header: str,
+def _generate(scene: Node, settings: Settings, origin: Sequence[float], target: str, lang: Dialect,
               projection: str, highlight: Node | None = None, moving: bool = False) -> ShaderSource:
     """generate(), within the code-size budget."""
     settings = settings.resolved(scene.exactness)
@@ -659,11 +659,11 @@ def _generate(scene: Node, settings: Settings, origin: Sequence[float], target: 
     from .nodes.grid import GRID_MIN
     if settings.grid_min is not None:
         with grid_min_as(settings.grid_min):
-            src = _generate_once(scene, settings, org, target, header, projection, highlight=highlight,
+            src = _generate_once(scene, settings, org, target, lang, projection, highlight=highlight,
                                  moving=moving)
         scene.__dict__["_data_min"] = settings.grid_min  # the twin of this scene follows its last compile
         return _checked(dataclasses.replace(src, grid_min=settings.grid_min))
-    src = dataclasses.replace(_generate_once(scene, settings, org, target, header, projection,
+    src = dataclasses.replace(_generate_once(scene, settings, org, target, lang, projection,
                                              highlight=highlight, moving=moving), grid_min=GRID_MIN)
     scene.__dict__.pop("_data_min", None)
     if src.code_size <= settings.code_budget or not settings.grid:
@@ -671,7 +671,7 @@ def _generate(scene: Node, settings: Settings, origin: Sequence[float], target: 
     # over the budget: every hard union of BUDGET_GRID_MIN or more instances becomes data,
     # and every node with more than a few constant rows keeps them in a texture
     with grid_min_as(BUDGET_GRID_MIN):
-        small = _generate_once(scene, settings, org, target, header, projection, data_min=BUDGET_DATA_MIN,
+        small = _generate_once(scene, settings, org, target, lang, projection, data_min=BUDGET_DATA_MIN,
                                highlight=highlight, moving=moving)
     if small.code_size >= src.code_size:  # nothing to gain: the scene stays code
         return _checked(src)
@@ -691,7 +691,7 @@ def _checked(src: ShaderSource) -> ShaderSource:
     return src
 
 
-def _generate_once(scene: Node, settings: Settings, org: np.ndarray, target: str, header: str,
+def _generate_once(scene: Node, settings: Settings, org: np.ndarray, target: str, lang: Dialect,
                    projection: str, data_min: int = DATA_MIN, highlight: Node | None = None,
                    moving: bool = False) -> ShaderSource:
     params: list[Param] = []
@@ -719,7 +719,7 @@ def _generate_once(scene: Node, settings: Settings, org: np.ndarray, target: str
     lights_at = _light_positions(rig, org, origins) if target == "render" else {}
 
     b = _Builder()
-    b.add(header, "(codegen)")
+    b.add(lang.header(), "(codegen)")
     b.add(f"// sdfgl scene: {scene.label()}  [{scene.exactness}, L={scene.lipschitz:g}]", "(codegen)")
     b.add("\n".join(_defines(scene, settings, org, live, projection, moving)), "(settings)")
     for i, prm in enumerate(params):
@@ -733,7 +733,7 @@ def _generate_once(scene: Node, settings: Settings, org: np.ndarray, target: str
               "(moving origin)")
     b.add_file("common")
     for name in libs:
-        b.add_file(f"lib/{name}")
+        b.add_file(f"lib/{lang.lib(name)}")
     start = len(b.lines)
     for name, code in helpers.items():
         if isinstance(code, str):

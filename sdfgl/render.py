@@ -19,6 +19,7 @@ from .codegen import (BOUNDS_PAD, GLSL_FAR, ShaderSource, analytic_relative, ana
 from .errors import ParameterError, SdfglError
 from .gl.cache import CacheBudget, default_budget
 from .gl.context import CurrentContext, GLThread, describe, gl_thread
+from .gl.buffer_texture import BufferTexture
 from .gl.data import DataTextures
 from .gl.programs import ProgramCache
 from .gl.targets import TargetCache
@@ -187,7 +188,11 @@ def bind_data(prog: moderngl.Program, source: ShaderSource, data: DataTextures |
     texs = data.textures(prog.ctx, source)
     for unit, ((name, _), tex) in enumerate(zip(source.data, texs), start=DATA_UNIT):
         tex.use(unit)
-        _set_uniform(prog, name, unit)
+        if isinstance(tex, BufferTexture):
+            if name in prog:
+                tex.point(prog, name, unit)
+        else:
+            _set_uniform(prog, name, unit)
 
 
 def check_size(ctx: moderngl.Context, size: tuple[int, int], what: str = "render: 'size'") -> None:

@@ -12,12 +12,15 @@ import pytest
 
 import sdfgl as sg
 from sdfgl.codegen import ShaderSource
+from sdfgl.gl.buffer_texture import BufferTexture
 from sdfgl.gl.cache import LRU
 
 ROOT = Path(__file__).resolve().parents[1]
 
 
-def released(obj) -> bool:  # noqa: ANN001 - a moderngl object
+def released(obj) -> bool:  # noqa: ANN001 - a moderngl object, or a buffer texture (its buffer)
+    if isinstance(obj, BufferTexture):
+        return obj.glo == 0 and released(obj.buffer)
     return type(obj.mglo).__name__ == "InvalidObject"
 
 
@@ -85,7 +88,7 @@ def test_data_textures_are_bounded_by_bytes():
     r = sg.Renderer(budget=sg.CacheBudget(data_mb=10))
 
     def source(i: int) -> ShaderSource:
-        return ShaderSource(f"// {i}", (), data=(("uData", np.full((512, 512, 4), i, np.float32)),))  # 4 MB
+        return ShaderSource(f"#version 330 core\n// {i}", (), data=(("uData", np.full((512, 512, 4), i, np.float32)),))  # 4 MB
 
     sources = [source(i) for i in range(4)]
     texs = [r.run(r.data.textures, r.ctx, s)[0] for s in sources]
@@ -93,6 +96,19 @@ def test_data_textures_are_bounded_by_bytes():
     assert released(texs[0]) and released(texs[1]) and not released(texs[3])
     again = r.run(r.data.textures, r.ctx, sources[3])[0]
     assert again is texs[3]  # cached: not uploaded again
+
+
+def test_desktop_tables_are_buffer_textures_and_webgl2_tables_2d_textures():
+    import moderngl
+    r = sg.Renderer()
+    rows = np.arange(2 * 1024 * 4, dtype=np.float32).reshape(2, 1024, 4)
+    desk, web = (ShaderSource(f"{v}\n// t", (), data=(("uData", rows),)) for v in ("#version 330 core", "#version 300 es"))
+    assert isinstance(r.run(r.data.textures, r.ctx, desk)[0], BufferTexture)
+    assert isinstance(r.run(r.data.textures, r.ctx, web)[0], moderngl.Texture)
+    # the buffer's texel i is the table's flat texel i (what dataFetch(i) reads)
+    tex = r.run(r.data.textures, r.ctx, desk)[0]
+    got = np.frombuffer(r.run(tex.buffer.read), np.float32).reshape(-1, 4)
+    assert np.array_equal(got[1500], rows.reshape(-1, 4)[1500])
 
 
 def test_dead_nodes_do_not_check_live_values():

@@ -1,4 +1,7 @@
-"""Data textures (big unions kept as data), uploaded once per source and kept in an LRU."""
+"""Data textures (big unions kept as data), uploaded once per source and kept in an LRU.
+
+A desktop shader reads its tables from a buffer texture (shaders/lib/data_buffer.glsl), a
+WebGL2 one from a 2D texture (data_table.glsl); the source's dialect says which to upload."""
 from __future__ import annotations
 
 from typing import Callable
@@ -7,10 +10,14 @@ import moderngl
 import numpy as np
 
 from ..codegen import ShaderSource
+from .buffer_texture import BufferTexture
 from .cache import LRU, MB, CacheBudget
+from .dialect import DESKTOP, of_source
+
+Texture = moderngl.Texture | BufferTexture
 
 
-def _release(entry: tuple[ShaderSource, list[moderngl.Texture]]) -> None:
+def _release(entry: tuple[ShaderSource, list[Texture]]) -> None:
     for t in entry[1]:
         t.release()
 
@@ -23,18 +30,23 @@ class DataTextures:
 
     def __init__(self, budget: Callable[[], CacheBudget]) -> None:
         self._budget = budget
-        self._lru: LRU[tuple[ShaderSource, list[moderngl.Texture]]] = LRU(_release)
+        self._lru: LRU[tuple[ShaderSource, list[Texture]]] = LRU(_release)
 
-    def textures(self, ctx: moderngl.Context, source: ShaderSource) -> list[moderngl.Texture]:
+    def textures(self, ctx: moderngl.Context, source: ShaderSource) -> list[Texture]:
         """The uploaded textures of ``source.data``; call on the context's thread."""
         entry = self._lru.get(id(source))
         if entry is None or entry[0] is not source:
-            texs, nbytes = [], 0
+            texs: list[Texture] = []
+            nbytes = 0
+            as_buffer = of_source(source.text) is DESKTOP
             for _, arr in source.data:
                 data = np.ascontiguousarray(arr, dtype=np.float32)
-                tex = ctx.texture((arr.shape[1], arr.shape[0]), 4, data.tobytes(), dtype="f4")
-                tex.filter = (moderngl.NEAREST, moderngl.NEAREST)
-                texs.append(tex)
+                if as_buffer:
+                    texs.append(BufferTexture(ctx, data.tobytes()))
+                else:
+                    tex = ctx.texture((arr.shape[1], arr.shape[0]), 4, data.tobytes(), dtype="f4")
+                    tex.filter = (moderngl.NEAREST, moderngl.NEAREST)
+                    texs.append(tex)
                 nbytes += data.nbytes
             entry = (source, texs)
             self._lru.put(id(source), entry, nbytes)

@@ -3,8 +3,9 @@
 Every .glsl file under ``shaders/`` is written in the common subset of the two (explicit
 int/float conversions, no desktop-only built-ins), so both targets use the same files;
 what the languages force to differ is kept here and nowhere else: the ``#version``
-line and ES's default precisions (a fragment shader's float has none, its int and
-sampler default to mediump and lowp, too little for distances and float textures).
+line, ES's default precisions (a fragment shader's float has none, its int and
+sampler default to mediump and lowp, too little for distances and float textures), and
+the data tables' sampler (a buffer texture on the desktop, a 2D texture in ES).
 """
 from __future__ import annotations
 
@@ -20,6 +21,11 @@ class Dialect:
     name: str
     version: str
     precision: tuple[str, ...] = ()
+    libs: tuple[tuple[str, str], ...] = ()  # shaders/lib files this dialect reads in another file's form
+
+    def lib(self, name: str) -> str:
+        """The shaders/lib file that stands for ``name`` in this dialect."""
+        return dict(self.libs).get(name, name)
 
     def header(self) -> str:
         """The lines every shader of this dialect starts with."""
@@ -33,7 +39,8 @@ class Dialect:
         return f"{self.header()}\n{rest}"
 
 
-DESKTOP = Dialect("desktop", "#version 330 core")
+# desktop data tables are buffer textures (samplerBuffer: a cheaper fetch; ES 3.00 has none)
+DESKTOP = Dialect("desktop", "#version 330 core", libs=(("data_table", "data_buffer"),))
 WEBGL2 = Dialect("webgl2", "#version 300 es",
                  ("precision highp float;", "precision highp int;", "precision highp sampler2D;"))
 DIALECTS = {d.name: d for d in (DESKTOP, WEBGL2)}

@@ -19,6 +19,7 @@ VERTEX_SHADER, FRAGMENT_SHADER = 0x8B31, 0x8B30
 COMPILE_STATUS, LINK_STATUS, INFO_LOG_LENGTH = 0x8B81, 0x8B82, 0x8B84
 ACTIVE_UNIFORMS = 0x8B86
 FLOAT, FLOAT_VEC2, FLOAT_VEC3, FLOAT_VEC4, INT, SAMPLER_2D = 0x1406, 0x8B50, 0x8B51, 0x8B52, 0x1404, 0x8B5E
+SAMPLER_BUFFER = 0x8DC2
 TRIANGLES = 0x0004
 TEXTURE_2D, TEXTURE0 = 0x0DE1, 0x84C0
 
@@ -121,7 +122,7 @@ class GL:
 
     def set_uniform(self, prog: int, location: int, typ: int, value: Any) -> None:
         """Set a float/vecN/int/sampler uniform of ``prog`` (no binding needed)."""
-        if typ in (INT, SAMPLER_2D):
+        if typ in (INT, SAMPLER_2D, SAMPLER_BUFFER):
             self.glProgramUniform1i(prog, location, int(value))
         elif typ == FLOAT:
             self.glProgramUniform1f(prog, location, float(value))
