@@ -130,3 +130,38 @@ def test_help_is_legible_at_any_window_size(viewer):
         st = drv.wait_for(lambda s: s["overlay_size"] == [int(w), int(h)], what="the help laid out again")
         assert st["overlay_fits"] and st["overlay_font"] >= 10, st["overlay_font"]
     assert st["overlay_font"] > big["overlay_font"]  # a big window gets a bigger font
+
+
+GRID_SCENE = """import numpy as np
+import sdfgl as sg
+rng = np.random.default_rng(3)
+scene = sg.union(*[sg.sphere(0.25).translate(tuple(rng.uniform(-1.5, 1.5, 3))) for _ in range(60)])
+camera = sg.OrbitCamera(distance=6, yaw=30, pitch=20)
+settings = {'shadows': False, 'ao': False}
+"""
+
+
+def test_a_union_kept_as_data_draws_in_the_window_as_headless(viewer):
+    """The window's render thread reads the scene's data table (a buffer texture set through
+    its own GL calls) like the headless renderer: the same spheres in the same places."""
+    import sdfgl as sg
+    drv, proc, scene, _ = viewer
+    s0 = drv.state()
+    time.sleep(0.05)
+    scene.write_text(GRID_SCENE)
+    drv.wait_for(lambda s: s["reloads"] == s0["reloads"] + 1 and s["error"] == "", what="the reload")
+    drv.wait_for(lambda s: s["samples"] >= 4 and not s["moving"], what="refinement")
+    drv.key("p")
+    st = drv.wait_for(lambda s: len(s["screenshots"]) == 1, what="a screenshot")
+    shot = np.asarray(Image.open(st["screenshots"][0]), dtype=np.int16)
+    ns: dict = {}
+    exec(GRID_SCENE, ns)  # noqa: S102 - the test's own scene text
+    cam = sg.OrbitCamera(target=tuple(st["target"]), distance=st["distance"], yaw=st["yaw"], pitch=st["pitch"])
+    head = sg.render(ns["scene"], cam, (320, 240), aa=2, **ns["settings"])
+    assert head.settings.grid_min and "uData" in head.source.text  # the union is data
+    want = head.color.astype(np.int16)
+    background = sg.render(sg.sphere(0.01).translate((0, 50, 0)), cam, (320, 240), **ns["settings"]).color
+    covered = lambda img: (np.abs(img - background.astype(np.int16)).sum(-1) > 30).mean()  # noqa: E731
+    assert covered(want) > 0.1
+    assert abs(covered(shot) - covered(want)) < 0.02
+    assert np.abs(shot - want).mean() < 4.0
