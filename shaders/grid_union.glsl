@@ -2,7 +2,8 @@
 // grid, per type, with their data inline. A point looks only at its cell's lists (loops
 // whose lengths are the lists', so work follows what is near, not the scene's size).
 // Anything not listed is at least margin - e away (e: how far the point lies outside its
-// cell) and at least as far as the grid box, so the min of the listed ones and that cap
+// cell, which is 0 inside the grid box and the distance to the box outside it) and at
+// least as far as the grid box (e again), so the min of the listed ones and that cap
 // is a distance bound equal to the exact min wherever the min is below the cap.
 // GRIDID is replaced per union; p is relative to the grid's centre.
 // Its tables are in the shader's data texture (lib/data_table.glsl): from GRIDID_CELLS,
@@ -13,10 +14,8 @@ int GRIDIDCell(vec3 p, out float cap) {
     vec3 rel = (p - GRIDID_LO) / GRIDID_CELL;
     ivec3 cell = clamp(ivec3(floor(rel)), ivec3(0), GRIDID_DIMS - 1);
     vec3 cellLo = GRIDID_LO + vec3(cell) * GRIDID_CELL;
-    vec3 outside = max(max(cellLo - p, p - (cellLo + GRIDID_CELL)), 0.0);
-    vec3 gridHalf = 0.5 * vec3(GRIDID_DIMS) * GRIDID_CELL;
-    vec3 k = abs(p - (GRIDID_LO + gridHalf)) - gridHalf;
-    float boxDist = length(max(k, 0.0)) + min(max(k.x, max(k.y, k.z)), 0.0);
-    cap = max(GRIDID_MARGIN - length(outside), boxDist);
+    // outside its (clamped) cell only outside the grid box, and then by the distance to the box
+    float away = length(max(max(cellLo - p, p - (cellLo + GRIDID_CELL)), 0.0));
+    cap = max(GRIDID_MARGIN - away, away);
     return (cell.z * GRIDID_DIMS.y + cell.y) * GRIDID_DIMS.x + cell.x;
 }

@@ -213,11 +213,9 @@ class Grid:
         rel = (p - self.lo) / self.cell
         cell = np.clip(np.floor(rel), 0, self.dims - 1)
         cell_lo = self.lo + cell * self.cell
-        outside = np.maximum(np.maximum(cell_lo - p, p - (cell_lo + self.cell)), 0.0)
-        half = 0.5 * self.dims * self.cell
-        k = np.abs(p - (self.lo + half)) - half
-        box = np.sqrt(np.sum(np.maximum(k, 0.0) ** 2, axis=-1)) + np.minimum(k.max(axis=-1), 0.0)
-        return np.maximum(self.margin - np.sqrt(np.sum(outside ** 2, axis=-1)), box)
+        # outside the clamped cell only outside the grid box, by the distance to the box
+        out = np.sqrt(np.sum(np.maximum(np.maximum(cell_lo - p, p - (cell_lo + self.cell)), 0.0) ** 2, axis=-1))
+        return np.maximum(self.margin - out, out)
 
     def field(self, p: np.ndarray) -> np.ndarray:
         """The float64 twin of the shader's loop: min over the instances listed in each
