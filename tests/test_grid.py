@@ -57,3 +57,25 @@ def test_unions_with_unpackable_or_too_few_children_stay_code():
     mixed = sg.union(*[sg.sphere(0.3).translate((i, 0, 0)) for i in range(GRID_MIN)], sg.plane())
     assert mixed.grid is not None and len(mixed.grid.children) == GRID_MIN
     assert "sdPlane" in sg.compile(mixed)  # an unbounded child stays code beside the grid
+
+
+def test_cells_list_instances_by_their_balls_and_every_unlisted_one_lies_beyond_the_margin():
+    rng = np.random.default_rng(5)
+    members = [sg.sphere(0.15).translate(tuple(rng.uniform(-3, 3, 3))) for _ in range(300)]
+    members += [sg.box((0.5, 0.1, 0.1)).rotate(float(rng.uniform(0, 90)), tuple(rng.normal(size=3)))
+                .translate(tuple(rng.uniform(-3, 3, 3))) for _ in range(100)]
+    g = sg.union(*members).grid
+    cells, child = g._entries()
+    listed = set(zip(cells.tolist(), child.tolist()))
+    # the box test alone lists more: the balls cut the entries near the boxes' corners
+    ball_at = g._ball_at
+    g._ball_at = None
+    assert len(cells) < 0.85 * len(g._entries()[0])
+    g._ball_at = ball_at
+    # the cap's promise at random points: an instance nearer than the margin is in the point's list
+    p = rng.uniform(g.lo, g.lo + g.dims * g.cell, (20000, 3))
+    ijk = np.clip(np.floor((p - g.lo) / g.cell), 0, g.dims - 1).astype(np.int64)
+    index = (ijk[:, 2] * g.dims[1] + ijk[:, 1]) * g.dims[0] + ijk[:, 0]
+    for i, m in enumerate(members):
+        near = np.flatnonzero(m.distance(p) < g.margin)
+        assert all((int(index[k]), i) in listed for k in near), f"member {i} is near an unlisted cell"
