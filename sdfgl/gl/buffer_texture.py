@@ -4,14 +4,15 @@ A table read by index is cheaper as a buffer texture than as a 2D texture on llv
 ``texelFetch(samplerBuffer, i)`` is one clamped load, where a 2D fetch splits the index
 into a texel position and goes through the level and layout code of a sampled image
 (the grid scene of 1024 spheres draws in 0.73x the time; see the issue-12 notes). moderngl
-has no buffer textures, so the few GL calls they need go through ctypes here, loaded from
-whichever API (EGL headless, GLFW in a window) made the calling thread's context current.
+has no buffer textures (and sets no samplerBuffer uniform), so the few GL calls they need
+go through ctypes here, loaded from whichever API (EGL headless, GLFW in a window) made the
+calling thread's context current.
 """
 from __future__ import annotations
 
 import ctypes
 from ctypes import POINTER, byref, c_int, c_uint
-from typing import Any
+from typing import Any, Callable
 
 import moderngl
 
@@ -31,36 +32,40 @@ _SIGNATURES: dict[str, tuple[Any, ...]] = {
 
 
 class _Functions:
-    """The GL entry points of buffer textures, loaded once (GL function addresses are the
-    same for every context of a process on Mesa and libglvnd: they dispatch on the current one)."""
+    """The GL entry points of buffer textures, loaded through one API's ``get`` (address by name)."""
 
-    def __init__(self) -> None:
+    def __init__(self, get: Callable[[str], int | None]) -> None:
         for name, (restype, *argtypes) in _SIGNATURES.items():
-            addr = _proc_address(name)
+            addr = get(name)
             if not addr:
-                raise ContextError(f"the OpenGL driver lacks {name} (buffer textures need OpenGL 3.1)")
+                raise ContextError(f"the OpenGL driver lacks {name} (buffer textures need OpenGL 3.1, "
+                                   f"glProgramUniform1i 4.1 or ARB_separate_shader_objects)")
             setattr(self, name, ctypes.CFUNCTYPE(restype, *argtypes)(addr))
 
 
-def _proc_address(name: str) -> int | None:
-    """The address of GL function ``name`` from EGL when an EGL context is current, else from GLFW."""
+def _egl_address(name: str) -> int | None:
     from .context import _EGL
-    if _EGL is not None and _EGL.eglGetCurrentContext():
-        get = _EGL.eglGetProcAddress
-        get.restype, get.argtypes = ctypes.c_void_p, [ctypes.c_char_p]
-        return get(name.encode())
+    get = _EGL.eglGetProcAddress
+    get.restype, get.argtypes = ctypes.c_void_p, [ctypes.c_char_p]
+    return get(name.encode())
+
+
+def _glfw_address(name: str) -> int | None:
     import glfw
     return glfw.get_proc_address(name)
 
 
-_gl: _Functions | None = None
+_loaded: dict[str, _Functions] = {}
 
 
 def _functions() -> _Functions:
-    global _gl
-    if _gl is None:
-        _gl = _Functions()
-    return _gl
+    """The functions for the calling thread's context: loaded from EGL when an EGL context
+    is current (headless), else from GLFW (a window's), once per API."""
+    from .context import _EGL
+    api = "egl" if _EGL is not None and _EGL.eglGetCurrentContext() else "glfw"
+    if api not in _loaded:
+        _loaded[api] = _Functions(_egl_address if api == "egl" else _glfw_address)
+    return _loaded[api]
 
 
 class BufferTexture:
