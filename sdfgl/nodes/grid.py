@@ -205,7 +205,7 @@ class Grid:
         self.margin = MARGIN * cell
         self.centre = lo + 0.5 * self.dims * cell  # data and code are relative to it (float32 precision)
         self._los, self._his = los, his
-        self._ball_at, self._ball_r = _balls(peeled) if peeled and not single_cell else (None, None)
+        self._ball_at, self._ball_r = _balls(peeled, boxes) if peeled and not single_cell else (None, None)
         self._textures: dict[tuple, dict[str, np.ndarray]] = {}
 
     # -- the twin's cap (the same number the shader computes) --------------------------
@@ -228,7 +228,8 @@ class Grid:
         for i, c in enumerate(self.children):
             m = np.all((cell >= a[i]) & (cell <= b[i]), axis=1)
             if m.any() and self._ball_at is not None:
-                m[m] = self._near_ball(cell[m], np.full(int(m.sum()), i))
+                c = cell[m]
+                m[m] = self._near_ball(c[:, 0], c[:, 1], c[:, 2], np.full(len(c), i))
             if m.any():
                 d[m] = np.minimum(d[m], c._distance(flat[m]))
         return d.reshape(p.shape[:-1])
@@ -253,21 +254,25 @@ class Grid:
         y = np.repeat(a[:, 1], counts) + (local // nx) % ny
         z = np.repeat(a[:, 2], counts) + local // (nx * ny)
         if self._ball_at is not None:
-            keep = self._near_ball(np.stack([x, y, z], axis=1), child)
+            keep = self._near_ball(x, y, z, child)
             x, y, z, child = x[keep], y[keep], z[keep], child[keep]
         cells = (z * self.dims[1] + y) * self.dims[0] + x
         order = np.argsort(cells, kind="stable")
         return cells[order], child[order]
 
-    def _near_ball(self, cells: np.ndarray, child: np.ndarray) -> np.ndarray:
-        """Whether each instance ``child`` (n,) lies within the margin of cell ``cells`` (n, 3)
-        by its ball too (see _balls): its box alone lists a sphere in cells near the box's
-        corners, 22 % of the growth scene's entries. The cap's promise holds: an unlisted
-        instance is at least the margin from the cell, by its box or by its ball."""
-        lo = self.lo + cells * self.cell
-        at = self._ball_at[child]
-        gap = np.sqrt(np.sum(np.maximum(np.maximum(lo - at, at - (lo + self.cell)), 0.0) ** 2, axis=1))
-        return gap <= self._ball_r[child] + self.margin
+    def _near_ball(self, x: np.ndarray, y: np.ndarray, z: np.ndarray, child: np.ndarray) -> np.ndarray:
+        """Whether each instance ``child`` (n,) lies within the margin of cell (x, y, z) by its
+        ball too (see _balls): its box alone lists a sphere in cells near the box's corners,
+        22 % of the growth scene's entries. The cap's promise holds: an unlisted instance is
+        at least the margin from the cell, by its box or by its ball."""
+        gap2 = np.zeros(len(child))
+        for axis, index in enumerate((x, y, z)):
+            lo = self.lo[axis] + index * self.cell
+            at = self._ball_at[:, axis][child]
+            g = np.maximum(np.maximum(lo - at, at - (lo + self.cell)), 0.0)
+            gap2 += g * g
+        reach = self._ball_r[child] + self.margin
+        return gap2 <= reach * reach
 
     def records(self, t: _Type, default_color: tuple[float, float, float]) -> np.ndarray:
         """float32 (members, texels, 4): each member's move (grid_record), parameters, colour."""
@@ -447,21 +452,18 @@ def _template(prim: Node, slots: list[str], at: int) -> Node:
     return tpl
 
 
-def _balls(peeled: list[tuple]) -> tuple[np.ndarray, np.ndarray]:
-    """A ball holding each instance (centres (n, 3), radii (n,)): a sphere itself, any
-    other node the ball round its own box, moved with the instance (a rotated instance's
-    ball is tighter than its world box)."""
+def _balls(peeled: list[tuple], boxes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """A ball holding each instance (centres (n, 3), radii (n,)): a sphere itself (the ball
+    its world box ``boxes`` (n, 2, 3) is drawn round), any other node the ball round its
+    own box, moved with the instance (a rotated instance's ball is tighter than its world box)."""
     from .primitives import Sphere
-    centre = np.empty((len(peeled), 3))
-    radius = np.empty(len(peeled))
+    centre = (boxes[:, 0] + boxes[:, 1]) / 2
+    radius = (boxes[:, 1, 0] - boxes[:, 0, 0]) / 2
     for i, (inner, t, r, s, _) in enumerate(peeled):
-        if isinstance(inner, Sphere) and not isinstance(inner.r, Live) and not isinstance(inner.c, Live):
-            c, rad = inner.c, inner.r
-        else:
+        if type(inner) is not Sphere:
             lo, hi = _bounds_of(inner)
-            c, rad = (lo + hi) / 2, float(np.linalg.norm(hi - lo)) / 2
-        centre[i] = t + s * (r @ c)
-        radius[i] = s * rad
+            centre[i] = t + s * (r @ ((lo + hi) / 2))
+            radius[i] = s * float(np.linalg.norm(hi - lo)) / 2
     return centre, radius
 
 
