@@ -228,8 +228,8 @@ class Grid:
         for i, c in enumerate(self.children):
             m = np.all((cell >= a[i]) & (cell <= b[i]), axis=1)
             if m.any() and self._ball_at is not None:
-                c = cell[m]
-                m[m] = self._near_ball(c[:, 0], c[:, 1], c[:, 2], np.full(len(c), i))
+                at = cell[m]
+                m[m] = self._near_ball(at[:, 0], at[:, 1], at[:, 2], np.full(len(at), i))
             if m.any():
                 d[m] = np.minimum(d[m], c._distance(flat[m]))
         return d.reshape(p.shape[:-1])
