@@ -162,6 +162,7 @@ class Emitter:
         self.shared_keys: set = parent.shared_keys if parent else set()
         self.helpers: dict[str, str] = parent.helpers if parent else {}
         self.detail = parent.detail if parent else False  # emitting the normals-only field
+        self.ray_free_grid: int | None = parent.ray_free_grid if parent else None  # see ray_free_grid()
         self.grids: dict[int, tuple[str, Any, tuple[float, float, float]]] = parent.grids if parent else {}
         self.use_grids = parent.use_grids if parent else True
         self.data: DataPool = parent.data if parent else DataPool()  # tables the shader reads
@@ -534,6 +535,22 @@ def _defines(scene: Node, settings: Settings, origin: np.ndarray, live: bool, pr
     return d
 
 
+def ray_free_grid(scene: Node, settings: Settings) -> Any:
+    """The grid whose free way along the ray (shaders/grid_ray.glsl) the marcher may step:
+    the scene's own union kept as data, under translations and materials only (they keep
+    directions and distances), all of its children instances, marched by sphere tracing or
+    its relaxed variants. None elsewhere."""
+    from .nodes.booleans import Union
+    from .nodes.transforms import Material, Translate
+    if settings.method not in ("sphere", "relaxed", "enhanced") or settings.grid is not True:
+        return None
+    node = scene
+    while isinstance(node, (Translate, Material)) and not node.live_params():
+        node = node.children[0]
+    grid = node.grid if isinstance(node, Union) else None
+    return grid if grid is not None and len(grid.children) == len(node.children) else None
+
+
 def shared_subtrees(scene: Node, use_grids: bool = True) -> set:
     """Keys of composite subtrees that occur more than once (each becomes one GLSL function)."""
     from .nodes.booleans import Union
@@ -590,8 +607,9 @@ def _surface_function(channels: Sequence[str]) -> str:
 def _emit_map(scene: Node, mode: str, origin: np.ndarray, params: list[Param], shared: set,
               grids: dict, use_grids: bool, helpers: dict, data: DataPool, data_min: int,
               origins: OriginOffsets | None, detail: bool = False, channel: str = "albedo",
-              highlight: Node | None = None) -> tuple[Emitter, str]:
+              highlight: Node | None = None, ray_free_grid: int | None = None) -> tuple[Emitter, str]:
     em = Emitter(mode, params=params, channel=channel)
+    em.ray_free_grid = ray_free_grid
     em.origins = origins
     em.data = data
     em.data_min = data_min
@@ -701,7 +719,9 @@ def _generate_once(scene: Node, settings: Settings, org: np.ndarray, target: str
     helpers: dict = {}
     tex = DataPool()
     ems = (org, params, shared, grids, settings.grid, helpers, tex, data_min, origins)
-    dist, dist_result = _emit_map(scene, "dist", *ems, highlight=highlight if target == "render" else None)
+    root = ray_free_grid(scene, settings) if target == "render" else None
+    dist, dist_result = _emit_map(scene, "dist", *ems, highlight=highlight if target == "render" else None,
+                                  ray_free_grid=None if root is None else id(root))
     # a scene without any material node has one colour: mapColor() is that constant, not
     # another copy of the scene's code (which the driver would compile and llvmpipe JIT)
     one_color = not fact(scene, "_fields") and highlight is None
@@ -721,7 +741,8 @@ def _generate_once(scene: Node, settings: Settings, org: np.ndarray, target: str
     b = _Builder()
     b.add(lang.header(), "(codegen)")
     b.add(f"// sdfgl scene: {scene.label()}  [{scene.exactness}, L={scene.lipschitz:g}]", "(codegen)")
-    b.add("\n".join(_defines(scene, settings, org, live, projection, moving)), "(settings)")
+    b.add("\n".join(_defines(scene, settings, org, live, projection, moving)
+                     + (["#define RAY_FREE"] if root is not None else [])), "(settings)")
     for i, prm in enumerate(params):
         b.add(f"uniform {'vec3' if prm.dims == 3 else 'float'} uP{i};  // param {prm.label}", "(live parameters)")
     if live:

@@ -43,10 +43,16 @@ float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
     Settle S = settleStart(0.0, 0.0, 0.0, 0.0);
     float ms = 0.0;          // a near probe's minimum step
     float sProbe = 0.0;      // a shallow-angle probe's slope
+#ifdef RAY_FREE
+    gRayDir = rd;
+#endif
     for (int i = uZero; i < 2 * MAX_STEPS * (SETTLE_CALLS + 1); i++) {
         if (settling == 0 && (marchRounds >= 2 * MAX_STEPS || marchRounds - nearRounds >= MAX_STEPS)) break;
         float c = settling == 0 ? t : settlePoint(S);
         float r = map(ro + rd * c);
+#ifdef RAY_FREE
+        float free = settling == 0 ? gFree : 0.0;  // the way proven empty from t (grid_ray.glsl)
+#endif
         steps++;
         float s = 0.0;
         bool stepOnly = false;  // the shallow-angle probe found no way on: the round's usual step
@@ -148,10 +154,19 @@ float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
 #else
         float next = r;
 #endif
+#ifdef RAY_FREE
+        // the union's free way: land a hit threshold short of what the ray meets; no
+        // overlap to check afterwards, the whole segment is proven empty
+        bool proven = free - hitEpsilon(t) > next;
+        if (proven) next = free - hitEpsilon(t);
+#else
+        bool proven = false;
+#endif
         tPrev = t;
-        rPrev = r;
+        rPrev = proven ? -1.0 : r;  // a slope over a proven stride says nothing of the field here
+        haveSlope = haveSlope && !proven;
         t += next;
-        over = next > r;
+        over = next > r && !proven;
         if (t > tmax) {
             if (!over) return -1.0;
             t = tPrev + r;  // an enlarged step left the range unchecked: take the plain one

@@ -374,20 +374,32 @@ class Grid:
                 f"#define {gid}_DIMS ivec3({', '.join(str(int(x)) for x in self.dims)})\n"
                 f"#define {gid}_PER_CELL {-(-len(self.types) // 2)}\n"
                 f"#define {gid}_CELLS {cells}\n#define {gid}_LIST {lists}")
+        ray = self._ray_free(em, color)
+        if ray:
+            head += "\n" + shaderlib.read("grid_ray").replace("GRIDID", gid)
         em.helper(f"{gid}_grid", defs + "\n" + head)
         rtype = "vec4" if color else "float"
         best = "vec4(0.0, 0.0, 0.0, cap)" if color else "cap"
         fetch = [(f"    vec4 s{j} = dataFetch({gid}_CELLS + cell + {j});", owner) for j in range(-(-len(self.types) // 2))]
+        free = [(f"    float free = {gid}Exit(p, gRayDir);", owner),
+                ("    bool inGrid = free >= 0.0;  // outside the grid box gFree is the field's value", owner)] if ray else []
+        done = [("    gFree = inGrid ? max(free, best) : best;", owner)] if ray else []
         return [(f"{rtype} {fn}(vec3 p) {{", owner),
                 ("    float cap;", owner),
                 (f"    int cell = {gid}Cell(p, cap) * {gid}_PER_CELL;", owner),
                 (f"    {rtype} best = {best};", owner),
-                *fetch, *loops,
+                *free, *fetch, *loops, *done,
                 ("    return best;", owner), ("}", owner)]
+
+    def _ray_free(self, em: "Emitter", color: bool) -> bool:
+        """Whether this grid's distance function also leaves the free way along the ray
+        (shaders/grid_ray.glsl): for the marchers' primary rays where the scene is this union."""
+        return not color and not em.detail and em.ray_free_grid == id(self)
 
     def _loop(self, em: "Emitter", t: _Type, ti: int, color: bool, owner: str) -> list[tuple[str, str]]:
         """The loop over the (cell, type ti) list: fetch, transform, evaluate, keep the min."""
         from ..codegen import Emitter
+        from .primitives import Sphere
         sizes = [len(v) for _, v in _slot_values(t.inner)] if t.slots is not None else []
         move = grid_record.kind(t, np.array([self.peeled[i][2] for i in t.members]))
         scale_at, slots_at, color_at, texels = t.layout(sizes, move)
@@ -436,6 +448,11 @@ class Grid:
             out.append((f"        if (dist < best.w) best = vec4({rgb}, dist);", owner))
         else:
             out.append((f"        best = min(best, {d});", owner))
+            if self._ray_free(em, color):
+                ball = (isinstance(t.inner, Sphere) and not t.scaled and move == "translate"
+                        and not np.any(t.inner.c))
+                way = (f"{gid}RayBall(q, gRayDir, length(q) - ({d}))" if ball else d)
+                out.append((f"        free = min(free, {way});", owner))
         out += [("    }", owner), ("    }", owner)]
         return out
 
