@@ -538,9 +538,10 @@ def _defines(scene: Node, settings: Settings, origin: np.ndarray, live: bool, pr
 def ray_free_grid(scene: Node, settings: Settings) -> Any:
     """The grid whose free way along the ray (shaders/grid_ray.glsl) the marcher may step:
     the scene's own union kept as data, under translations and materials only (they keep
-    directions and distances), all of its children instances, marched by sphere tracing or
+    directions and distances), all of its children spheres, marched by sphere tracing or
     its relaxed variants. None elsewhere."""
     from .nodes.booleans import Union
+    from .nodes.primitives import Sphere
     from .nodes.transforms import Material, Translate
     if settings.method not in ("sphere", "relaxed", "enhanced") or settings.grid is not True:
         return None
@@ -548,7 +549,13 @@ def ray_free_grid(scene: Node, settings: Settings) -> Any:
     while isinstance(node, (Translate, Material)) and not node.live_params():
         node = node.children[0]
     grid = node.grid if isinstance(node, Union) else None
-    return grid if grid is not None and len(grid.children) == len(node.children) else None
+    if grid is None or len(grid.children) != len(node.children):
+        return None
+    # spheres only, unscaled and centred (one texel: centre, radius): their ray entries are
+    # exact. Other instance types were tried (their distance, or the entry into their box):
+    # the longer strides led the hit test's probes to other roots of thin parts (issue 10)
+    spheres = all(type(t.inner) is Sphere and not t.scaled and not np.any(t.inner.c) for t in grid.types)
+    return grid if spheres else None
 
 
 def shared_subtrees(scene: Node, use_grids: bool = True) -> set:

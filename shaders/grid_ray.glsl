@@ -1,9 +1,8 @@
-// The free way along the ray, for the marchers (RAY_FREE: the scene is one grid union,
-// perhaps moved). map() leaves in gFree how far along gRayDir from its point nothing of
-// the union lies: each listed sphere by where the ray enters it (infinite where the ray
-// misses it or leaves it behind), every other listed instance by its distance, and the
-// unlisted ones, which lie at least the margin from the point's cell, by the way to the
-// cell's far side plus the margin. Outside the grid box it is the field's value (a plain
+// The free way along the ray, for the marchers (RAY_FREE: the scene is one grid union of
+// spheres, perhaps moved). map() leaves in gFree how far along gRayDir from its point
+// nothing of the union lies: each listed sphere by where the ray enters it (infinite where
+// the ray misses it or leaves it behind), and the unlisted ones, which lie at least the
+// margin from the point's cell, by the way to the cell's far side plus the margin. Outside the grid box it is the field's value (a plain
 // distance). The marcher may step that far at once: the segment is proven empty.
 vec3 gRayDir = vec3(0.0, 0.0, 1.0);  // the marcher's ray direction (unit)
 float gFree = 0.0;
@@ -31,3 +30,4 @@ float GRIDIDRayBall(vec3 q, vec3 d, float r) {
     if (b >= 0.0 || disc < 0.0) return 3.0e38;
     return c / (-b + sqrt(disc));  // the nearer root, without cancellation
 }
+

@@ -13,8 +13,16 @@ from sdfgl.reference import trace_rays
 RENDER = sys.modules["sdfgl.render"]
 
 
+def _spheres(n: int, seed: int) -> sg.Node:
+    """Spheres from a pixel wide to big ones, some rotated (a rotated sphere keeps its centre)."""
+    rng = np.random.default_rng(seed)
+    parts = [sg.sphere(float(rng.choice([0.01, 0.03, 0.1, 0.3]))).rotate(float(rng.uniform(0, 90)), (0, 1, 0))
+             .translate(tuple(rng.uniform((-2, -0.5, -2), (2, 0.5, 2)))) for _ in range(n)]
+    return sg.union(*parts)
+
+
 def _mixed(n: int, seed: int) -> sg.Node:
-    """Thin and round instances, rotated: spheres (ray-ball ways), capsules, tori, thin boxes."""
+    """Thin and round instances, rotated: spheres, capsules, tori, thin boxes."""
     rng = np.random.default_rng(seed)
     kinds = (lambda: sg.sphere(0.12), lambda: sg.capsule((-0.2, 0, 0), (0.2, 0, 0), 0.03),
              lambda: sg.torus(0.15, 0.02), lambda: sg.box((0.4, 0.02, 0.25)))
@@ -34,8 +42,8 @@ def without_ray_free(monkeypatch):
     return lambda: monkeypatch.setattr(RENDER, "generate", generate)
 
 
-def test_only_a_scene_that_is_one_union_of_instances_gets_the_free_way():
-    scene = _mixed(64, 0)
+def test_only_a_scene_that_is_one_union_of_spheres_gets_the_free_way():
+    scene = _spheres(64, 0)
     assert "#define RAY_FREE" in sg.compile(scene, shadows=False, ao=False)
     assert "#define RAY_FREE" in sg.compile(scene.translate((1, 2, 3)).color(1, 0, 0))
     # a union beside other geometry, a rotation, Newton, no grid: plain steps
@@ -44,10 +52,11 @@ def test_only_a_scene_that_is_one_union_of_instances_gets_the_free_way():
     assert "#define RAY_FREE" not in sg.compile(scene, method="newton")
     assert "#define RAY_FREE" not in sg.compile(scene, grid=False)
     assert "#define RAY_FREE" not in sg.compile(sg.sphere(1) & sg.box(1.5))
+    assert "#define RAY_FREE" not in sg.compile(_mixed(64, 0))  # other instance types: plain steps
 
 
 def test_free_way_hits_what_the_reference_hits_in_fewer_steps(without_ray_free):
-    scene = _mixed(160, 2)
+    scene = _spheres(250, 2)
     cam = sg.OrbitCamera(distance=5.5, yaw=80, pitch=30, fov=45)
     size = (96, 72)
     got = sg.Renderer().render(scene, cam, size, shadows=False, ao=False, outputs=("color", "depth", "steps"))

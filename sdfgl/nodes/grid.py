@@ -392,22 +392,10 @@ class Grid:
                 ("    return best;", owner), ("}", owner)]
 
     @staticmethod
-    def _ray_way(em: "Emitter", gid: str, t: _Type, move: str, d: str) -> str:
-        """GLSL of how far along the ray an instance of type ``t`` leaves free, from the
-        loop's q (the point in the instance's frame) and its field value ``d``: an unscaled
-        sphere's own entry (exact); where all members share one shape and only move (a
-        translated subtree), the entry into the ball round its box, or ``d`` where that is
-        longer; else ``d`` (a distance is a free way too). No rotation: no direction to turn."""
-        from .primitives import Sphere
-        if t.scaled or move != "translate":
-            return d
-        if isinstance(t.inner, Sphere) and not np.any(t.inner.c):
-            return f"{gid}RayBall(q, gRayDir, length(q) - ({d}))"
-        if t.slots is None:  # one shape for all members: the ball round its box
-            lo, hi = _bounds_of(t.inner)
-            at, r = (lo + hi) / 2, float(np.linalg.norm(hi - lo)) / 2
-            return f"max({gid}RayBall(q - {em.vec(at)}, gRayDir, {em.num(r)}), {d})"
-        return d
+    def _ray_way(gid: str, d: str) -> str:
+        """GLSL of how far along the ray a listed sphere leaves free, from the loop's q (the
+        point relative to its centre) and its field value ``d``: where the ray enters it."""
+        return f"{gid}RayBall(q, gRayDir, length(q) - ({d}))"
 
     def _ray_free(self, em: "Emitter", color: bool) -> bool:
         """Whether this grid's distance function also leaves the free way along the ray
@@ -467,7 +455,7 @@ class Grid:
         else:
             out.append((f"        best = min(best, {d});", owner))
             if self._ray_free(em, color):
-                out.append((f"        free = min(free, {self._ray_way(em, gid, t, move, d)});", owner))
+                out.append((f"        free = min(free, {self._ray_way(gid, d)});", owner))
         out += [("    }", owner), ("    }", owner)]
         return out
 
