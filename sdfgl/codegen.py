@@ -538,12 +538,12 @@ def _defines(scene: Node, settings: Settings, origin: np.ndarray, live: bool, pr
 def ray_free_grid(scene: Node, settings: Settings) -> Any:
     """The grid whose free way along the ray (shaders/grid_ray.glsl) the marcher may step:
     the scene's own union kept as data, under translations and materials only (they keep
-    directions and distances), all of its children spheres, marched by sphere tracing or
-    its relaxed variants. None elsewhere."""
+    directions and distances), all of its children spheres, marched by march_relaxed.glsl
+    (sphere tracing and its relaxed variants: the marcher that reads gFree). None elsewhere."""
     from .nodes.booleans import Union
     from .nodes.primitives import Sphere
     from .nodes.transforms import Material, Translate
-    if settings.method not in ("sphere", "relaxed", "enhanced") or settings.grid is not True:
+    if MARCH_FILES.get(settings.method, settings.method) != "relaxed" or settings.grid is not True:
         return None
     node = scene
     while isinstance(node, (Translate, Material)) and not node.live_params():
@@ -614,9 +614,9 @@ def _surface_function(channels: Sequence[str]) -> str:
 def _emit_map(scene: Node, mode: str, origin: np.ndarray, params: list[Param], shared: set,
               grids: dict, use_grids: bool, helpers: dict, data: DataPool, data_min: int,
               origins: OriginOffsets | None, detail: bool = False, channel: str = "albedo",
-              highlight: Node | None = None, ray_free_grid: int | None = None) -> tuple[Emitter, str]:
+              highlight: Node | None = None, ray_free_id: int | None = None) -> tuple[Emitter, str]:
     em = Emitter(mode, params=params, channel=channel)
-    em.ray_free_grid = ray_free_grid
+    em.ray_free_grid = ray_free_id
     em.origins = origins
     em.data = data
     em.data_min = data_min
@@ -728,7 +728,7 @@ def _generate_once(scene: Node, settings: Settings, org: np.ndarray, target: str
     ems = (org, params, shared, grids, settings.grid, helpers, tex, data_min, origins)
     root = ray_free_grid(scene, settings) if target == "render" else None
     dist, dist_result = _emit_map(scene, "dist", *ems, highlight=highlight if target == "render" else None,
-                                  ray_free_grid=None if root is None else id(root))
+                                  ray_free_id=None if root is None else id(root))
     # a scene without any material node has one colour: mapColor() is that constant, not
     # another copy of the scene's code (which the driver would compile and llvmpipe JIT)
     one_color = not fact(scene, "_fields") and highlight is None

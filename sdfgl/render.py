@@ -189,8 +189,7 @@ def bind_data(prog: moderngl.Program, source: ShaderSource, data: DataTextures |
     for unit, ((name, _), tex) in enumerate(zip(source.data, texs), start=DATA_UNIT):
         tex.use(unit)
         if isinstance(tex, BufferTexture):
-            if name in prog:
-                tex.point(prog, name, unit)
+            tex.point(prog, name, unit)  # moderngl cannot set a samplerBuffer uniform
         else:
             _set_uniform(prog, name, unit)
 

@@ -2,17 +2,15 @@
 // spheres, perhaps moved). map() leaves in gFree how far along gRayDir from its point
 // nothing of the union lies: each listed sphere by where the ray enters it (infinite where
 // the ray misses it or leaves it behind), and the unlisted ones, which lie at least the
-// margin from the point's cell, by the way to the cell's far side plus the margin. Outside the grid box it is the field's value (a plain
-// distance). The marcher may step that far at once: the segment is proven empty.
+// margin from the point's cell, by the way to the cell's far side plus the margin.
+// Outside the grid box it is the field's value (a plain distance). The marcher may step
+// that far at once: the segment is proven empty.
 vec3 gRayDir = vec3(0.0, 0.0, 1.0);  // the marcher's ray direction (unit)
 float gFree = 0.0;
 
-// Along unit d from p: the way to the far side of p's cell plus the margin, or -1.0 where
-// p lies outside the grid box.
-float GRIDIDExit(vec3 p, vec3 d) {
-    vec3 rel = (p - GRIDID_LO) / GRIDID_CELL;
-    ivec3 cell = clamp(ivec3(floor(rel)), ivec3(0), GRIDID_DIMS - 1);
-    vec3 lo = GRIDID_LO + vec3(cell) * GRIDID_CELL;
+// Along unit d from p: the way to the far side of p's cell (low corner lo, from
+// GRIDIDCell) plus the margin, or -1.0 where p lies outside the cell (outside the grid box).
+float GRIDIDExit(vec3 p, vec3 d, vec3 lo) {
     vec3 hi = lo + GRIDID_CELL;
     if (any(lessThan(p, lo)) || any(greaterThan(p, hi))) return -1.0;
     vec3 safe = d + vec3(equal(d, vec3(0.0))) * 1e-30;
@@ -30,4 +28,3 @@ float GRIDIDRayBall(vec3 q, vec3 d, float r) {
     if (b >= 0.0 || disc < 0.0) return 3.0e38;
     return c / (-b + sqrt(disc));  // the nearer root, without cancellation
 }
-

@@ -9,11 +9,12 @@
 // Its tables are in the shader's data texture (lib/data_table.glsl): from GRIDID_CELLS,
 // per cell and type pair (first, count, first, count); from GRIDID_LIST, the records.
 
-// The index of p's cell (clamped to the grid), and the cap on unlisted instances.
-int GRIDIDCell(vec3 p, out float cap) {
+// The index of p's cell (clamped to the grid), the cap on unlisted instances and the
+// cell's low corner.
+int GRIDIDCell(vec3 p, out float cap, out vec3 cellLo) {
     vec3 rel = (p - GRIDID_LO) / GRIDID_CELL;
     ivec3 cell = clamp(ivec3(floor(rel)), ivec3(0), GRIDID_DIMS - 1);
-    vec3 cellLo = GRIDID_LO + vec3(cell) * GRIDID_CELL;
+    cellLo = GRIDID_LO + vec3(cell) * GRIDID_CELL;
     // outside its (clamped) cell only outside the grid box, and then by the distance to the box
     float away = length(max(max(cellLo - p, p - (cellLo + GRIDID_CELL)), 0.0));
     cap = max(GRIDID_MARGIN - away, away);

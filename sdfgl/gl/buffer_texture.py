@@ -18,7 +18,7 @@ import moderngl
 
 from ..errors import ContextError, SdfglError
 
-TEXTURE_BUFFER, RGBA32F, TEXTURE0, MAX_TEXTURE_BUFFER_SIZE = 0x8C2A, 0x8814, 0x84C0, 0x8C2B
+TEXTURE_BUFFER, RGBA32F, TEXTURE0 = 0x8C2A, 0x8814, 0x84C0
 
 _SIGNATURES: dict[str, tuple[Any, ...]] = {
     "glGenTextures": (None, c_int, POINTER(c_uint)),
@@ -43,13 +43,6 @@ class _Functions:
             setattr(self, name, ctypes.CFUNCTYPE(restype, *argtypes)(addr))
 
 
-def _egl_address(name: str) -> int | None:
-    from .context import _EGL
-    get = _EGL.eglGetProcAddress
-    get.restype, get.argtypes = ctypes.c_void_p, [ctypes.c_char_p]
-    return get(name.encode())
-
-
 def _glfw_address(name: str) -> int | None:
     import glfw
     return glfw.get_proc_address(name)
@@ -61,10 +54,10 @@ _loaded: dict[str, _Functions] = {}
 def _functions() -> _Functions:
     """The functions for the calling thread's context: loaded from EGL when an EGL context
     is current (headless), else from GLFW (a window's), once per API."""
-    from .context import _EGL
-    api = "egl" if _EGL is not None and _EGL.eglGetCurrentContext() else "glfw"
+    from .context import egl_current, egl_proc_address
+    api = "egl" if egl_current() else "glfw"
     if api not in _loaded:
-        _loaded[api] = _Functions(_egl_address if api == "egl" else _glfw_address)
+        _loaded[api] = _Functions(egl_proc_address if api == "egl" else _glfw_address)
     return _loaded[api]
 
 
@@ -95,12 +88,14 @@ class BufferTexture:
     def point(self, prog: Any, name: str, unit: int) -> None:
         """Set sampler uniform ``name`` of ``prog`` to ``unit``. moderngl sets no samplerBuffer
         uniform (the value stays 0), so a moderngl program's is set here; a viewer's program
-        (sdfgl.viewer.programs.RawProgram) sets its own."""
+        (sdfgl.viewer.programs.RawProgram) sets its own. Nothing to set where the driver dropped
+        the sampler (the code does not read it)."""
         if not isinstance(prog, moderngl.Program):
-            prog[name].value = unit
+            if name in prog:
+                prog[name].value = unit
             return
         loc = self.gl.glGetUniformLocation(prog.glo, name.encode())
-        if loc >= 0:  # the driver drops a sampler the code does not read
+        if loc >= 0:
             self.gl.glProgramUniform1i(prog.glo, loc, unit)
 
     def release(self) -> None:

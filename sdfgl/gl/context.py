@@ -253,12 +253,22 @@ def headless_context() -> moderngl.Context:
     return gl_thread().ctx
 
 
-def _gl_finish_fn() -> Callable[[], None] | None:
+def egl_proc_address(name: str) -> int | None:
+    """The address of GL function ``name`` through EGL (None without libEGL or the function)."""
     if _EGL is None:
         return None
     get = _EGL.eglGetProcAddress
     get.restype, get.argtypes = ctypes.c_void_p, [ctypes.c_char_p]
-    address = get(b"glFinish")
+    return get(name.encode()) or None
+
+
+def egl_current() -> bool:
+    """Whether an EGL context is current on the calling thread."""
+    return _EGL is not None and bool(_EGL.eglGetCurrentContext())
+
+
+def _gl_finish_fn() -> Callable[[], None] | None:
+    address = egl_proc_address("glFinish")
     return ctypes.CFUNCTYPE(None)(address) if address else None
 
 

@@ -381,21 +381,16 @@ class Grid:
         rtype = "vec4" if color else "float"
         best = "vec4(0.0, 0.0, 0.0, cap)" if color else "cap"
         fetch = [(f"    vec4 s{j} = dataFetch({gid}_CELLS + cell + {j});", owner) for j in range(-(-len(self.types) // 2))]
-        free = [(f"    float free = {gid}Exit(p, gRayDir);", owner),
+        free = [(f"    float free = {gid}Exit(p, gRayDir, cellLo);", owner),
                 ("    bool inGrid = free >= 0.0;  // outside the grid box gFree is the field's value", owner)] if ray else []
         done = [("    gFree = inGrid ? max(free, best) : best;", owner)] if ray else []
         return [(f"{rtype} {fn}(vec3 p) {{", owner),
                 ("    float cap;", owner),
-                (f"    int cell = {gid}Cell(p, cap) * {gid}_PER_CELL;", owner),
+                ("    vec3 cellLo;", owner),
+                (f"    int cell = {gid}Cell(p, cap, cellLo) * {gid}_PER_CELL;", owner),
                 (f"    {rtype} best = {best};", owner),
                 *free, *fetch, *loops, *done,
                 ("    return best;", owner), ("}", owner)]
-
-    @staticmethod
-    def _ray_way(gid: str, d: str) -> str:
-        """GLSL of how far along the ray a listed sphere leaves free, from the loop's q (the
-        point relative to its centre) and its field value ``d``: where the ray enters it."""
-        return f"{gid}RayBall(q, gRayDir, length(q) - ({d}))"
 
     def _ray_free(self, em: "Emitter", color: bool) -> bool:
         """Whether this grid's distance function also leaves the free way along the ray
@@ -405,7 +400,6 @@ class Grid:
     def _loop(self, em: "Emitter", t: _Type, ti: int, color: bool, owner: str) -> list[tuple[str, str]]:
         """The loop over the (cell, type ti) list: fetch, transform, evaluate, keep the min."""
         from ..codegen import Emitter
-        from .primitives import Sphere
         sizes = [len(v) for _, v in _slot_values(t.inner)] if t.slots is not None else []
         move = grid_record.kind(t, np.array([self.peeled[i][2] for i in t.members]))
         scale_at, slots_at, color_at, texels = t.layout(sizes, move)
@@ -455,7 +449,8 @@ class Grid:
         else:
             out.append((f"        best = min(best, {d});", owner))
             if self._ray_free(em, color):
-                out.append((f"        free = min(free, {self._ray_way(gid, d)});", owner))
+                # a listed sphere (q relative to its centre, radius |q| - d) leaves the way to its entry
+                out.append((f"        free = min(free, {gid}RayBall(q, gRayDir, length(q) - ({d})));", owner))
         out += [("    }", owner), ("    }", owner)]
         return out
 
