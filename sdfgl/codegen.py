@@ -538,10 +538,10 @@ def _defines(scene: Node, settings: Settings, origin: np.ndarray, live: bool, pr
 def ray_free_grid(scene: Node, settings: Settings) -> Any:
     """The grid whose free way along the ray (shaders/grid_ray.glsl) the marcher may step:
     the scene's own union kept as data, under translations and materials only (they keep
-    directions and distances), all of its children spheres, marched by march_relaxed.glsl
-    (sphere tracing and its relaxed variants: the marcher that reads gFree). None elsewhere."""
+    directions and distances), every instance moved by a translation alone (Grid.translated_only),
+    marched by march_relaxed.glsl (sphere tracing and its relaxed variants: the marcher that
+    reads gFree). None elsewhere."""
     from .nodes.booleans import Union
-    from .nodes.primitives import Sphere
     from .nodes.transforms import Material, Translate
     if MARCH_FILES.get(settings.method, settings.method) != "relaxed" or settings.grid is not True:
         return None
@@ -551,11 +551,7 @@ def ray_free_grid(scene: Node, settings: Settings) -> Any:
     grid = node.grid if isinstance(node, Union) else None
     if grid is None or len(grid.children) != len(node.children):
         return None
-    # spheres only, unscaled and centred (one texel: centre, radius): their ray entries are
-    # exact. Other instance types were tried (their distance, or the entry into their box):
-    # the longer strides led the hit test's probes to other roots of thin parts (issue 10)
-    spheres = all(type(t.inner) is Sphere and not t.scaled and not np.any(t.inner.c) for t in grid.types)
-    return grid if spheres else None
+    return grid if grid.translated_only() else None
 
 
 def shared_subtrees(scene: Node, use_grids: bool = True) -> set:

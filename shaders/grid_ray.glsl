@@ -1,8 +1,10 @@
 // The free way along the ray, for the marchers (RAY_FREE: the scene is one grid union of
-// spheres, perhaps moved). map() leaves in gFree how far along gRayDir from its point
-// nothing of the union lies: each listed sphere by where the ray enters it (infinite where
-// the ray misses it or leaves it behind), and the unlisted ones, which lie at least the
-// margin from the point's cell, by the way to the cell's far side plus the margin.
+// translated instances, perhaps moved as a whole). map() leaves in gFree how far along
+// gRayDir from its point nothing of the union lies: each listed sphere by where the ray
+// enters it, each listed subtree by where the ray enters its bounding box (infinite where
+// the ray misses it or leaves it behind), any other listed primitive by its distance, and
+// the unlisted ones, which lie at least the margin from the point's cell, by the way to
+// the cell's far side plus the margin.
 // Outside the grid box it is the field's value (a plain distance). The marcher may step
 // that far at once: the segment is proven empty.
 vec3 gRayDir = vec3(0.0, 0.0, 1.0);  // the marcher's ray direction (unit)
@@ -27,4 +29,17 @@ float GRIDIDRayBall(vec3 q, vec3 d, float r) {
     float disc = b * b - c;
     if (b >= 0.0 || disc < 0.0) return 3.0e38;
     return c / (-b + sqrt(disc));  // the nearer root, without cancellation
+}
+
+// Along unit d from q (in an instance's frame): where the ray enters the box [lo, hi] (0
+// inside it), or 3e38 where it misses the box or moves away from it.
+float GRIDIDRayBox(vec3 q, vec3 d, vec3 lo, vec3 hi) {
+    vec3 inv = 1.0 / (d + vec3(equal(d, vec3(0.0))) * 1e-30);
+    vec3 a = (lo - q) * inv;
+    vec3 b = (hi - q) * inv;
+    vec3 near = min(a, b);
+    vec3 far = max(a, b);
+    float enter = max(max(near.x, near.y), max(near.z, 0.0));
+    float leave = min(min(far.x, far.y), far.z);
+    return leave < enter ? 3.0e38 : enter;
 }
