@@ -232,6 +232,12 @@ class Emitter:
             self.grids[id(grid)] = (f"g{len(self.grids)}", grid, self.field("albedo"))
         return self.grids[id(grid)][0]
 
+    def narrow_free_way(self, grid: Any, distance: str) -> None:
+        """Beside ``grid``'s union, a child written as code bounds the free way along the ray
+        by its distance (shaders/grid_ray.glsl; map() of the ray-free grid only)."""
+        if id(grid) == self.ray_free_grid and self.mode == "dist" and not self.detail:
+            self.lines.append((f"    gFree = min(gFree, {distance});", self.owner))
+
     def mark(self, node: Node, result: str) -> str:
         """Record the distance of the highlighted subtree in the global gSel (map() only); return ``result``."""
         if node is self.highlight and self.mode == "dist" and not self.detail:
@@ -539,6 +545,7 @@ def ray_free_grid(scene: Node, settings: Settings) -> Any:
     """The grid whose free way along the ray (shaders/grid_ray.glsl) the marcher may step:
     the scene's own union kept as data, under translations and materials only (they keep
     directions and distances), every instance moved by a translation alone (Grid.translated_only),
+    any child beside the instances bounding the way by its distance,
     marched by march_relaxed.glsl (sphere tracing and its relaxed variants: the marcher that
     reads gFree). None elsewhere."""
     from .nodes.booleans import Union
@@ -549,9 +556,9 @@ def ray_free_grid(scene: Node, settings: Settings) -> Any:
     while isinstance(node, (Translate, Material)) and not node.live_params():
         node = node.children[0]
     grid = node.grid if isinstance(node, Union) else None
-    if grid is None or len(grid.children) != len(node.children):
-        return None
-    return grid if grid.translated_only() else None
+    # children beside the grid (a floor) bound the way by their distance (Union._emit): the
+    # scene is a distance bound wherever a distance marcher runs (an implicit one is refused)
+    return grid if grid is not None and grid.translated_only() else None
 
 
 def shared_subtrees(scene: Node, use_grids: bool = True) -> set:

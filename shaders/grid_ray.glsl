@@ -4,7 +4,8 @@
 // enters it, each listed subtree by where the ray enters its bounding box (infinite where
 // the ray misses it or leaves it behind), any other listed primitive by its distance, and
 // the unlisted ones, which lie at least the margin from the point's cell, by the way to
-// the cell's far side plus the margin.
+// the cell's far side plus the margin. Children of the union written as code beside the
+// grid (a floor) narrow gFree to their distance in map() (Emitter.narrow_free_way).
 // Outside the grid box it is the field's value (a plain distance). The marcher may step
 // that far at once: the segment is proven empty.
 vec3 gRayDir = vec3(0.0, 0.0, 1.0);  // the marcher's ray direction (unit)

@@ -55,12 +55,14 @@ def without_ray_free(monkeypatch):
     return lambda: monkeypatch.setattr(RENDER, "generate", generate)
 
 
-def test_only_a_scene_that_is_one_union_of_moved_instances_gets_the_free_way():
+def test_only_a_scene_whose_root_is_a_union_of_moved_instances_gets_the_free_way():
     scene = _spheres(64, 0)
     assert "#define RAY_FREE" in sg.compile(scene, shadows=False, ao=False)
     assert "#define RAY_FREE" in sg.compile(scene.translate((1, 2, 3)).color(1, 0, 0))
-    # a union beside other geometry, a rotation, Newton, no grid: plain steps
-    assert "#define RAY_FREE" not in sg.compile(scene | sg.plane())
+    # beside other geometry: its distance bounds the way
+    floor = sg.compile(scene | sg.plane())
+    assert "#define RAY_FREE" in floor and "gFree = min(gFree, " in floor
+    # a rotation, Newton, no grid: plain steps
     assert "#define RAY_FREE" not in sg.compile(scene.rotate(30, (0, 1, 0)))
     assert "#define RAY_FREE" not in sg.compile(scene, method="newton")
     assert "#define RAY_FREE" not in sg.compile(scene, grid=False)
@@ -102,8 +104,9 @@ def test_free_way_hits_what_the_reference_hits_in_fewer_steps(without_ray_free):
     assert np.all(err <= plain_err + 0.05)
 
 
-def test_free_way_into_subtree_boxes_hits_what_the_reference_hits(without_ray_free):
-    hit, ref_hit, err, plain_err = _against_reference(_translated(64, 2), without_ray_free)
+def test_free_way_into_subtree_boxes_and_beside_a_floor_hits_what_the_reference_hits(without_ray_free):
+    scene = _translated(64, 2) | sg.plane((0, 1, 0), (0, -0.7, 0))
+    hit, ref_hit, err, plain_err = _against_reference(scene, without_ray_free)
     assert hit.sum() > 1000
     assert np.array_equal(hit, ref_hit)
     assert np.percentile(err, 99) < 0.05

@@ -188,7 +188,9 @@ class Union(_Boolean):
         inside = {id(g) for g in grid.children}
         for c in self.children:
             if id(c) not in inside:
-                acc = self._combine(em, acc, c.emit(em, p))
+                d = c.emit(em, p)
+                em.narrow_free_way(grid, d)
+                acc = self._combine(em, acc, d)
         return acc
 
     def _distance(self, p: np.ndarray) -> np.ndarray:
