@@ -79,6 +79,13 @@ def spheres_like(n: int, seed: int = 0) -> tuple[Node, Camera]:
     return instances(n, seed, primitives.sphere(0.35))
 
 
+def on_floor(scene: Node, camera: Camera) -> tuple[Node, Camera]:
+    """``scene`` on a plane just below its bounds: the free way along the ray beside other geometry."""
+    lo, hi = scene.bounds
+    below = float(lo[1]) - 0.05 * float(max(hi - lo))
+    return booleans.union(scene, primitives.plane((0, 1, 0), (0, below, 0))), camera
+
+
 def chain(kind: str, n: int) -> tuple[Node, Camera]:
     """A chain of n operations as a loop writes it: ``s = s | x``, ``s = s.translate(...)``."""
     s: Node = primitives.sphere(0.5)
@@ -174,11 +181,14 @@ def run_big(quick: bool, size: tuple[int, int] = (320, 240)) -> str:
     rows = ["| scene | objects | build s | link ms | first frame ms | frame ms (median) | ratio | steps/px | "
             "code chars | how |", "|---|---|---|---|---|---|---|---|---|---|"]
 
-    def measure(group: list[tuple[str, int, Callable[[], tuple[Node, Camera]]]], base: int = 0) -> None:
+    def measure(group: list[tuple[str, int, Callable[[], tuple[Node, Camera]]]], base: int = 0,
+                extra: tuple[dict, ...] = ()) -> None:
+        """Time ``group`` interleaved; ``extra`` settings per row (after NO_SHADING)."""
         vs = []
-        for name, n, make in group:
+        for i, (name, n, make) in enumerate(group):
             (scene, cam), build = _timed(make)  # type: ignore[misc]
-            vs.append(Variant(name, str(n), dict(NO_SHADING), scene, cam, result={"build_s": build}))
+            settings = {**NO_SHADING, **(extra[i] if i < len(extra) else {})}
+            vs.append(Variant(name, str(n), settings, scene, cam, result={"build_s": build}))
         time_interleaved(timer, vs, frames, warmup, Progress(0, False))
         ref = vs[base].result["frame_ms_median"]
         for v in vs:
@@ -195,6 +205,11 @@ def run_big(quick: bool, size: tuple[int, int] = (320, 240)) -> str:
     n_inst = 64 if quick else 1000
     measure([(f"{n_inst} spheres (yardstick)", n_inst, lambda: spheres_like(n_inst)),
              (f"{n_inst} moved copies of a 20-node subtree", n_inst, lambda: instances(n_inst))])
+    for name, n, make in ((f"{n_inst} moved copies of a 20-node subtree", n_inst, lambda: instances(n_inst)),
+                          (f"{n_inst} moved copies on a plane", n_inst, lambda: on_floor(*instances(n_inst))),
+                          ("growth: 1024 spheres on a plane", 1024, lambda: on_floor(*growth(1024)))):
+        measure([(f"{name}, free way", n, make), (f"{name}, plain steps (free_way=False)", n, make)],
+                extra=({}, {"free_way": False}))
     n_mixed = 100 if quick else 5000
     measure([("mixed rotated capsules, cones, tori, boxes, spheres", n_mixed, lambda: mixed(n_mixed))])
     depth = 2000 if quick else 10 ** 5

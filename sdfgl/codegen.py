@@ -544,13 +544,13 @@ def _defines(scene: Node, settings: Settings, origin: np.ndarray, live: bool, pr
 def ray_free_grid(scene: Node, settings: Settings) -> Any:
     """The grid whose free way along the ray (shaders/grid_ray.glsl) the marcher may step:
     the scene's own union kept as data, under translations and materials only (they keep
-    directions and distances), every instance moved by a translation alone (Grid.translated_only),
-    any child beside the instances bounding the way by its distance,
+    directions and distances), any child beside the instances bounding the way by its distance,
     marched by march_relaxed.glsl (sphere tracing and its relaxed variants: the marcher that
     reads gFree). None elsewhere."""
     from .nodes.booleans import Union
     from .nodes.transforms import Material, Translate
-    if MARCH_FILES.get(settings.method, settings.method) != "relaxed" or settings.grid is not True:
+    if MARCH_FILES.get(settings.method, settings.method) != "relaxed" or settings.grid is not True \
+            or not settings.free_way:
         return None
     node = scene
     while isinstance(node, (Translate, Material)) and not node.live_params():
@@ -558,7 +558,7 @@ def ray_free_grid(scene: Node, settings: Settings) -> Any:
     grid = node.grid if isinstance(node, Union) else None
     # children beside the grid (a floor) bound the way by their distance (Union._emit): the
     # scene is a distance bound wherever a distance marcher runs (an implicit one is refused)
-    return grid if grid is not None and grid.translated_only() else None
+    return grid
 
 
 def shared_subtrees(scene: Node, use_grids: bool = True) -> set:

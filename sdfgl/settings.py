@@ -73,6 +73,9 @@ class Settings:
         them out as code, to compare; "bvh" traverses a bounding volume hierarchy instead
         of the cells: the measured alternative, slower here, see the benchmark).
     analytic: intersect a lone sphere or plane in closed form instead of marching it.
+    free_way: where the scene is a union kept as data, sphere tracing and its relaxed
+        variants also step the way its lists prove empty along the ray (False: their own
+        steps only, to compare).
     grid_min: the fewest instances a hard union keeps as data (None: automatic, 32, or 8
         once the scene's code passes code_budget; the result's settings say which).
     code_budget: characters of generated scene code (map(), mapColor() and their
@@ -106,6 +109,7 @@ class Settings:
     debug: Any = None
     grid: bool = True
     analytic: bool = True
+    free_way: bool = True
     grid_min: Any = None
     code_budget: int = 60000
     lights: Any = None
@@ -123,7 +127,7 @@ class Settings:
             object.__setattr__(self, "shadows", False)
         if self.shadows not in SHADOWS:
             raise ParameterError(f"setting 'shadows' must be False, 'hard' or 'soft', got {self.shadows!r}")
-        for name in ("ao", "ground", "grid", "analytic", "alpha"):
+        for name in ("ao", "ground", "grid", "analytic", "free_way", "alpha"):
             if not isinstance(getattr(self, name), bool) and (name, getattr(self, name)) != ("grid", "bvh"):
                 also = " or 'bvh'" if name == "grid" else ""
                 raise ParameterError(f"setting '{name}' must be True or False{also}, got {getattr(self, name)!r}")

@@ -1,10 +1,10 @@
-// The free way along the ray, for the marchers (RAY_FREE: the scene is one grid union of
-// translated instances, perhaps moved as a whole). map() leaves in gFree how far along
-// gRayDir from its point nothing of the union lies: each listed sphere by where the ray
-// enters it, each listed subtree by where the ray enters its bounding box (infinite where
-// the ray misses it or leaves it behind), any other listed primitive by its distance, and
-// the unlisted ones, which lie at least the margin from the point's cell, by the way to
-// the cell's far side plus the margin. Children of the union written as code beside the
+// The free way along the ray, for the marchers (RAY_FREE: the scene is one grid union,
+// perhaps moved as a whole). map() leaves in gFree how far along gRayDir from its point
+// nothing of the union lies: each listed sphere by where the ray enters it, each listed
+// translated subtree by where the ray enters its bounding box (infinite where the ray
+// misses it or leaves it behind), any other listed instance by its distance, and the
+// unlisted ones, which lie at least the margin from the point's cell, by the way to the
+// cell's far side plus the margin. Children of the union written as code beside the
 // grid (a floor) narrow gFree to their distance in map() (Emitter.narrow_free_way).
 // Outside the grid box it is the field's value (a plain distance). The marcher may step
 // that far at once: the segment is proven empty.

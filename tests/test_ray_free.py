@@ -1,16 +1,10 @@
 """The free way along the ray (shaders/grid_ray.glsl): where the scene is one union kept
 as data, the marcher steps the way its lists prove empty. Checked against the float64
 reference and against the same shader without it."""
-import dataclasses
-import sys
-
 import numpy as np
-import pytest
 
 import sdfgl as sg
 from sdfgl.reference import trace_rays
-
-RENDER = sys.modules["sdfgl.render"]
 
 
 def _spheres(n: int, seed: int) -> sg.Node:
@@ -31,28 +25,18 @@ def _mixed(n: int, seed: int) -> sg.Node:
     return sg.union(*parts)
 
 
-def _translated(n: int, seed: int) -> sg.Node:
-    """Moved (not rotated) copies of the benchmark's 20-node robot, boxes and capsules of
-    many sizes, spheres: every kind of free way (a subtree's box, a primitive's distance, a
+def _moved(n: int, seed: int) -> sg.Node:
+    """Translated copies of the benchmark's 20-node robot, boxes of many sizes, rotated
+    capsules, spheres: every kind of free way (a subtree's box, a primitive's distance, a
     sphere's entry)."""
     from sdfgl.bench_big import twenty_nodes
     rng = np.random.default_rng(seed)
     robot = twenty_nodes()
     kinds = (lambda: robot, lambda: sg.box(tuple(rng.uniform(0.02, 0.5, 3))),
-             lambda: sg.capsule((-0.2, 0, 0), (0.2, 0.1, 0), float(rng.uniform(0.01, 0.06))),
+             lambda: sg.capsule((-0.2, 0, 0), (0.2, 0.1, 0), float(rng.uniform(0.01, 0.06)))
+             .rotate(float(rng.uniform(0, 180)), tuple(rng.normal(size=3))),
              lambda: sg.sphere(float(rng.choice([0.01, 0.1, 0.3]))))
     return sg.union(*[kinds[i % 4]().translate(tuple(rng.uniform((-2, -0.6, -2), (2, 0.6, 2)))) for i in range(n)])
-
-
-@pytest.fixture()
-def without_ray_free(monkeypatch):
-    """Renders through a generate() that drops the define: the marcher's plain steps."""
-    orig = RENDER.generate
-
-    def generate(*args, **kwargs):
-        src = orig(*args, **kwargs)
-        return dataclasses.replace(src, text=src.text.replace("#define RAY_FREE\n", ""))
-    return lambda: monkeypatch.setattr(RENDER, "generate", generate)
 
 
 def test_only_a_scene_whose_root_is_a_union_of_moved_instances_gets_the_free_way():
@@ -62,25 +46,26 @@ def test_only_a_scene_whose_root_is_a_union_of_moved_instances_gets_the_free_way
     # beside other geometry: its distance bounds the way
     floor = sg.compile(scene | sg.plane())
     assert "#define RAY_FREE" in floor and "gFree = min(gFree, " in floor
-    # a rotation, Newton, no grid: plain steps
+    # a rotation, Newton, no grid, the setting off: plain steps
+    assert "#define RAY_FREE" not in sg.compile(scene, free_way=False)
     assert "#define RAY_FREE" not in sg.compile(scene.rotate(30, (0, 1, 0)))
     assert "#define RAY_FREE" not in sg.compile(scene, method="newton")
     assert "#define RAY_FREE" not in sg.compile(scene, grid=False)
     assert "#define RAY_FREE" not in sg.compile(sg.sphere(1) & sg.box(1.5))
-    assert "#define RAY_FREE" not in sg.compile(_mixed(64, 0))  # rotated instances (not spheres): plain steps
-    assert "#define RAY_FREE" in sg.compile(_translated(64, 0))  # moved subtrees and primitives
-    assert "RayBox(q, gRayDir" in sg.compile(_translated(64, 0))
+    assert "#define RAY_FREE" in sg.compile(_mixed(64, 0))  # rotated instances: by their distance
+    assert "RayBox(q, gRayDir" not in sg.compile(_mixed(64, 0))
+    assert "RayBox(q, gRayDir" in sg.compile(_moved(64, 0))  # translated subtrees: by their box
 
 
-def _against_reference(scene: sg.Node, without_ray_free) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+def _against_reference(scene: sg.Node) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """(hit, reference hit, error, plain marcher's error) on the decided pixels hit by both
     (errors in pixel footprints), after checking the free way took fewer steps."""
     cam = sg.OrbitCamera(distance=5.5, yaw=80, pitch=30, fov=45)
     size = (96, 72)
     got = sg.Renderer().render(scene, cam, size, shadows=False, ao=False, outputs=("color", "depth", "steps"))
     assert "#define RAY_FREE" in got.source.text
-    without_ray_free()
-    plain = sg.Renderer().render(scene, cam, size, shadows=False, ao=False, outputs=("color", "depth", "steps"))
+    plain = sg.Renderer().render(scene, cam, size, shadows=False, ao=False, outputs=("color", "depth", "steps"),
+                                 free_way=False)
     assert "#define RAY_FREE" not in plain.source.text
     o, d = cam.rays(*size)
     t, undecided = trace_rays(scene, o.reshape(-1, 3), d.reshape(-1, 3))
@@ -94,8 +79,8 @@ def _against_reference(scene: sg.Node, without_ray_free) -> tuple[np.ndarray, np
         np.abs(plain.depth[both] - t[both]) / fp[both]
 
 
-def test_free_way_hits_what_the_reference_hits_in_fewer_steps(without_ray_free):
-    hit, ref_hit, err, plain_err = _against_reference(_spheres(250, 2), without_ray_free)
+def test_free_way_hits_what_the_reference_hits_in_fewer_steps():
+    hit, ref_hit, err, plain_err = _against_reference(_spheres(250, 2))
     assert hit.sum() > 1000
     assert np.array_equal(hit, ref_hit)  # no surface stepped over, none made up
     assert np.percentile(err, 99) < 0.05
@@ -104,9 +89,9 @@ def test_free_way_hits_what_the_reference_hits_in_fewer_steps(without_ray_free):
     assert np.all(err <= plain_err + 0.05)
 
 
-def test_free_way_into_subtree_boxes_and_beside_a_floor_hits_what_the_reference_hits(without_ray_free):
-    scene = _translated(64, 2) | sg.plane((0, 1, 0), (0, -0.7, 0))
-    hit, ref_hit, err, plain_err = _against_reference(scene, without_ray_free)
+def test_free_way_into_subtree_boxes_and_beside_a_floor_hits_what_the_reference_hits():
+    scene = _moved(64, 2) | sg.plane((0, 1, 0), (0, -0.7, 0))
+    hit, ref_hit, err, plain_err = _against_reference(scene)
     assert hit.sum() > 1000
     assert np.array_equal(hit, ref_hit)
     assert np.percentile(err, 99) < 0.05

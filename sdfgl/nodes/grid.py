@@ -397,26 +397,21 @@ class Grid:
         (shaders/grid_ray.glsl): for the marchers' primary rays where the scene is this union."""
         return not color and not em.detail and em.ray_free_grid == id(self)
 
-    def translated_only(self) -> bool:
-        """Whether every instance is moved by a translation alone (a centred sphere may also
-        be rotated): then the ray's direction is the same in each instance's frame, which
-        the free way along the ray (shaders/grid_ray.glsl) needs."""
-        from .primitives import Sphere
-        return all(not t.scaled and (not t.affine or (type(t.inner) is Sphere and not np.any(t.inner.c)))
-                   for t in self.types)
-
-    def _free_way(self, em: "Emitter", t: _Type, d: str) -> str:
+    def _free_way(self, em: "Emitter", t: _Type, move: str, d: str) -> str:
         """GLSL for how far along the ray from q (the point in a listed instance's frame, whose
-        distance is ``d``) nothing of that instance lies: a sphere's entry (q is relative to its
-        centre, its radius |q| - d), a subtree's entry into its bounding box, any other
-        primitive its distance (its bounds depend on its data)."""
+        distance is ``d``) nothing of that instance lies: an unscaled sphere's entry (q is
+        relative to its centre, its radius |q| - d), a translated subtree's entry into its
+        bounding box (the ray's direction is the world's in its frame), any other instance
+        its distance (a primitive's bounds depend on its data; a rotated subtree would need
+        the direction turned into its frame for every entry)."""
         from .primitives import Sphere
         gid = em.grid_name(self)
-        if type(t.inner) is Sphere:
-            return f"{gid}RayBall(q, gRayDir, length(q) - ({d}))"
-        if t.slots is None:
-            lo, hi = _bounds_of(t.inner)
-            return f"{gid}RayBox(q, gRayDir, {em.vec(lo)}, {em.vec(hi)})"
+        if move == "translate":
+            if type(t.inner) is Sphere:
+                return f"{gid}RayBall(q, gRayDir, length(q) - ({d}))"
+            if t.slots is None:
+                lo, hi = _bounds_of(t.inner)
+                return f"{gid}RayBox(q, gRayDir, {em.vec(lo)}, {em.vec(hi)})"
         return d
 
     def _loop(self, em: "Emitter", t: _Type, ti: int, color: bool, owner: str) -> list[tuple[str, str]]:
@@ -471,7 +466,7 @@ class Grid:
         else:
             out.append((f"        best = min(best, {d});", owner))
             if self._ray_free(em, color):
-                out.append((f"        free = min(free, {self._free_way(em, t, d)});", owner))
+                out.append((f"        free = min(free, {self._free_way(em, t, move, d)});", owner))
         out += [("    }", owner), ("    }", owner)]
         return out
 
