@@ -541,24 +541,39 @@ def _defines(scene: Node, settings: Settings, origin: np.ndarray, live: bool, pr
     return d
 
 
-def ray_free_grid(scene: Node, settings: Settings) -> Any:
-    """The grid whose free way along the ray (shaders/grid_ray.glsl) the marcher may step:
-    the scene's own union kept as data, under translations and materials only (they keep
-    directions and distances), any child beside the instances bounding the way by its distance,
-    marched by march_relaxed.glsl (sphere tracing and its relaxed variants: the marcher that
-    reads gFree). None elsewhere."""
+def ray_free_grid(scene: Node, settings: Settings) -> tuple[Any, np.ndarray] | None:
+    """The grid whose free way along the ray (shaders/grid_ray.glsl) the marcher may step,
+    and the rotation R (world = R @ local) from the grid's frame to the world's: the scene's
+    own union kept as data under translations, rotations and materials only (they keep
+    distances; the marcher turns its direction by R^T), any child beside the instances
+    bounding the way by its distance, marched by march_relaxed.glsl (sphere tracing and its
+    relaxed variants: the marcher that reads gFree). None elsewhere."""
     from .nodes.booleans import Union
-    from .nodes.transforms import Material, Translate
+    from .nodes.transforms import Material, Rotate, Translate
     if MARCH_FILES.get(settings.method, settings.method) != "relaxed" or settings.grid is not True \
             or not settings.free_way:
         return None
-    node = scene
-    while isinstance(node, (Translate, Material)) and not node.live_params():
+    node, turn = scene, np.eye(3)
+    while isinstance(node, (Translate, Rotate, Material)) and not node.live_params():
+        if isinstance(node, Rotate):
+            turn = turn @ node.m
         node = node.children[0]
     grid = node.grid if isinstance(node, Union) else None
     # children beside the grid (a floor) bound the way by their distance (Union._emit): the
     # scene is a distance bound wherever a distance marcher runs (an implicit one is refused)
-    return grid
+    return None if grid is None else (grid, turn)
+
+
+def _free_way_defines(free_way: tuple[Any, np.ndarray] | None) -> list[str]:
+    """The defines of the free way along the ray: RAY_FREE, and RAY_FREE_TURN (R^T, which
+    turns the ray's direction into the grid's frame) where the union is rotated."""
+    if free_way is None:
+        return []
+    turn = free_way[1]
+    if np.array_equal(turn, np.eye(3)):
+        return ["#define RAY_FREE"]
+    # GLSL's mat3 constructor is column-major: R's row-major entries build R^T
+    return ["#define RAY_FREE", f"#define RAY_FREE_TURN mat3({', '.join(glsl_float(float(x)) for x in turn.ravel())})"]
 
 
 def shared_subtrees(scene: Node, use_grids: bool = True) -> set:
@@ -729,9 +744,9 @@ def _generate_once(scene: Node, settings: Settings, org: np.ndarray, target: str
     helpers: dict = {}
     tex = DataPool()
     ems = (org, params, shared, grids, settings.grid, helpers, tex, data_min, origins)
-    root = ray_free_grid(scene, settings) if target == "render" else None
+    free_way = ray_free_grid(scene, settings) if target == "render" else None
     dist, dist_result = _emit_map(scene, "dist", *ems, highlight=highlight if target == "render" else None,
-                                  ray_free_id=None if root is None else id(root))
+                                  ray_free_id=None if free_way is None else id(free_way[0]))
     # a scene without any material node has one colour: mapColor() is that constant, not
     # another copy of the scene's code (which the driver would compile and llvmpipe JIT)
     one_color = not fact(scene, "_fields") and highlight is None
@@ -752,7 +767,7 @@ def _generate_once(scene: Node, settings: Settings, org: np.ndarray, target: str
     b.add(lang.header(), "(codegen)")
     b.add(f"// sdfgl scene: {scene.label()}  [{scene.exactness}, L={scene.lipschitz:g}]", "(codegen)")
     b.add("\n".join(_defines(scene, settings, org, live, projection, moving)
-                     + (["#define RAY_FREE"] if root is not None else [])), "(settings)")
+                     + _free_way_defines(free_way)), "(settings)")
     for i, prm in enumerate(params):
         b.add(f"uniform {'vec3' if prm.dims == 3 else 'float'} uP{i};  // param {prm.label}", "(live parameters)")
     if live:

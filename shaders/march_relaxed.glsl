@@ -43,7 +43,9 @@ float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
     Settle S = settleStart(0.0, 0.0, 0.0, 0.0);
     float ms = 0.0;          // a near probe's minimum step
     float sProbe = 0.0;      // a shallow-angle probe's slope
-#ifdef RAY_FREE
+#if defined(RAY_FREE_TURN)
+    gRayDir = RAY_FREE_TURN * rd;  // the direction in the rotated union's frame
+#elif defined(RAY_FREE)
     gRayDir = rd;
 #endif
     for (int i = uZero; i < 2 * MAX_STEPS * (SETTLE_CALLS + 1); i++) {

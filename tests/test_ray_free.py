@@ -46,9 +46,11 @@ def test_only_a_scene_whose_root_is_a_union_of_moved_instances_gets_the_free_way
     # beside other geometry: its distance bounds the way
     floor = sg.compile(scene | sg.plane())
     assert "#define RAY_FREE" in floor and "gFree = min(gFree, " in floor
-    # a rotation, Newton, no grid, the setting off: plain steps
+    # Newton, no grid, the setting off: plain steps
     assert "#define RAY_FREE" not in sg.compile(scene, free_way=False)
-    assert "#define RAY_FREE" not in sg.compile(scene.rotate(30, (0, 1, 0)))
+    turned = sg.compile(scene.rotate(30, (0, 1, 0)).translate((1, 0, 0)))  # the ray's direction turned into its frame
+    assert "#define RAY_FREE_TURN mat3(" in turned
+    assert "#define RAY_FREE_TURN" not in sg.compile(scene.translate((1, 0, 0)))
     assert "#define RAY_FREE" not in sg.compile(scene, method="newton")
     assert "#define RAY_FREE" not in sg.compile(scene, grid=False)
     assert "#define RAY_FREE" not in sg.compile(sg.sphere(1) & sg.box(1.5))
@@ -89,8 +91,8 @@ def test_free_way_hits_what_the_reference_hits_in_fewer_steps():
     assert np.all(err <= plain_err + 0.05)
 
 
-def test_free_way_into_subtree_boxes_and_beside_a_floor_hits_what_the_reference_hits():
-    scene = _moved(64, 2) | sg.plane((0, 1, 0), (0, -0.7, 0))
+def test_free_way_into_subtree_boxes_beside_a_floor_turned_hits_what_the_reference_hits():
+    scene = (_moved(64, 2) | sg.plane((0, 1, 0), (0, -0.7, 0))).rotate(35, (0.3, 1, 0.2))
     hit, ref_hit, err, plain_err = _against_reference(scene)
     assert hit.sum() > 1000
     assert np.array_equal(hit, ref_hit)
