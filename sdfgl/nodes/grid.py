@@ -262,17 +262,22 @@ class Grid:
 
     def _near_ball(self, x: np.ndarray, y: np.ndarray, z: np.ndarray, child: np.ndarray) -> np.ndarray:
         """Whether each instance ``child`` (n,) lies within the margin of cell (x, y, z) by its
-        ball too (see _balls): its box alone lists a sphere in cells near the box's corners,
-        22 % of the growth scene's entries. The cap's promise holds: an unlisted instance is
-        at least the margin from the cell, by its box or by its ball."""
-        gap2 = np.zeros(len(child))
+        ball and by the Euclidean gap between its box and the cell (see _balls): the per-axis
+        cell ranges alone list a sphere in cells near its box's corners (22 % of the growth
+        scene's entries), and a box by its corners too (5 % of 1000 robot copies'). The
+        cap's promise holds: an unlisted instance is at least the margin from the cell, by
+        its box or by its ball."""
+        ball2 = np.zeros(len(child))
+        box2 = np.zeros(len(child))
         for axis, index in enumerate((x, y, z)):
             lo = self.lo[axis] + index * self.cell
             at = self._ball_at[:, axis][child]
             g = np.maximum(np.maximum(lo - at, at - (lo + self.cell)), 0.0)
-            gap2 += g * g
+            ball2 += g * g
+            g = np.maximum(np.maximum(lo - self._his[child, axis], self._los[child, axis] - (lo + self.cell)), 0.0)
+            box2 += g * g
         reach = self._ball_r[child] + self.margin
-        return gap2 <= reach * reach
+        return (ball2 <= reach * reach) & (box2 <= self.margin * self.margin)
 
     def records(self, t: _Type, default_color: tuple[float, float, float]) -> np.ndarray:
         """float32 (members, texels, 4): each member's move (grid_record), parameters, colour."""
