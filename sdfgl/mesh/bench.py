@@ -13,6 +13,7 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import select
 import shutil
 import statistics
 import subprocess
@@ -84,18 +85,23 @@ def _available(module: str) -> bool:
 
 
 def _xvfb() -> tuple[subprocess.Popen | None, str]:
+    """A private Xvfb display for DistForge (it needs X): (process, ":n"), or (None, why not).
+    Xvfb picks a free display number itself (-displayfd), so stale sockets of earlier
+    servers in /tmp/.X11-unix do not matter."""
     if shutil.which("Xvfb") is None:
-        return None, ""
-    for n in range(150, 200):
-        if not Path(f"/tmp/.X11-unix/X{n}").exists() and not Path(f"/tmp/.X{n}-lock").exists():
-            proc = subprocess.Popen(["Xvfb", f":{n}", "-screen", "0", "640x480x24", "-nolisten", "tcp"],
-                                    stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-            for _ in range(100):
-                if Path(f"/tmp/.X11-unix/X{n}").exists():
-                    return proc, f":{n}"
-                time.sleep(0.05)
-            proc.kill()
-    return None, ""
+        return None, "Xvfb is not installed"
+    read, write = os.pipe()
+    proc = subprocess.Popen(["Xvfb", "-displayfd", str(write), "-screen", "0", "640x480x24", "-nolisten", "tcp"],
+                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, pass_fds=(write,))
+    os.close(write)
+    with os.fdopen(read) as pipe:
+        ready, _, _ = select.select([pipe], [], [], 10.0)
+        number = pipe.readline().strip() if ready else ""
+    if number.isdigit() and proc.poll() is None:
+        return proc, f":{number}"
+    proc.kill()
+    proc.wait()
+    return None, "Xvfb did not start within 10 s"
 
 
 def _accuracy(scene: Node, corners: np.ndarray) -> dict:
@@ -149,11 +155,11 @@ def run_mesh(samples: int = 2 ** 22, rounds: int = 3, big: int | None = 1024,
         tools["fogleman/sdf"] = peer("fogleman/sdf", FOGLEMAN)
     else:
         notes.append("fogleman/sdf skipped: not installed (pip install sdf-fork)")
-    xvfb, display = (None, "")
+    xvfb = None
     if _available("distforge"):
         xvfb, display = _xvfb()
-        if not display:
-            notes.append("DistForge skipped: it needs a display and Xvfb is not installed")
+        if xvfb is None:
+            notes.append(f"DistForge skipped: it needs a display and {display}")
         else:
             tools["DistForge"] = peer("DistForge", DISTFORGE, {"DISPLAY": display})
     else:
