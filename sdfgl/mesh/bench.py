@@ -175,8 +175,12 @@ def run_mesh(samples: int = 2 ** 22, rounds: int = 3, big: int | None = 1024,
                 times.setdefault(name, []).append(out)
     finally:
         if xvfb is not None:
-            xvfb.kill()
-            xvfb.wait()
+            xvfb.terminate()  # not kill(): Xvfb removes its socket and lock file on SIGTERM
+            try:
+                xvfb.wait(10)
+            except subprocess.TimeoutExpired:
+                xvfb.kill()
+                xvfb.wait()
     rows = {}
     for name, ts in times.items():
         rows[name] = {"median_s": statistics.median(t[0] for t in ts), "median_cpu_s": statistics.median(t[1] for t in ts),
