@@ -5,6 +5,8 @@ import numpy as np
 import pytest
 from PIL import Image
 
+from sdfgl import xdisplay
+
 from .xserver import Driver, start_xvfb
 
 pytestmark = pytest.mark.window
@@ -18,8 +20,7 @@ SCENE_B = "import sdfgl as sg\nscene = sg.torus(1, 0.3).color(0.2, 0.6, 0.9)\n"
 def display():
     proc, name = start_xvfb()
     yield name
-    proc.terminate()
-    proc.wait(10)
+    xdisplay.stop_xvfb(proc)
 
 
 @pytest.fixture()

@@ -11,30 +11,17 @@ from pathlib import Path
 
 import pytest
 
+from sdfgl import xdisplay
+
 
 def start_xvfb() -> tuple[subprocess.Popen, str]:
+    """A private Xvfb display (sdfgl.xdisplay) for the window tests; stop it with stop_xvfb."""
     if shutil.which("Xvfb") is None or shutil.which("xdotool") is None:
         pytest.fail("window tests need Xvfb and xdotool: run ./install.sh --test (apt-get install xvfb xdotool)")
-    # start where other test runs sharing /tmp (possibly from other PID namespaces, where Xvfb takes a
-    # live lock for a stale one) are unlikely to look
-    first = 300 + (os.getpid() * 7) % 600
-    for n in range(first, first + 50):
-        if not Path(f"/tmp/.X11-unix/X{n}").exists() and not Path(f"/tmp/.X{n}-lock").exists():
-            proc = subprocess.Popen(["Xvfb", f":{n}", "-screen", "0", "1600x900x24", "-nolisten", "tcp"],
-                                    stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-            for _ in range(100):
-                if proc.poll() is not None:  # lost the race for :n to another Xvfb (whose socket we'd use)
-                    break
-                if Path(f"/tmp/.X11-unix/X{n}").exists():
-                    time.sleep(0.2)
-                    if proc.poll() is None:
-                        return proc, f":{n}"
-                    break
-                time.sleep(0.05)
-            if proc.poll() is None:
-                proc.kill()
-            proc.wait(5)
-    pytest.fail(f"could not start Xvfb on any display :{first}..:{first + 49}")
+    proc, name = xdisplay.start_xvfb("1600x900x24")
+    if proc is None:
+        pytest.fail(name)
+    return proc, name
 
 
 class Driver:

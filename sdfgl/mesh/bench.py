@@ -13,8 +13,6 @@ from __future__ import annotations
 import argparse
 import json
 import os
-import select
-import shutil
 import statistics
 import subprocess
 import sys
@@ -25,6 +23,7 @@ from typing import Callable
 import numpy as np
 
 from ..nodes.base import Node
+from ..xdisplay import start_xvfb, stop_xvfb
 
 FOGLEMAN = """
 import time, numpy as np
@@ -84,26 +83,6 @@ def _available(module: str) -> bool:
     return importlib.util.find_spec(module) is not None
 
 
-def _xvfb() -> tuple[subprocess.Popen | None, str]:
-    """A private Xvfb display for DistForge (it needs X): (process, ":n"), or (None, why not).
-    Xvfb picks a free display number itself (-displayfd), so stale sockets of earlier
-    servers in /tmp/.X11-unix do not matter."""
-    if shutil.which("Xvfb") is None:
-        return None, "Xvfb is not installed"
-    read, write = os.pipe()
-    proc = subprocess.Popen(["Xvfb", "-displayfd", str(write), "-screen", "0", "640x480x24", "-nolisten", "tcp"],
-                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, pass_fds=(write,))
-    os.close(write)
-    with os.fdopen(read) as pipe:
-        ready, _, _ = select.select([pipe], [], [], 10.0)
-        number = pipe.readline().strip() if ready else ""
-    if number.isdigit() and proc.poll() is None:
-        return proc, f":{number}"
-    proc.kill()
-    proc.wait()
-    return None, "Xvfb did not start within 10 s"
-
-
 def _accuracy(scene: Node, corners: np.ndarray) -> dict:
     """Vertices, |f| max and p99 (units and cells of the tool's own lattice), from triangle corners."""
     v = np.unique(np.round(corners, 9), axis=0)
@@ -157,7 +136,7 @@ def run_mesh(samples: int = 2 ** 22, rounds: int = 3, big: int | None = 1024,
         notes.append("fogleman/sdf skipped: not installed (pip install sdf-fork)")
     xvfb = None
     if _available("distforge"):
-        xvfb, display = _xvfb()
+        xvfb, display = start_xvfb()
         if xvfb is None:
             notes.append(f"DistForge skipped: it needs a display and {display}")
         else:
@@ -175,12 +154,7 @@ def run_mesh(samples: int = 2 ** 22, rounds: int = 3, big: int | None = 1024,
                 times.setdefault(name, []).append(out)
     finally:
         if xvfb is not None:
-            xvfb.terminate()  # not kill(): Xvfb removes its socket and lock file on SIGTERM
-            try:
-                xvfb.wait(10)
-            except subprocess.TimeoutExpired:
-                xvfb.kill()
-                xvfb.wait()
+            stop_xvfb(xvfb)
     rows = {}
     for name, ts in times.items():
         rows[name] = {"median_s": statistics.median(t[0] for t in ts), "median_cpu_s": statistics.median(t[1] for t in ts),
