@@ -1,7 +1,8 @@
 """1000 robot copies against 1000 spheres, frames interleaved, with source rewrites of the robot loop:
 skip (box distance >= best), max (max(f, box distance)), bvif<th> (box distance when farther than th),
 sphere (the robot replaced by a sphere), parts (free way by four part boxes), inv (1/d hoisted),
-maxdd (free way max(box entry, distance)). Usage: earlyout.py KIND ..."""
+maxdd (free way max(box entry, distance)), exact (the parts' own entries: body and arms boxes,
+the head's sphere, the legs' capped cylinders). Usage: earlyout.py KIND ..."""
 import dataclasses, sys
 from sdfgl.bench import FrameTimer, Progress, Variant, time_interleaved
 from sdfgl.bench_big import instances, spheres_like, NO_SHADING
@@ -30,6 +31,30 @@ def rewrite(kind):
             oldf = f"free = min(free, g0RayBox(q, gRayDir, {BOX}));"
             assert oldf in t
             return dataclasses.replace(src, text=t.replace(oldf, f"free = min(free, max(dd, g0RayBox(q, gRayDir, {BOX})));"))
+        if kind == "skiploop":  # the robot only where its box is nearer than the best; a loop of 0 or 1
+            # rounds is a real branch on llvmpipe (an if only masks lanes)
+            new = (f"        float bd = sdBoxLH(q, {BOX});\n"
+                   "        for (int z = uZero; z < (bd < best ? 1 : 0); z++) best = min(best, d0_difference(q));\n")
+            return dataclasses.replace(src, text=t.replace(OLD, new, 1))
+        if kind == "exact":
+            oldf = f"free = min(free, g0RayBox(q, gRayDir, {BOX}));"
+            assert oldf in t
+            helper = (
+                "float rayCylY(vec3 o, vec3 d, float r, float h) {\n"
+                "    float a = d.x * d.x + d.z * d.z; float b = o.x * d.x + o.z * d.z; float c = o.x * o.x + o.z * o.z - r * r;\n"
+                "    float disc = b * b - a * c;\n"
+                "    if (disc < 0.0 || a < 1e-12) return 3.0e38;\n"
+                "    float sq = sqrt(disc); float t0 = (-b - sq) / a; float t1 = (-b + sq) / a;\n"
+                "    float iy = 1.0 / (abs(d.y) < 1e-20 ? 1e-20 : d.y);\n"
+                "    float y0 = (-h - o.y) * iy; float y1 = (h - o.y) * iy;\n"
+                "    float enter = max(max(t0, min(y0, y1)), 0.0); float leave = min(t1, max(y0, y1));\n"
+                "    return leave < enter ? 3.0e38 : enter;\n}\n")
+            t = t.replace("float g0Dist(vec3 p) {", helper + "float g0Dist(vec3 p) {")
+            newf = ("free = min(free, min(min(g0RayBox(q, gRayDir, vec3(-0.2, -0.25, -0.15), vec3(0.2, 0.25, 0.15)), "
+                    "g0RayBall(q - vec3(0.0, 0.38, 0.0), gRayDir, 0.18)), min(g0RayBox(q, gRayDir, vec3(-0.35, 0.1, -0.05), "
+                    "vec3(0.35, 0.2, 0.05)), min(rayCylY(q - vec3(-0.1, -0.35, 0.0), gRayDir, 0.06, 0.15), "
+                    "rayCylY(q - vec3(0.1, -0.35, 0.0), gRayDir, 0.06, 0.15)))));")
+            return dataclasses.replace(src, text=t.replace(oldf, newf))
         if kind in ("parts", "partsinv"):
             oldf = f"free = min(free, g0RayBox(q, gRayDir, {BOX}));"
             assert oldf in t
