@@ -9,15 +9,16 @@
 // Outside the grid box it is the field's value (a plain distance). The marcher may step
 // that far at once: the segment is proven empty.
 vec3 gRayDir = vec3(0.0, 0.0, 1.0);  // the marcher's ray direction (unit)
+vec3 gRayInv = vec3(1.0);            // 1 / gRayDir, set once a ray (a 0 component as 1e-30)
 float gFree = 0.0;
 
-// Along unit d from p: the way to the far side of p's cell (low corner lo, from
-// GRIDIDCell) plus the margin, or -1.0 where p lies outside the cell (outside the grid box).
-float GRIDIDExit(vec3 p, vec3 d, vec3 lo) {
+// Along the ray (inv = 1 / its direction) from p: the way to the far side of p's cell (low
+// corner lo, from GRIDIDCell) plus the margin, or -1.0 where p lies outside the cell
+// (outside the grid box).
+float GRIDIDExit(vec3 p, vec3 inv, vec3 lo) {
     vec3 hi = lo + GRIDID_CELL;
     if (any(lessThan(p, lo)) || any(greaterThan(p, hi))) return -1.0;
-    vec3 safe = d + vec3(equal(d, vec3(0.0))) * 1e-30;
-    vec3 way = (mix(lo, hi, step(0.0, safe)) - p) / safe;
+    vec3 way = (mix(lo, hi, step(0.0, inv)) - p) * inv;
     return min(way.x, min(way.y, way.z)) + GRIDID_MARGIN;
 }
 
@@ -32,10 +33,9 @@ float GRIDIDRayBall(vec3 q, vec3 d, float r) {
     return c / (-b + sqrt(disc));  // the nearer root, without cancellation
 }
 
-// Along unit d from q (in an instance's frame): where the ray enters the box [lo, hi] (0
-// inside it), or 3e38 where it misses the box or moves away from it.
-float GRIDIDRayBox(vec3 q, vec3 d, vec3 lo, vec3 hi) {
-    vec3 inv = 1.0 / (d + vec3(equal(d, vec3(0.0))) * 1e-30);
+// Along the ray (inv = 1 / its direction) from q (in an instance's frame): where it enters
+// the box [lo, hi] (0 inside it), or 3e38 where it misses the box or moves away from it.
+float GRIDIDRayBox(vec3 q, vec3 inv, vec3 lo, vec3 hi) {
     vec3 a = (lo - q) * inv;
     vec3 b = (hi - q) * inv;
     vec3 near = min(a, b);

@@ -202,7 +202,7 @@ def test_union_kept_as_data_uploads_its_textures(browser, tmp_path):
     html = save_html(scene, tmp_path / "grid.html", cam, (W, H))
     text = html.read_text()
     assert "g0Cell" in text and '"uData"' in text  # the union is data (a cell grid in the data texture), not code
-    assert "g0RayBox(q, gRayDir" in text and "g0RayBall(q, gRayDir" in text  # and the free way along the ray
+    assert "g0RayBox(q, gRayInv" in text and "g0RayBall(q, gRayDir" in text  # and the free way along the ray
     open_html(browser, html)
     assert differing(canvas(browser), sg.render(scene, cam, (W, H)).color) < MAX_FRACTION
     # key F frames the scene: the view turns to the box centre, keeps its angles, and every

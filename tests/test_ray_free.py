@@ -46,17 +46,18 @@ def test_only_a_scene_whose_root_is_a_union_of_moved_instances_gets_the_free_way
     # beside other geometry: its distance bounds the way
     floor = sg.compile(scene | sg.plane())
     assert "#define RAY_FREE" in floor and "gFree = min(gFree, " in floor
-    # Newton, no grid, the setting off: plain steps
-    assert "#define RAY_FREE" not in sg.compile(scene, free_way=False)
-    turned = sg.compile(scene.rotate(30, (0, 1, 0)).translate((1, 0, 0)))  # the ray's direction turned into its frame
+    # rotated: the ray's direction is turned into the union's frame
+    turned = sg.compile(scene.rotate(30, (0, 1, 0)).translate((1, 0, 0)))
     assert "#define RAY_FREE_TURN mat3(" in turned
     assert "#define RAY_FREE_TURN" not in sg.compile(scene.translate((1, 0, 0)))
+    # the setting off, Newton, no grid, no union kept as data: plain steps
+    assert "#define RAY_FREE" not in sg.compile(scene, free_way=False)
     assert "#define RAY_FREE" not in sg.compile(scene, method="newton")
     assert "#define RAY_FREE" not in sg.compile(scene, grid=False)
     assert "#define RAY_FREE" not in sg.compile(sg.sphere(1) & sg.box(1.5))
     assert "#define RAY_FREE" in sg.compile(_mixed(64, 0))  # rotated instances: by their distance
-    assert "RayBox(q, gRayDir" not in sg.compile(_mixed(64, 0))
-    assert "RayBox(q, gRayDir" in sg.compile(_moved(64, 0))  # translated subtrees: by their box
+    assert "RayBox(q, gRayInv" not in sg.compile(_mixed(64, 0))
+    assert "RayBox(q, gRayInv" in sg.compile(_moved(64, 0))  # translated subtrees: by their box
 
 
 def _against_reference(scene: sg.Node) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:

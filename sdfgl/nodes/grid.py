@@ -386,7 +386,7 @@ class Grid:
         rtype = "vec4" if color else "float"
         best = "vec4(0.0, 0.0, 0.0, cap)" if color else "cap"
         fetch = [(f"    vec4 s{j} = dataFetch({gid}_CELLS + cell + {j});", owner) for j in range(-(-len(self.types) // 2))]
-        free = [(f"    float free = {gid}Exit(p, gRayDir, cellLo);", owner),
+        free = [(f"    float free = {gid}Exit(p, gRayInv, cellLo);", owner),
                 ("    bool inGrid = free >= 0.0;  // outside the grid box gFree is the field's value", owner)] if ray else []
         done = [("    gFree = inGrid ? max(free, best) : best;", owner)] if ray else []
         return [(f"{rtype} {fn}(vec3 p) {{", owner),
@@ -416,7 +416,7 @@ class Grid:
                 return f"{gid}RayBall(q, gRayDir, length(q) - ({d}))"
             if t.slots is None:
                 lo, hi = _bounds_of(t.inner)
-                return f"{gid}RayBox(q, gRayDir, {em.vec(lo)}, {em.vec(hi)})"
+                return f"{gid}RayBox(q, gRayInv, {em.vec(lo)}, {em.vec(hi)})"
         return d
 
     def _loop(self, em: "Emitter", t: _Type, ti: int, color: bool, owner: str) -> list[tuple[str, str]]:
