@@ -194,7 +194,7 @@ def test_several_sliders_at_once_match_egl(browser, tmp_path):
 
 def test_union_kept_as_data_uploads_its_textures(browser, tmp_path):
     rng = np.random.default_rng(3)
-    lamp = sg.box(0.2) | sg.sphere(0.12).translate((0, 0.15, 0))  # a small subtree: its free way is its box
+    lamp = sg.box(0.2) | sg.sphere(0.12).translate((0, 0.15, 0))  # a small subtree: its free way is its box (the nearest by its parts)
     parts = [(lamp if i % 4 == 0 else sg.sphere(float(rng.uniform(0.1, 0.25)))).translate(
         tuple(rng.uniform(-1.5, 1.5, 3))).color(*rng.uniform(0.2, 0.9, 3)) for i in range(160)]
     scene = sg.union(*parts)
@@ -203,6 +203,7 @@ def test_union_kept_as_data_uploads_its_textures(browser, tmp_path):
     text = html.read_text()
     assert "g0Cell" in text and '"uData"' in text  # the union is data (a cell grid in the data texture), not code
     assert "g0RayBox(q, gRayInv" in text and "g0RayBall(q, gRayDir" in text  # and the free way along the ray
+    assert "max(enterNear, g0Enter0(qNear))" in text
     open_html(browser, html)
     assert differing(canvas(browser), sg.render(scene, cam, (W, H)).color) < MAX_FRACTION
     # key F frames the scene: the view turns to the box centre, keeps its angles, and every

@@ -58,6 +58,41 @@ def test_only_a_scene_whose_root_is_a_union_of_moved_instances_gets_the_free_way
     assert "#define RAY_FREE" in sg.compile(_mixed(64, 0))  # rotated instances: by their distance
     assert "RayBox(q, gRayInv" not in sg.compile(_mixed(64, 0))
     assert "RayBox(q, gRayInv" in sg.compile(_moved(64, 0))  # translated subtrees: by their box
+    # ... and the nearest one by its parts (the robot: body, head, arms, two legs)
+    moved = sg.compile(_moved(64, 0))
+    assert moved.count("g0Enter") == 2 and "max(enterNear, g0Enter" in moved
+    assert "Enter" not in sg.compile(_mixed(64, 0))
+
+
+def test_a_subtree_is_held_by_its_parts_balls_and_boxes():
+    from sdfgl.bench_big import twenty_nodes
+    from sdfgl.nodes.ray_entry import MAX_PIECES, pieces
+    found = pieces(twenty_nodes().translate((1, 0, 0)))
+    assert [p.kind for p in found] == ["box", "ball", "box", "box", "box"]  # the eyes only remove
+    head = found[1]
+    assert np.allclose(head.centre, (1, 0.38, 0)) and np.isclose(head.radius, 0.18)
+    assert np.allclose(found[3].lo, (0.84, -0.5, -0.06)) and np.allclose(found[3].hi, (0.96, -0.2, 0.06))
+    # every point of the robot lies in a piece
+    rng = np.random.default_rng(0)
+    lo, hi = twenty_nodes().bounds
+    pts = rng.uniform(lo, hi, (20000, 3))
+    solid = pts[twenty_nodes().distance(pts) <= 0] + (1, 0, 0)
+    held = np.zeros(len(solid), bool)
+    for p in found:
+        held |= (np.linalg.norm(solid - p.centre, axis=1) <= p.radius) if p.kind == "ball" else \
+            np.all((solid >= p.lo) & (solid <= p.hi), axis=1)
+    assert len(solid) > 1000 and held.all()
+    # what blends, turns or warps is its box; a box inside another adds nothing
+    assert pieces(sg.union(sg.box(1), sg.sphere(0.5).translate((2, 0, 0)), k=0.2)) is None
+    assert pieces(sg.box(1) | sg.box(0.5)) is None
+    turned = pieces(sg.box(1).rotate(45, (0, 0, 1)) | sg.sphere(0.2).translate((3, 0, 0)))
+    assert [p.kind for p in turned] == ["box", "ball"] and np.allclose(turned[0].hi, (0.7071, 0.7071, 0.5), atol=1e-4)
+    # more parts than MAX_PIECES: the split goes less deep (here: the two halves' boxes)
+    row = [sg.sphere(0.1).translate((i, 0, 0)) for i in range(2 * MAX_PIECES)]
+    halves = pieces(sg.union(sg.union(*row[:MAX_PIECES]).color(1, 0, 0),  # (a colour keeps the unions apart)
+                             sg.union(*row[MAX_PIECES:]).translate((0, 1, 0))))
+    assert [p.kind for p in halves] == ["box", "box"]
+    assert pieces(sg.union(*row)) is None
 
 
 def _against_reference(scene: sg.Node) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -90,6 +125,26 @@ def test_free_way_hits_what_the_reference_hits_in_fewer_steps():
     # where it is off, the plain marcher is off the same way (a thin part both pass at a
     # silhouette: issue 10's near misses), never worse
     assert np.all(err <= plain_err + 0.05)
+
+
+def test_the_nearest_subtree_entered_by_its_parts_takes_fewer_steps_to_the_same_hits(monkeypatch):
+    # (the floor test below checks such a scene against the reference)
+    from sdfgl.bench_big import twenty_nodes
+    rng = np.random.default_rng(3)
+    robot = twenty_nodes()
+    scene = sg.union(*[robot.translate(tuple(rng.uniform((-2, -0.6, -2), (2, 0.6, 2)))) for _ in range(120)])
+    cam = sg.OrbitCamera(distance=5.5, yaw=80, pitch=30, fov=45)
+    refined = sg.Renderer().render(scene, cam, (96, 72), shadows=False, ao=False, outputs=("color", "depth", "steps"))
+    assert "max(enterNear, g0Enter0(qNear))" in refined.source.text
+    import sdfgl.nodes.ray_entry as ray_entry
+    monkeypatch.setattr(ray_entry, "pieces", lambda node: None)  # the whole box for every instance
+    boxed = sg.Renderer().render(sg.union(*scene.children), cam, (96, 72), shadows=False, ao=False,
+                                 outputs=("color", "depth", "steps"))
+    assert "Enter" not in boxed.source.text
+    assert refined.steps.mean() < 0.9 * boxed.steps.mean()
+    hit = np.isfinite(refined.depth)
+    assert hit.sum() > 1500 and np.array_equal(hit, np.isfinite(boxed.depth))
+    assert np.percentile(np.abs(refined.depth[hit] - boxed.depth[hit]), 99) < 1e-3
 
 
 def test_free_way_into_subtree_boxes_beside_a_floor_turned_hits_what_the_reference_hits():

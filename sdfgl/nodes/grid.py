@@ -27,7 +27,7 @@ import numpy as np
 
 from ..errors import SdfglError
 from ..params import Live
-from . import bvh, grid_record
+from . import bvh, grid_record, ray_entry
 from .base import IMPLICIT, Node, Primitive
 from .traverse import postorder
 
@@ -356,11 +356,14 @@ class Grid:
         if key not in em.functions:
             color = em.mode == "color"
             owner = f"union of {len(self.children)} instances ({gid})"
-            loops = []
+            loops: list[tuple[str, str]] = []
+            entries: list[tuple[str, str]] = []  # after the grid's helpers: they call its ray tests
             for ti, t in enumerate(self.types):
-                loops += self._loop(em, t, ti, color, owner)
+                loops += self._loop(em, t, ti, color, owner, entries)
             make = bvh.of(self).emit_function if em.use_grids == "bvh" else self._cell_function
             em.functions[key] = (fn, make(em, fn, color, loops, owner))
+            for name, code in entries:
+                em.helper(name, code)
         pt = em.point(em.shift(p, -self.centre))
         return em.assign("vec4" if em.mode == "color" else "float", f"{fn}({pt})")
 
@@ -406,7 +409,8 @@ class Grid:
         """GLSL for how far along the ray from q (the point in a listed instance's frame, whose
         distance is ``d``) nothing of that instance lies: an unscaled sphere's entry (q is
         relative to its centre, its radius |q| - d), a translated subtree's entry into its
-        bounding box (the ray's direction is the world's in its frame), any other instance
+        bounding box (the ray's direction is the world's in its frame; the nearest such
+        instance is refined by its parts after the loop: _refined_entry), any other instance
         its distance (a primitive's bounds depend on its data; a rotated subtree would need
         the direction turned into its frame for every entry)."""
         from .primitives import Sphere
@@ -419,8 +423,10 @@ class Grid:
                 return f"{gid}RayBox(q, gRayInv, {em.vec(lo)}, {em.vec(hi)})"
         return d
 
-    def _loop(self, em: "Emitter", t: _Type, ti: int, color: bool, owner: str) -> list[tuple[str, str]]:
-        """The loop over the (cell, type ti) list: fetch, transform, evaluate, keep the min."""
+    def _loop(self, em: "Emitter", t: _Type, ti: int, color: bool, owner: str,
+              entries: list[tuple[str, str]]) -> list[tuple[str, str]]:
+        """The loop over the (cell, type ti) list: fetch, transform, evaluate, keep the min
+        (and the free way: a refined entry's function goes to ``entries``, as (name, code))."""
         from ..codegen import Emitter
         sizes = [len(v) for _, v in _slot_values(t.inner)] if t.slots is not None else []
         move = grid_record.kind(t, np.array([self.peeled[i][2] for i in t.members]))
@@ -433,6 +439,10 @@ class Grid:
         first, count = (f"{span}.x", f"{span}.y") if ti % 2 == 0 else (f"{span}.z", f"{span}.w")
         lines.append(f"    int first = int({first});")
         lines.append(f"    int count = int({count});")
+        refined = self._refined_entry(em, t, ti, move, color, entries)
+        if refined:
+            lines.append("    float enterNear = 3.0e38;  // the smallest box entry, and its instance's point")
+            lines.append("    vec3 qNear = vec3(0.0);")
         lines.append("    for (int k = 0; k < count; k++) {")
         lines.append(f"        int e = {gid}_LIST + first + k * {texels};")
         for j in range(need):
@@ -470,10 +480,37 @@ class Grid:
             out.append((f"        if (dist < best.w) best = vec4({rgb}, dist);", owner))
         else:
             out.append((f"        best = min(best, {d});", owner))
-            if self._ray_free(em, color):
+            if refined:
+                out += [(line, owner) for line in (
+                    f"        float enter = {self._free_way(em, t, move, d)};",
+                    "        free = min(free, enter < enterNear ? enterNear : enter);  // every entry but the smallest",
+                    "        qNear = enter < enterNear ? q : qNear;",
+                    "        enterNear = min(enterNear, enter);")]
+            elif self._ray_free(em, color):
                 out.append((f"        free = min(free, {self._free_way(em, t, move, d)});", owner))
-        out += [("    }", owner), ("    }", owner)]
+        out.append(("    }", owner))
+        if refined:
+            out.append((f"    free = min(free, max(enterNear, {refined}(qNear)));  // the nearest by its parts", owner))
+        out.append(("    }", owner))
         return out
+
+    def _refined_entry(self, em: "Emitter", t: _Type, ti: int, move: str, color: bool,
+                       entries: list[tuple[str, str]]) -> str | None:
+        """The name of the GLSL function for where the ray enters type ``t`` by its parts
+        (nodes/ray_entry.py; its code goes to ``entries``), where the free way may refine its
+        nearest instance that way: a translated subtree whose box holds parts with room
+        between them; else None. Only the instance with the smallest box entry is refined,
+        once a call after the list's loop: every entry test costs about what a call saves."""
+        from .primitives import Sphere
+        if not self._ray_free(em, color) or move != "translate" or t.slots is not None or type(t.inner) is Sphere:
+            return None
+        found = ray_entry.pieces(t.inner)
+        if found is None:
+            return None
+        gid = em.grid_name(self)
+        name = f"{gid}Enter{ti}"
+        entries.append((name, f"float {name}(vec3 q) {{\n    return {ray_entry.entry_glsl(em, gid, found, 'q')};\n}}"))
+        return name
 
 
 def _template(prim: Node, slots: list[str], at: int) -> Node:
