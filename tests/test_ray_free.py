@@ -60,8 +60,8 @@ def test_only_a_scene_whose_root_is_a_union_of_moved_instances_gets_the_free_way
     assert "RayBox(q, gRayInv" in sg.compile(_moved(64, 0))  # translated subtrees: by their box
     # ... and the nearest one by its parts (the robot: body, head, arms, two legs)
     moved = sg.compile(_moved(64, 0))
-    assert moved.count("g0Enter") == 2 and "max(enterNear, g0Enter" in moved
-    assert "Enter" not in sg.compile(_mixed(64, 0))
+    assert "float g0Enter0(vec3 q)" in moved and "max(enterNear, g0Enter0(qNear))" in moved
+    assert "enterNear" not in sg.compile(_mixed(64, 0))
 
 
 def test_a_subtree_is_held_by_its_parts_balls_and_boxes():
@@ -140,7 +140,7 @@ def test_the_nearest_subtree_entered_by_its_parts_takes_fewer_steps_to_the_same_
     monkeypatch.setattr(ray_entry, "pieces", lambda node: None)  # the whole box for every instance
     boxed = sg.Renderer().render(sg.union(*scene.children), cam, (96, 72), shadows=False, ao=False,
                                  outputs=("color", "depth", "steps"))
-    assert "Enter" not in boxed.source.text
+    assert "enterNear" not in boxed.source.text
     assert refined.steps.mean() < 0.9 * boxed.steps.mean()
     hit = np.isfinite(refined.depth)
     assert hit.sum() > 1500 and np.array_equal(hit, np.isfinite(boxed.depth))
