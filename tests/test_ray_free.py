@@ -64,6 +64,19 @@ def test_only_a_scene_whose_root_is_a_union_of_moved_instances_gets_the_free_way
     assert "enterNear" not in sg.compile(_mixed(64, 0))
 
 
+def _held(node: sg.Node, found: list, offset=(0.0, 0.0, 0.0)) -> tuple[int, bool]:
+    """(solid points among 20 000 samples of node's box, whether every one is in a piece)."""
+    rng = np.random.default_rng(0)
+    lo, hi = node.bounds
+    pts = rng.uniform(lo, hi, (20000, 3))
+    solid = pts[node.distance(pts) <= 0] + offset
+    held = np.zeros(len(solid), bool)
+    for p in found:
+        held |= (np.linalg.norm(solid - p.centre, axis=1) <= p.radius) if p.kind == "ball" else \
+            np.all((solid >= p.lo - 1e-12) & (solid <= p.hi + 1e-12), axis=1)
+    return len(solid), bool(held.all())
+
+
 def test_a_subtree_is_held_by_its_parts_balls_and_boxes():
     from sdfgl.bench_big import twenty_nodes
     from sdfgl.nodes.ray_entry import MAX_PIECES, pieces
@@ -72,17 +85,22 @@ def test_a_subtree_is_held_by_its_parts_balls_and_boxes():
     head = found[1]
     assert np.allclose(head.centre, (1, 0.38, 0)) and np.isclose(head.radius, 0.18)
     assert np.allclose(found[3].lo, (0.84, -0.5, -0.06)) and np.allclose(found[3].hi, (0.96, -0.2, 0.06))
-    # every point of the robot lies in a piece
-    rng = np.random.default_rng(0)
-    lo, hi = twenty_nodes().bounds
-    pts = rng.uniform(lo, hi, (20000, 3))
-    solid = pts[twenty_nodes().distance(pts) <= 0] + (1, 0, 0)
-    held = np.zeros(len(solid), bool)
-    for p in found:
-        held |= (np.linalg.norm(solid - p.centre, axis=1) <= p.radius) if p.kind == "ball" else \
-            np.all((solid >= p.lo) & (solid <= p.hi), axis=1)
-    assert len(solid) > 1000 and held.all()
-    # what blends, turns or warps is its box; a box inside another adds nothing
+    n, held = _held(twenty_nodes(), found, (1, 0, 0))
+    assert n > 1000 and held
+    # an intersection by its smaller operand, cut to the common box; moves, turns and
+    # scales carry the pieces (a turned box becomes the box round it)
+    cut = pieces((sg.sphere(1) & sg.box(1.5)) | sg.sphere(0.3).translate((2, 0, 0)))
+    assert [p.kind for p in cut] == ["box", "ball"] and np.allclose(cut[0].hi, 0.75)
+    moved = pieces((sg.box(1) | sg.sphere(0.5).translate((1, 0, 0))).rotate(90, (0, 0, 1)).scale(2))
+    assert [p.kind for p in moved] == ["box", "ball"] and np.allclose(moved[1].centre, (0, 2, 0)) \
+        and np.isclose(moved[1].radius, 1.0)
+    mixed = (((sg.sphere(0.5) & sg.box(0.8)).translate((0.3, 0, 0)))
+             | sg.capsule((0, -0.4, 0), (0, 0.4, 0), 0.1).rotate(30, (1, 0, 0)).translate((0, 0, 0.7))
+             | (sg.box(0.2) | sg.sphere(0.15).translate((0, 0.2, 0))).rotate(45, (0, 1, 0)).scale(1.5)
+             .translate((-0.6, 0, 0))) - sg.sphere(0.1)
+    n, held = _held(mixed, pieces(mixed))
+    assert n > 1000 and held and len(pieces(mixed)) == 4
+    # what blends or warps is its box; a box inside another adds nothing
     assert pieces(sg.union(sg.box(1), sg.sphere(0.5).translate((2, 0, 0)), k=0.2)) is None
     assert pieces(sg.box(1) | sg.box(0.5)) is None
     turned = pieces(sg.box(1).rotate(45, (0, 0, 1)) | sg.sphere(0.2).translate((3, 0, 0)))

@@ -9,9 +9,13 @@ bound on where the ray meets the subtree:
 
 - a hard union is held by its children's pieces together;
 - a hard difference by its first operand's (the others only remove);
-- a translation moves its child's pieces; a colour or material changes nothing;
-- a sphere is its ball; any other node (a primitive, a rotation, a smooth blend, a warp)
-  is its bounding box, which holds it by the bounds' contract.
+- a hard intersection by the pieces of the operand whose pieces hold the least volume,
+  cut to the intersection's bounds (a box piece to the common box; a ball is kept or,
+  where it misses that box, dropped);
+- translations, rotations and uniform scales move their child's pieces (a turned box
+  becomes the box round it); a colour or material changes nothing;
+- a sphere is its ball; any other node (a primitive, a smooth blend, a warp) is its
+  bounding box, which holds it by the bounds' contract.
 
 The expansion stops at ``MAX_PIECES``: past that it goes less deep, down to the one box
 of the whole subtree (then there is nothing to gain, and ``pieces`` says so with None).
@@ -45,6 +49,10 @@ class Piece:
     def centre(self) -> np.ndarray:
         return 0.5 * (self.lo + self.hi)
 
+    @property
+    def volume(self) -> float:
+        return 4.18879 * self.radius ** 3 if self.kind == "ball" else float(np.prod(self.hi - self.lo))
+
     def inside(self, other: "Piece") -> bool:
         """Whether this piece lies in the box ``other`` (balls by their bounding box)."""
         return other.kind == "box" and bool(np.all(self.lo >= other.lo) and np.all(self.hi <= other.hi))
@@ -56,7 +64,7 @@ def pieces(node: Node) -> list[Piece] | None:
     if node.live_params():
         return None
     for depth in range(_DEEPEST, 0, -1):
-        found = _expand(node, np.zeros(3), depth, [])
+        found = _expand(node, _Move(np.eye(3), np.zeros(3)), depth)
         if found is not None:
             kept: list[Piece] = []
             for a in found:  # a piece inside another adds nothing
@@ -66,30 +74,68 @@ def pieces(node: Node) -> list[Piece] | None:
     return None
 
 
-def _expand(node: Node, offset: np.ndarray, depth: int, out: list[Piece]) -> list[Piece] | None:
-    """Append ``node``'s pieces (moved by ``offset``) to ``out``; None once they pass MAX_PIECES."""
-    from .booleans import Difference, Union
+@dataclass(frozen=True)
+class _Move:
+    """world = a @ local + t, with a a rotation times a uniform scale."""
+
+    a: np.ndarray
+    t: np.ndarray
+
+    def then(self, a: np.ndarray, t: np.ndarray) -> "_Move":
+        """This move after the local one (a, t)."""
+        return _Move(self.a @ a, self.a @ t + self.t)
+
+    def box(self, lo: np.ndarray, hi: np.ndarray) -> Piece:
+        centre, half = self.a @ (0.5 * (lo + hi)) + self.t, np.abs(self.a) @ (0.5 * (hi - lo))
+        return Piece("box", centre - half, centre + half)
+
+    def ball(self, centre: np.ndarray, radius: float) -> Piece:
+        c, r = self.a @ centre + self.t, radius * float(np.linalg.norm(self.a[:, 0]))
+        return Piece("ball", c - r, c + r, r)
+
+
+def _expand(node: Node, move: _Move, depth: int) -> list[Piece] | None:
+    """``node``'s pieces in the world of ``move``; None past MAX_PIECES."""
+    from .booleans import Difference, Intersection, Union
     from .primitives import Sphere
-    from .transforms import Material, Translate
-    while isinstance(node, (Material, Translate)):
+    from .transforms import Material, Rotate, Scale, Translate
+    while isinstance(node, (Material, Translate, Rotate, Scale)):
         if isinstance(node, Translate):
-            offset = offset + node.offset
+            move = move.then(np.eye(3), node.offset)
+        elif isinstance(node, Rotate):
+            move = move.then(node.m, np.zeros(3))
+        elif isinstance(node, Scale):
+            move = move.then(float(node.s) * np.eye(3), np.zeros(3))
         node = node.child
-    if depth > 0 and isinstance(node, Union) and node._hard:
+    hard = depth > 0 and isinstance(node, (Union, Difference, Intersection)) and node._hard
+    if hard and isinstance(node, Union):
+        out: list[Piece] = []
         for child in node.children:
-            if _expand(child, offset, depth - 1, out) is None:
+            more = _expand(child, move, depth - 1)
+            if more is None or len(out) + len(more) > MAX_PIECES:
                 return None
+            out += more
         return out
-    if depth > 0 and isinstance(node, Difference) and node._hard:
-        return _expand(node.children[0], offset, depth - 1, out)
+    if hard and isinstance(node, Difference):
+        return _expand(node.children[0], move, depth - 1)
+    if hard and isinstance(node, Intersection):
+        whole = move.box(*box_of(node))
+        options = [p for p in (_expand(c, move, depth - 1) for c in node.children) if p is not None]
+        if options:
+            return _cut(min(options, key=lambda ps: sum(p.volume for p in ps)), whole)
     if isinstance(node, Sphere):
-        c = np.asarray(node.c, dtype=np.float64) + offset
-        r = float(node.r)
-        out.append(Piece("ball", c - r, c + r, r))
-    else:
-        lo, hi = box_of(node)
-        out.append(Piece("box", lo + offset, hi + offset))
-    return out if len(out) <= MAX_PIECES else None
+        return [move.ball(np.asarray(node.c, dtype=np.float64), float(node.r))]
+    return [move.box(*box_of(node))]
+
+
+def _cut(found: list[Piece], whole: Piece) -> list[Piece]:
+    """``found`` within the box ``whole``: boxes cut to it, balls that miss it dropped."""
+    out = []
+    for p in found:
+        lo, hi = np.maximum(p.lo, whole.lo), np.minimum(p.hi, whole.hi)
+        if np.all(lo <= hi):
+            out.append(p if p.kind == "ball" else Piece("box", lo, hi))
+    return out or [whole]
 
 
 def entry_glsl(em: "Emitter", gid: str, found: list[Piece], q: str) -> str:
