@@ -74,6 +74,15 @@ def instances(n: int, seed: int = 0, subtree: Node | None = None) -> tuple[Node,
     return booleans.union(*parts), OrbitCamera(distance=3.2 * ext, yaw=30, pitch=25)
 
 
+def turned_instances(n: int, seed: int = 0) -> tuple[Node, Camera]:
+    """n copies of the 20-node robot, each turned about a random axis, where instances(n) puts them."""
+    rng = np.random.default_rng(seed)
+    ext = 1.0 * n ** (1 / 3)
+    sub = twenty_nodes()
+    parts = [sub.rotate(*_random_rotation(rng)).translate(tuple(rng.uniform(-ext, ext, 3))) for _ in range(n)]
+    return booleans.union(*parts), OrbitCamera(distance=3.2 * ext, yaw=30, pitch=25)
+
+
 def spheres_like(n: int, seed: int = 0) -> tuple[Node, Camera]:
     """n spheres where instances(n) puts its copies (the frame-time yardstick)."""
     return instances(n, seed, primitives.sphere(0.35))
@@ -208,6 +217,7 @@ def run_big(quick: bool, size: tuple[int, int] = (320, 240)) -> str:
     measure([(f"{n_inst} spheres (yardstick)", n_inst, lambda: spheres_like(n_inst)),
              (f"{n_inst} moved copies of a 20-node subtree", n_inst, lambda: instances(n_inst))])
     for name, n, make in ((f"{n_inst} moved copies of a 20-node subtree", n_inst, lambda: instances(n_inst)),
+                          (f"{n_inst} turned copies of a 20-node subtree", n_inst, lambda: turned_instances(n_inst)),
                           (f"{n_inst} moved copies on a plane", n_inst, lambda: on_floor(*instances(n_inst))),
                           ("growth: 1024 spheres on a plane", 1024, lambda: on_floor(*growth(1024)))):
         measure([(f"{name}, free way", n, make), (f"{name}, plain steps (free_way=False)", n, make)],

@@ -1,10 +1,11 @@
 // The free way along the ray, for the marchers (RAY_FREE: the scene is one grid union,
 // perhaps moved as a whole). map() leaves in gFree how far along gRayDir from its point
 // nothing of the union lies: each listed sphere by where the ray enters it, each listed
-// translated subtree by where the ray enters its bounding box (infinite where the ray
-// misses it or leaves it behind; the one whose box the ray enters first, by where it
-// enters the balls and boxes of its parts: GRIDIDEnterN, from nodes/ray_entry.py), any
-// other listed instance by its distance, and the
+// subtree, translated or turned (the direction turned into its frame by its record's
+// quaternion), by where the ray enters its bounding box (infinite where the ray misses it
+// or leaves it behind; the one whose box the ray enters first, by where it enters the
+// balls and boxes of its parts: GRIDIDEnterN, from nodes/ray_entry.py), any other listed
+// instance (scaled, or a primitive whose size is data) by its distance, and the
 // unlisted ones, which lie at least the margin from the point's cell, by the way to the
 // cell's far side plus the margin. Children of the union written as code beside the
 // grid (a floor) narrow gFree to their distance in map() (Emitter.narrow_free_way).

@@ -203,7 +203,7 @@ def test_union_kept_as_data_uploads_its_textures(browser, tmp_path):
     text = html.read_text()
     assert "g0Cell" in text and '"uData"' in text  # the union is data (a cell grid in the data texture), not code
     assert "g0RayBox(q, gRayInv" in text and "g0RayBall(q, gRayDir" in text  # and the free way along the ray
-    assert "max(enterNear, g0Enter0(qNear))" in text
+    assert "max(enterNear, g0Enter0(qNear, gRayInv, gRayDir))" in text
     open_html(browser, html)
     assert differing(canvas(browser), sg.render(scene, cam, (W, H)).color) < MAX_FRACTION
     # key F frames the scene: the view turns to the box centre, keeps its angles, and every

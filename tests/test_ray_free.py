@@ -26,17 +26,18 @@ def _mixed(n: int, seed: int) -> sg.Node:
 
 
 def _moved(n: int, seed: int) -> sg.Node:
-    """Translated copies of the benchmark's 20-node robot, boxes of many sizes, rotated
-    capsules, spheres: every kind of free way (a subtree's box, a primitive's distance, a
-    sphere's entry)."""
+    """Copies of the benchmark's 20-node robot (translated, and turned), boxes of many
+    sizes, rotated capsules, spheres: every kind of free way (a subtree's box and parts, in
+    the world's frame or turned, a primitive's distance, a sphere's entry)."""
     from sdfgl.bench_big import twenty_nodes
     rng = np.random.default_rng(seed)
     robot = twenty_nodes()
     kinds = (lambda: robot, lambda: sg.box(tuple(rng.uniform(0.02, 0.5, 3))),
              lambda: sg.capsule((-0.2, 0, 0), (0.2, 0.1, 0), float(rng.uniform(0.01, 0.06)))
              .rotate(float(rng.uniform(0, 180)), tuple(rng.normal(size=3))),
-             lambda: sg.sphere(float(rng.choice([0.01, 0.1, 0.3]))))
-    return sg.union(*[kinds[i % 4]().translate(tuple(rng.uniform((-2, -0.6, -2), (2, 0.6, 2)))) for i in range(n)])
+             lambda: sg.sphere(float(rng.choice([0.01, 0.1, 0.3]))),
+             lambda: robot.rotate(float(rng.uniform(0, 360)), tuple(rng.normal(size=3))))
+    return sg.union(*[kinds[i % 5]().translate(tuple(rng.uniform((-2, -0.6, -2), (2, 0.6, 2)))) for i in range(n)])
 
 
 def test_only_a_scene_whose_root_is_a_union_of_moved_instances_gets_the_free_way():
@@ -57,10 +58,15 @@ def test_only_a_scene_whose_root_is_a_union_of_moved_instances_gets_the_free_way
     assert "#define RAY_FREE" not in sg.compile(sg.sphere(1) & sg.box(1.5))
     assert "#define RAY_FREE" in sg.compile(_mixed(64, 0))  # rotated instances: by their distance
     assert "RayBox(q, gRayInv" not in sg.compile(_mixed(64, 0))
-    assert "RayBox(q, gRayInv" in sg.compile(_moved(64, 0))  # translated subtrees: by their box
-    # ... and the nearest one by its parts (the robot: body, head, arms, two legs)
-    moved = sg.compile(_moved(64, 0))
-    assert "float g0Enter0(vec3 q)" in moved and "max(enterNear, g0Enter0(qNear))" in moved
+    # translated subtrees: by their box, and the nearest one by its parts (the robot: body,
+    # head, arms, two legs)
+    from sdfgl.bench_big import instances
+    moved = sg.compile(instances(40)[0])
+    assert "RayBox(q, gRayInv" in moved and "max(enterNear, g0Enter0(qNear, gRayInv, gRayDir))" in moved
+    # turned ones (here with the translated copies of the same robot: one type, one
+    # quaternion record each) with the ray turned into their frame
+    turned = sg.compile(_moved(64, 0))
+    assert "RayBox(q, invQ" in turned and "max(enterNear, g0Enter0(qNear, invNear, dirNear))" in turned
     assert "enterNear" not in sg.compile(_mixed(64, 0))
 
 
@@ -153,7 +159,7 @@ def test_the_nearest_subtree_entered_by_its_parts_takes_fewer_steps_to_the_same_
     scene = sg.union(*[robot.translate(tuple(rng.uniform((-2, -0.6, -2), (2, 0.6, 2)))) for _ in range(120)])
     cam = sg.OrbitCamera(distance=5.5, yaw=80, pitch=30, fov=45)
     refined = sg.Renderer().render(scene, cam, (96, 72), shadows=False, ao=False, outputs=("color", "depth", "steps"))
-    assert "max(enterNear, g0Enter0(qNear))" in refined.source.text
+    assert "max(enterNear, g0Enter0(qNear, gRayInv, gRayDir))" in refined.source.text
     import sdfgl.nodes.ray_entry as ray_entry
     monkeypatch.setattr(ray_entry, "pieces", lambda node: None)  # the whole box for every instance
     boxed = sg.Renderer().render(sg.union(*scene.children), cam, (96, 72), shadows=False, ao=False,

@@ -408,20 +408,26 @@ class Grid:
     def _free_way(self, em: "Emitter", t: _Type, move: str, d: str) -> str:
         """GLSL for how far along the ray from q (the point in a listed instance's frame, whose
         distance is ``d``) nothing of that instance lies: an unscaled sphere's entry (q is
-        relative to its centre, its radius |q| - d), a translated subtree's entry into its
-        bounding box (the ray's direction is the world's in its frame; the nearest such
-        instance is refined by its parts after the loop: _refined_entry), any other instance
-        its distance (a primitive's bounds depend on its data; a rotated subtree would need
-        the direction turned into its frame for every entry)."""
+        relative to its centre, its radius |q| - d), a subtree's entry into its bounding box
+        (translated: the ray's direction is the world's in its frame; turned: the direction
+        turned into its frame, ``_boxed``; the nearest such instance is refined by its parts
+        after the loop: _refined_entry), any other instance its distance (a primitive's
+        bounds depend on its data)."""
         from .primitives import Sphere
         gid = em.grid_name(self)
-        if move == "translate":
-            if type(t.inner) is Sphere:
-                return f"{gid}RayBall(q, gRayDir, length(q) - ({d}))"
-            if t.slots is None:
-                lo, hi = _bounds_of(t.inner)
-                return f"{gid}RayBox(q, gRayInv, {em.vec(lo)}, {em.vec(hi)})"
+        if move == "translate" and type(t.inner) is Sphere:
+            return f"{gid}RayBall(q, gRayDir, length(q) - ({d}))"
+        if self._boxed(t, move):
+            lo, hi = _bounds_of(t.inner)
+            return f"{gid}RayBox(q, {_ray(move)[1]}, {em.vec(lo)}, {em.vec(hi)})"
         return d
+
+    @staticmethod
+    def _boxed(t: _Type, move: str) -> bool:
+        """Whether type ``t``'s instances bound the free way by their box: subtrees and
+        primitives of fixed size, translated or turned (a quaternion record) and unscaled."""
+        from .primitives import Sphere
+        return t.slots is None and type(t.inner) is not Sphere and not t.scaled and move in ("translate", "quat")
 
     def _loop(self, em: "Emitter", t: _Type, ti: int, color: bool, owner: str,
               entries: list[tuple[str, str]]) -> list[tuple[str, str]]:
@@ -443,6 +449,9 @@ class Grid:
         if refined:
             lines.append("    float enterNear = 3.0e38;  // the smallest box entry, and its instance's point")
             lines.append("    vec3 qNear = vec3(0.0);")
+            if move == "quat":  # ... and the ray in its frame
+                lines.append("    vec3 dirNear = gRayDir;")
+                lines.append("    vec3 invNear = gRayInv;")
         lines.append("    for (int k = 0; k < count; k++) {")
         lines.append(f"        int e = {gid}_LIST + first + k * {texels};")
         for j in range(need):
@@ -480,17 +489,26 @@ class Grid:
             out.append((f"        if (dist < best.w) best = vec4({rgb}, dist);", owner))
         else:
             out.append((f"        best = min(best, {d});", owner))
+            turned = self._ray_free(em, color) and self._boxed(t, move) and move == "quat"
+            if turned:  # the ray's direction in the instance's frame (the record's quaternion), and 1 / it
+                out += [(line, owner) for line in (
+                    "        vec3 dirQ = gRayDir + 2.0 * cross(d0.xyz, cross(d0.xyz, gRayDir) + d0.w * gRayDir);",
+                    "        vec3 invQ = 1.0 / (dirQ + vec3(equal(dirQ, vec3(0.0))) * 1e-30);")]
             if refined:
                 out += [(line, owner) for line in (
                     f"        float enter = {self._free_way(em, t, move, d)};",
                     "        free = min(free, enter < enterNear ? enterNear : enter);  // every entry but the smallest",
-                    "        qNear = enter < enterNear ? q : qNear;",
+                    "        bool nearer = enter < enterNear;",
+                    "        qNear = nearer ? q : qNear;",
+                    *(["        dirNear = nearer ? dirQ : dirNear;", "        invNear = nearer ? invQ : invNear;"]
+                      if turned else []),
                     "        enterNear = min(enterNear, enter);")]
             elif self._ray_free(em, color):
                 out.append((f"        free = min(free, {self._free_way(em, t, move, d)});", owner))
         out.append(("    }", owner))
         if refined:
-            out.append((f"    free = min(free, max(enterNear, {refined}(qNear)));  // the nearest by its parts", owner))
+            ray = "invNear, dirNear" if move == "quat" else "gRayInv, gRayDir"
+            out.append((f"    free = min(free, max(enterNear, {refined}(qNear, {ray})));  // the nearest by its parts", owner))
         out.append(("    }", owner))
         return out
 
@@ -498,19 +516,26 @@ class Grid:
                        entries: list[tuple[str, str]]) -> str | None:
         """The name of the GLSL function for where the ray enters type ``t`` by its parts
         (nodes/ray_entry.py; its code goes to ``entries``), where the free way may refine its
-        nearest instance that way: a translated subtree whose box holds parts with room
-        between them; else None. Only the instance with the smallest box entry is refined,
-        once a call after the list's loop: every entry test costs about what a call saves."""
-        from .primitives import Sphere
-        if not self._ray_free(em, color) or move != "translate" or t.slots is not None or type(t.inner) is Sphere:
+        nearest instance that way: a subtree entered by its box (``_boxed``) that holds parts
+        with room between them; else None. Only the instance with the smallest box entry is
+        refined, once a call after the list's loop: every entry test costs about what a call
+        saves. The function takes the point, 1 / the direction and the direction, all in
+        the instance's frame."""
+        if not self._ray_free(em, color) or not self._boxed(t, move):
             return None
         found = ray_entry.pieces(t.inner)
         if found is None:
             return None
         gid = em.grid_name(self)
         name = f"{gid}Enter{ti}"
-        entries.append((name, f"float {name}(vec3 q) {{\n    return {ray_entry.entry_glsl(em, gid, found, 'q')};\n}}"))
+        entries.append((name, f"float {name}(vec3 q, vec3 inv, vec3 dir) {{\n"
+                              f"    return {ray_entry.entry_glsl(em, gid, found, 'q', 'inv', 'dir')};\n}}"))
         return name
+
+
+def _ray(move: str) -> tuple[str, str]:
+    """The GLSL of the ray's direction and 1 / it in a listed instance's frame (see _loop)."""
+    return ("dirQ", "invQ") if move == "quat" else ("gRayDir", "gRayInv")
 
 
 def _template(prim: Node, slots: list[str], at: int) -> Node:

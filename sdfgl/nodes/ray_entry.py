@@ -138,11 +138,11 @@ def _cut(found: list[Piece], whole: Piece) -> list[Piece]:
     return out or [whole]
 
 
-def entry_glsl(em: "Emitter", gid: str, found: list[Piece], q: str) -> str:
-    """GLSL for where the ray (gRayDir, 1/it gRayInv) from ``q`` first enters ``found``
-    (shaders/grid_ray.glsl's tests; 3e38 where it enters none)."""
-    tests = [f"{gid}RayBall({q} - {em.vec(p.centre)}, gRayDir, {em.num(p.radius)})" if p.kind == "ball"
-             else f"{gid}RayBox({q}, gRayInv, {em.vec(p.lo)}, {em.vec(p.hi)})" for p in found]
+def entry_glsl(em: "Emitter", gid: str, found: list[Piece], q: str, inv: str, direction: str) -> str:
+    """GLSL for where the ray (unit ``direction``, 1 / it ``inv``) from ``q`` first enters
+    ``found`` (shaders/grid_ray.glsl's tests; 3e38 where it enters none)."""
+    tests = [f"{gid}RayBall({q} - {em.vec(p.centre)}, {direction}, {em.num(p.radius)})" if p.kind == "ball"
+             else f"{gid}RayBox({q}, {inv}, {em.vec(p.lo)}, {em.vec(p.hi)})" for p in found]
     while len(tests) > 1:  # a balanced tree of mins
         tests = [f"min({a}, {b})" for a, b in zip(tests[::2], tests[1::2])] + tests[len(tests) - len(tests) % 2:]
     return tests[0]
