@@ -1,17 +1,19 @@
-"""1000 robots: the free way (the nearest subtree by its parts) against free_way=False and the
-float64 reference (every pixel; cached in /tmp); then the frame against 1000 spheres, strictly alternating."""
+"""1000 robots ('turned': each turned about a random axis): the free way (the nearest subtree by its
+parts) against free_way=False and the float64 reference (every pixel; cached in /tmp); then the frame
+against 1000 spheres, strictly alternating. Usage: entry_check.py [turned] [notime]"""
 import os, statistics, sys
 import numpy as np
 from sdfgl.bench import FrameTimer, Variant
-from sdfgl.bench_big import instances, spheres_like, NO_SHADING
+from sdfgl.bench_big import instances, spheres_like, turned_instances, NO_SHADING
 from sdfgl.reference import trace_rays
 from sdfgl.render import Renderer
 size = (320, 240)
 r = Renderer(); timer = FrameTimer(r, size)
-sp, ro = spheres_like(1000), instances(1000)
+which = "turned" if "turned" in sys.argv else "robots"
+sp, ro = spheres_like(1000), (turned_instances if which == "turned" else instances)(1000)
 cam = ro[1]
 o, d = cam.rays(*size); o = o.reshape(-1, 3); d = d.reshape(-1, 3)
-cache = "/tmp/ref_robots_1000_0.npz"  # the same file as session 7's rcmp.py (9 minutes to make)
+cache = f"/tmp/ref_{which}_1000_0.npz"  # robots: the same file as session 7's rcmp.py (9 minutes to make)
 if not os.path.exists(cache):
     t, und = trace_rays(ro[0], o, d)
     np.savez(cache, t=t, und=und)
