@@ -26,17 +26,19 @@ def _mixed(n: int, seed: int) -> sg.Node:
 
 
 def _moved(n: int, seed: int) -> sg.Node:
-    """Copies of the benchmark's 20-node robot (translated, and turned), boxes of many
-    sizes, rotated capsules, spheres: every kind of free way (a subtree's box and parts, in
-    the world's frame or turned, a primitive's distance, a sphere's entry)."""
+    """Translated copies of the benchmark's 20-node robot, turned copies of the robot with an
+    antenna, boxes of many sizes, rotated capsules, spheres: every kind of free way (a
+    subtree's box and parts, in the world's frame or turned, a primitive's distance, a
+    sphere's entry)."""
     from sdfgl.bench_big import twenty_nodes
     rng = np.random.default_rng(seed)
     robot = twenty_nodes()
+    antenna = robot | sg.sphere(0.05).translate((0, 0.62, 0))  # another type: turned copies
     kinds = (lambda: robot, lambda: sg.box(tuple(rng.uniform(0.02, 0.5, 3))),
              lambda: sg.capsule((-0.2, 0, 0), (0.2, 0.1, 0), float(rng.uniform(0.01, 0.06)))
              .rotate(float(rng.uniform(0, 180)), tuple(rng.normal(size=3))),
              lambda: sg.sphere(float(rng.choice([0.01, 0.1, 0.3]))),
-             lambda: robot.rotate(float(rng.uniform(0, 360)), tuple(rng.normal(size=3))))
+             lambda: antenna.rotate(float(rng.uniform(0, 360)), tuple(rng.normal(size=3))))
     return sg.union(*[kinds[i % 5]().translate(tuple(rng.uniform((-2, -0.6, -2), (2, 0.6, 2)))) for i in range(n)])
 
 
@@ -63,10 +65,9 @@ def test_only_a_scene_whose_root_is_a_union_of_moved_instances_gets_the_free_way
     from sdfgl.bench_big import instances
     moved = sg.compile(instances(40)[0])
     assert "RayBox(q, gRayInv" in moved and "max(enterNear, g0Enter0(qNear, gRayInv, gRayDir))" in moved
-    # turned ones (here with the translated copies of the same robot: one type, one
-    # quaternion record each) with the ray turned into their frame
-    turned = sg.compile(_moved(64, 0))
-    assert "RayBox(q, invQ" in turned and "max(enterNear, g0Enter0(qNear, invNear, dirNear))" in turned
+    # turned ones with the ray turned into their frame
+    both = sg.compile(_moved(64, 0))
+    assert "RayBox(q, invQ" in both and "(qNear, invNear, dirNear))" in both and "(qNear, gRayInv, gRayDir))" in both
     assert "enterNear" not in sg.compile(_mixed(64, 0))
 
 
