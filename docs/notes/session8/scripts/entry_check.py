@@ -1,9 +1,10 @@
 """1000 robots ('turned': each turned about a random axis): the free way (the nearest subtree by its
 parts) against free_way=False and the float64 reference (every pixel; cached in /tmp); then the frame
 against 1000 spheres, strictly alternating. Usage: entry_check.py [turned] [notime]"""
-import os, statistics, sys
+import os, sys
 import numpy as np
 from sdfgl.bench import FrameTimer, Variant
+from pair import alternate
 from sdfgl.bench_big import instances, spheres_like, turned_instances, NO_SHADING
 from sdfgl.reference import trace_rays
 from sdfgl.render import Renderer
@@ -31,11 +32,5 @@ for fw in (False, True):
 if "notime" in sys.argv:
     sys.exit()
 vs = [Variant("spheres", "1000", dict(NO_SHADING), *sp), Variant("robots", "1000", dict(NO_SHADING), *ro)]
-for v in vs: timer.prepare(v)
-m = lambda x: 1000 * statistics.median(x)
-ts = {v.scene: [] for v in vs}
-for rnd in range(32):
-    for v in vs:
-        dt = timer.draw(v)
-        if rnd >= 2: ts[v.scene].append(dt)
-print(f"spheres {m(ts['spheres']):.2f} ms robots {m(ts['robots']):.2f} ms ratio {m(ts['robots']) / m(ts['spheres']):.3f}")
+ms = alternate(timer, vs, 32)
+print(f"spheres {ms['spheres']:.2f} ms robots {ms['robots']:.2f} ms ratio {ms['robots'] / ms['spheres']:.3f}")

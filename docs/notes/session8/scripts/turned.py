@@ -1,10 +1,11 @@
 """1000 robots turned about random axes ('y': about Y only) and translated like the bench's copies:
 calls and 4x4 block maxima with the free way and without, hits against free_way=False, then the
 frame against 1000 spheres (the pair timed alone, strictly alternating). Usage: turned.py [y] [notime]"""
-import statistics, sys
+import sys
 import numpy as np
 import sdfgl as sg
 from sdfgl.bench import FrameTimer, Variant
+from pair import alternate
 from sdfgl.bench_big import spheres_like, twenty_nodes, NO_SHADING
 from sdfgl.camera import OrbitCamera
 from sdfgl.render import Renderer
@@ -32,11 +33,5 @@ print("hit mismatch", int((np.isfinite(a) != np.isfinite(b)).sum()), "depth diff
 if "notime" in sys.argv:
     sys.exit()
 vs = [Variant("spheres", "1000", dict(NO_SHADING), *spheres_like(n)), Variant("turned", "1000", dict(NO_SHADING), scene, cam)]
-for v in vs: timer.prepare(v)
-m = lambda x: 1000 * statistics.median(x)
-ts = {v.scene: [] for v in vs}
-for rnd in range(27):
-    for v in vs:
-        dt = timer.draw(v)
-        if rnd >= 2: ts[v.scene].append(dt)
-print(f"spheres {m(ts['spheres']):.2f} ms turned {m(ts['turned']):.2f} ms ratio {m(ts['turned']) / m(ts['spheres']):.3f}")
+ms = alternate(timer, vs, 27)
+print(f"spheres {ms['spheres']:.2f} ms turned {ms['turned']:.2f} ms ratio {ms['turned'] / ms['spheres']:.3f}")
