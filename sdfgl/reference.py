@@ -114,9 +114,12 @@ def trace_rays(scene: Node, o: np.ndarray, d: np.ndarray, max_dist: float = 1000
 
 
 def _shallow(scene: Node, o: np.ndarray, d: np.ndarray, t_hit: np.ndarray, band: np.ndarray,
-             lip: float, near: float, limit: int = 256) -> np.ndarray:
+             lip: float, near: float, limit: int = 2048) -> np.ndarray:
     """True for hits whose dip below f = 0 stays shallower than ``band`` until the ray leaves
-    the solid again (a graze within float32 rounding). Only rays that start shallow are followed."""
+    the solid again (a graze within float32 rounding). Only rays that start shallow are followed,
+    in steps of at least ``band / lip``: between two samples above -band the field cannot fall
+    below -1.5 band, and a graze along a gently curved face (thousands of ``near`` steps long)
+    is followed to its end within ``limit`` steps."""
     out = np.zeros(t_hit.shape, dtype=bool)
     idx = np.nonzero(np.isfinite(t_hit))[0]
     t = t_hit[idx] + near
@@ -129,7 +132,7 @@ def _shallow(scene: Node, o: np.ndarray, d: np.ndarray, t_hit: np.ndarray, band:
         left = f >= 0
         out[idx[left]] = True  # out again without going deeper than the band
         idx, t, f = idx[~left], t[~left], f[~left]
-        t = t + np.maximum(np.abs(f) / lip, near)
+        t = t + np.maximum(np.maximum(np.abs(f), band[idx]) / lip, near)
     return out
 
 

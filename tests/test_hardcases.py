@@ -69,3 +69,17 @@ def test_a_graze_within_float32_rounding_is_undecided_in_the_reference():
     assert np.isfinite(t[0]) and undecided[0]
     t, undecided = trace_rays(scene, o[150:151, 200], d[150:151, 200])  # a plain hit stays decided
     assert np.isfinite(t[0]) and not undecided[0]
+
+
+def test_a_long_shallow_graze_is_followed_to_its_end():
+    # a ray 2e-6 below the top of a unit sphere (float32 band here 4.8e-6) stays inside for 4e-3:
+    # 20 000 steps of the reference's smallest step; followed in steps of the band it is undecided
+    import numpy as np
+
+    import sdfgl as sg
+    from sdfgl.reference import trace_rays
+    d = np.array([[1.0, 0.0, 0.0]])
+    t, undecided = trace_rays(sg.sphere(1.0), np.array([[-5.0, 1.0 - 2e-6, 0.0]]), d)
+    assert np.isfinite(t[0]) and undecided[0]
+    t, undecided = trace_rays(sg.sphere(1.0), np.array([[-5.0, 1.0 - 1e-4, 0.0]]), d)  # 20x the band: a hit
+    assert np.isfinite(t[0]) and not undecided[0]
