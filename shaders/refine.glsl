@@ -21,7 +21,7 @@
 #define SETTLE_TOL 0.01
 #define SCAN_POINTS 3      // samples across a long uncovered probe bracket
 #define SCAN_SPACING 4.0   // ... at least this many hit thresholds apart (a footprint by default)
-#define SCAN_DIP 0.7       // a scan sample below this share of the straight line: the field dips
+#define SCAN_DIP 0.7       // a scan sample below this share of the straight line, or above it over this share: the line does not hold
 
 // Where marching goes on after settle() returns -3.0: the last scan sample and f there.
 float settleT;
@@ -66,8 +66,11 @@ bool nearMiss(float t, float r, float b, float fb, float minStep, int rounds) {
 // than SCAN_SPACING hit thresholds to the root the straight line from (a, fa) to (b, fb)
 // predicts), up to SCAN_POINTS samples scan it evenly first: a sample inside narrows the
 // bracket to the first one; a sample that dips well below the straight line (something
-// lies near the ray there) returns -3.0 with settleT/settleF set to the last sample before
-// it that did not (marching goes on from there), or -2.0 when that is a itself. After the
+// lies near the ray there) or rises well above it (the ray passes between things, so the
+// line to the far root says nothing of what lies past the sample: a sphere the probe
+// jumped in a repetition seen at a low angle) returns -3.0 with settleT/settleF set to the
+// last sample before it that did neither (marching goes on from there), or -2.0 when that
+// is a itself. After the
 // scan the bracket is kept only if the first secant sample agrees with the straight line
 // (|f| below half of fa there, as on a face seen at a grazing angle), else -2.0: the
 // marcher steps closer in and probes again.
@@ -115,7 +118,8 @@ float settleUpdate(inout Settle S, float c, float fc) {
             S.fb = fc;
             S.scan = 0;
             S.check = false;
-        } else if (fc < SCAN_DIP * S.fa0 * (S.c0 - c) / (S.c0 - S.a0)) {
+        } else if (fc < SCAN_DIP * S.fa0 * (S.c0 - c) / (S.c0 - S.a0)
+                   || fc * SCAN_DIP > S.fa0 * (S.c0 - c) / (S.c0 - S.a0)) {
             settleT = S.a;
             settleF = S.fa;
             return S.a > S.a0 ? -3.0 : -2.0;
