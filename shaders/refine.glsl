@@ -69,8 +69,8 @@ bool nearMiss(float t, float r, float b, float fb, float minStep, int rounds) {
 // lies near the ray there) or rises well above it (the ray passes between things, so the
 // line to the far root says nothing of what lies past the sample: a sphere the probe
 // jumped in a repetition seen at a low angle) returns -3.0 with settleT/settleF set to the
-// last sample before it that did neither (marching goes on from there), or -2.0 when that
-// is a itself. After the
+// last scan sample the way to which is proven (its ball meets the one before it, back to
+// a: marching goes on from there), or -2.0 when that is a itself. After the
 // scan the bracket is kept only if the first secant sample agrees with the straight line
 // (|f| below half of fa there, as on a face seen at a grazing angle), else -2.0: the
 // marcher steps closer in and probes again.
@@ -87,11 +87,12 @@ struct Settle {
     int scan;             // scan samples still to take
     float scanStep;
     float a0, fa0, c0;    // the straight line the scan is held to: (a0, fa0) to (c0, 0)
+    float pa, fpa;        // the last scan sample the way to is proven (the balls overlap), and f there
     int calls;            // samples taken
 };
 
 Settle settleStart(float a, float fa, float b, float fb) {
-    return Settle(a, fa, b, fb, 0, false, 0, 0.0, a, fa, b, 0);
+    return Settle(a, fa, b, fb, 0, false, 0, 0.0, a, fa, b, a, fa, 0);
 }
 
 // The ray parameter of the next sample.
@@ -120,10 +121,14 @@ float settleUpdate(inout Settle S, float c, float fc) {
             S.check = false;
         } else if (fc < SCAN_DIP * S.fa0 * (S.c0 - c) / (S.c0 - S.a0)
                    || fc * SCAN_DIP > S.fa0 * (S.c0 - c) / (S.c0 - S.a0)) {
-            settleT = S.a;
-            settleF = S.fa;
-            return S.a > S.a0 ? -3.0 : -2.0;
+            settleT = S.pa;
+            settleF = S.fpa;
+            return S.pa > S.a0 ? -3.0 : -2.0;
         } else {
+            if (c - fc <= S.pa + S.fpa) {
+                S.pa = c;  // its ball meets the last proven one's: the way to it is proven
+                S.fpa = fc;
+            }
             S.a = c;
             S.fa = fc;
         }

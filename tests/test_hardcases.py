@@ -61,10 +61,11 @@ def test_no_lost_hits_on_a_crease_an_implicit_field_or_many_near_misses_at_128x9
 def test_a_scan_that_sees_the_field_rise_goes_on_marching():
     # a probe that jumps a sphere the ray clips and lands in the one behind: its scan samples
     # lie far above the straight line to that far root (the ray passes between spheres), so
-    # the bracket is not trusted and marching goes on (128x96: low_repeat 23 -> 7 depth
-    # outliers, twist_720_off 2 -> 0, when the scan only looked for dips)
+    # the bracket is not trusted and marching goes on from the last sample the way to which
+    # is proven (128x96: low_repeat 23 depth outliers when the scan only looked for dips, 7
+    # going on from the sample before the rise, 2 now; twist_720_off 2 -> 0)
     low, _ = run_case(next(c for c in CASES if c.name == "low_repeat"), (128, 96))
-    assert low.depth_outliers <= 12 and low.lost_hits == 0 and low.false_hits == 0
+    assert low.depth_outliers <= 4 and low.lost_hits == 0 and low.false_hits == 0
     off, _ = run_case(next(c for c in CASES if c.name == "twist_720_off"), (128, 96))
     assert off.depth_outliers == 0 and off.lost_hits == 0
 
