@@ -122,22 +122,19 @@ float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
             if (inside && rPrev < 0.0) return t;  // the ray starts inside
             s = rPrev >= 0.0 ? (rPrev - r) / max(t - tPrev, 1e-30) : 0.0;
             bool near = !inside && r < hitEpsilon(t);
+            // at a shallow angle, every other round near the surface takes the method's own
+            // step (over-relaxed where the method is, the overlap checked next round) instead
+            // of a probe: most such rays pass by
+            bool stepNear = false;
             if (near) {
                 nearRounds++;
-                if (s < 0.5 && (++nearSteps & 1) == 0) {
-                    tPrev = t;  // at a shallow angle, every other step near the surface is a
-                    rPrev = r;  // plain one: most such rays pass by
-                    t += r;
-                    over = false;
-                    haveSlope = true;
-                    continue;
-                }
+                stepNear = s < 0.5 && (++nearSteps & 1) == 0;
             }
             // far from the surface, closing in at a shallow angle: every fourth step, probe
             // past the root the slope predicts (a plane seen at 0.5 degrees would take
             // hundreds of steps)
             bool shallow = !inside && !near && s > 1e-3 && s < 0.5 && ++sinceProbe >= 4;
-            if (inside || near || shallow) {
+            if (inside || (near && !stepNear) || shallow) {
                 if (shallow) sinceProbe = 0;
                 ms = minProbe(t, roLen);
                 S = settleStart(inside ? tPrev : t, inside ? rPrev : r,  // (WebGL: no ?: on structs)
