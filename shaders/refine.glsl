@@ -21,7 +21,7 @@
 #define SETTLE_TOL 0.01
 #define SCAN_POINTS 3      // samples across a long uncovered probe bracket
 #define SCAN_SPACING 4.0   // ... at least this many hit thresholds apart (a footprint by default)
-#define SCAN_DIP 0.7       // a scan sample below this share of the straight line, or above it over this share: the line does not hold
+#define SCAN_DIP 0.7       // a scan sample below this share of the straight line, or above 1/SCAN_DIP of it: the line fails
 
 // Where marching goes on after settle() returns -3.0: the last scan sample and f there.
 float settleT;
@@ -114,13 +114,13 @@ float settleUpdate(inout Settle S, float c, float fc) {
     S.calls++;
     if (S.scan > 0) {
         S.scan--;
+        float line = S.fa0 * (S.c0 - c) / (S.c0 - S.a0);  // the straight line to the far root, at c
         if (fc < 0.0) {
             S.b = c;  // an earlier surface: the bracket ends at the first sample inside
             S.fb = fc;
             S.scan = 0;
             S.check = false;
-        } else if (fc < SCAN_DIP * S.fa0 * (S.c0 - c) / (S.c0 - S.a0)
-                   || fc * SCAN_DIP > S.fa0 * (S.c0 - c) / (S.c0 - S.a0)) {
+        } else if (fc < SCAN_DIP * line || fc * SCAN_DIP > line) {
             settleT = S.pa;
             settleF = S.fpa;
             return S.pa > S.a0 ? -3.0 : -2.0;

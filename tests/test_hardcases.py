@@ -69,6 +69,7 @@ def test_a_scan_that_sees_the_field_rise_goes_on_marching():
     off, _ = run_case(next(c for c in CASES if c.name == "twist_720_off"), (128, 96))
     assert off.depth_outliers == 0 and off.lost_hits == 0
 
+
 def test_a_graze_within_float32_rounding_is_undecided_in_the_reference():
     # a ray that dips 3.5e-7 into a twisted box edge and comes out: float32 cannot decide it
     import numpy as np
