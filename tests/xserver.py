@@ -72,20 +72,29 @@ class Driver:
                 time.sleep(1.0)
         raise AssertionError("unreachable")
 
+    def _read_state(self) -> dict | None:
+        """The viewer's state file, or None while it is missing or half written."""
+        try:
+            return json.loads(self.state_file.read_text())
+        except (OSError, ValueError):
+            return None
+
     def state(self) -> dict:
         for _ in range(50):
-            try:
-                return json.loads(self.state_file.read_text())
-            except (OSError, ValueError):
-                time.sleep(0.05)
+            st = self._read_state()
+            if st is not None:
+                return st
+            time.sleep(0.05)
         raise AssertionError("no state file")
 
     def wait_for(self, pred, timeout: float = 20.0, what: str = "condition") -> dict:  # noqa: ANN001
+        # a state file not written yet (the first compile on a loaded machine) is "not yet",
+        # not a failure, until the deadline
         deadline = time.time() + timeout
         st = {}
         while time.time() < deadline:
-            st = self.state()
-            if pred(st):
+            st = self._read_state() or {}
+            if st and pred(st):
                 return st
             time.sleep(0.05)
         st.pop("frame_log", None)
