@@ -11,6 +11,7 @@ from typing import Any, Sequence
 import numpy as np
 
 from .errors import SdfglError
+from .files import written_atomically
 
 PNG_OPTIONS = {"compress_level": 1}
 
@@ -20,9 +21,13 @@ def write_image(array: np.ndarray, path: str | Path, **options: Any) -> Path:
     from PIL import Image
     p = Path(path)
     opts = {**(PNG_OPTIONS if p.suffix.lower() == ".png" else {}), **options}
+    fmt = Image.registered_extensions().get(p.suffix.lower())
+    if fmt is None:
+        raise SdfglError(f"cannot write image file '{p}': unknown image format {p.suffix or '(no suffix)'!r}")
     try:
-        Image.fromarray(array).save(p, **opts)
-    except (OSError, ValueError, KeyError) as exc:
+        with written_atomically(p, "image file") as tmp:
+            Image.fromarray(array).save(tmp, format=fmt, **opts)
+    except (ValueError, KeyError) as exc:
         raise SdfglError(f"cannot write image file '{p}': {exc}") from exc
     return p
 
@@ -58,10 +63,8 @@ def save_outputs(res: Any, path: str | Path, outputs: Sequence[str] = ("color",)
     p = Path(path)
     if p.suffix.lower() == ".npz":
         arrays = {name: getattr(res, name) for name in outputs if getattr(res, name, None) is not None}
-        try:
-            np.savez_compressed(p, **arrays)
-        except OSError as exc:
-            raise SdfglError(f"cannot write '{p}': {exc}") from exc
+        with written_atomically(p, "output file") as tmp, open(tmp, "wb") as fh:
+            np.savez_compressed(fh, **arrays)
         return [p]
     written = [write_image(res.color, p)]
     for name in outputs:

@@ -19,6 +19,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ..errors import ParameterError, SdfglError
+from ..files import cannot_write, commit, temp_path, written_atomically
 
 if TYPE_CHECKING:  # pragma: no cover - Pillow is imported where frames are written
     from PIL import Image
@@ -27,20 +28,25 @@ VIDEO_SUFFIXES = {".mp4": "libx264", ".m4v": "libx264", ".mov": "libx264", ".web
 FRAME_PATTERN = re.compile(r"%0?\d*d")
 
 
-def temp_path(path: Path) -> Path:
-    """A hidden name beside ``path`` with the same suffix (encoders pick the format from it)."""
-    return path.with_name(f".{path.stem}.tmp-{os.getpid()}{path.suffix}")
-
-
 def save_image_atomic(image: "Image.Image", path: Path, fmt: str = "PNG") -> None:
-    """Write ``image`` to ``path`` through a temporary file and a rename."""
-    tmp = temp_path(path)
+    """Write ``image`` to ``path`` whole or not at all (see :mod:`sdfgl.files`)."""
     try:
-        image.save(tmp, format=fmt)
-        os.replace(tmp, path)
-    except (OSError, ValueError) as exc:
-        tmp.unlink(missing_ok=True)
+        with written_atomically(path, "image file") as tmp:
+            image.save(tmp, format=fmt)
+    except ValueError as exc:
         raise SdfglError(f"cannot write image file '{path}': {exc}") from exc
+
+
+def check_clip(path: Path, frames: int) -> None:
+    """Decode the clip at ``path`` with ffmpeg and check it holds ``frames`` frames (a clip
+    cut short by a full disk or a failed encoder has no index and does not decode)."""
+    import imageio_ffmpeg
+    try:
+        found, _ = imageio_ffmpeg.count_frames_and_secs(str(path))
+    except (OSError, RuntimeError, ValueError):
+        raise SdfglError("the clip ffmpeg wrote does not decode (see ffmpeg's messages above)") from None
+    if found != frames:
+        raise SdfglError(f"the clip ffmpeg wrote holds {found} of {frames} frames")
 
 
 class FrameWriter:
@@ -113,17 +119,24 @@ class GifWriter(FrameWriter):
         super().__init__(path, size, fps)
         self.loop = loop
         self._tmp = temp_path(self.path)
-        self._fp = open(self._tmp, "wb")  # noqa: SIM115 - closed in close()/abort()
+        try:
+            self._fp = open(self._tmp, "wb")  # noqa: SIM115 - closed in close()/abort()
+        except OSError as exc:
+            raise cannot_write("GIF", self.path, exc) from exc
         self._duration = max(20, int(round(1000.0 / self.fps / 10.0)) * 10)  # GIF counts centiseconds
 
     def _write(self, frame: np.ndarray) -> None:
         from PIL import GifImagePlugin, Image
         im = Image.fromarray(frame).quantize(256, method=Image.Quantize.FASTOCTREE, dither=Image.Dither.FLOYDSTEINBERG)
-        if self.count == 0:
-            header, _ = GifImagePlugin.getheader(im, info={"loop": self.loop})
-            self._fp.write(b"".join(header))
-        for chunk in GifImagePlugin.getdata(im, duration=self._duration, disposal=1, include_color_table=True):
-            self._fp.write(chunk)
+        try:
+            if self.count == 0:
+                header, _ = GifImagePlugin.getheader(im, info={"loop": self.loop})
+                self._fp.write(b"".join(header))
+            for chunk in GifImagePlugin.getdata(im, duration=self._duration, disposal=1, include_color_table=True):
+                self._fp.write(chunk)
+        except OSError as exc:
+            self.abort()
+            raise cannot_write("GIF", self.path, exc) from exc
 
     def close(self) -> None:
         if self._fp.closed:
@@ -131,12 +144,19 @@ class GifWriter(FrameWriter):
         if self.count == 0:
             self.abort()
             raise SdfglError(f"GIF '{self.path}': no frames were written")
-        self._fp.write(b";")  # trailer
-        self._fp.close()
-        os.replace(self._tmp, self.path)
+        try:
+            self._fp.write(b";")  # trailer
+            self._fp.close()
+        except OSError as exc:
+            self.abort()
+            raise cannot_write("GIF", self.path, exc) from exc
+        commit(self._tmp, self.path, "GIF")
 
     def abort(self) -> None:
-        self._fp.close()
+        try:
+            self._fp.close()
+        except OSError:
+            pass  # the file is dropped anyway
         self._tmp.unlink(missing_ok=True)
 
 
@@ -187,7 +207,7 @@ class VideoWriter(FrameWriter):
             self.abort()
             raise SdfglError(f"video '{self.path}': ffmpeg failed: {exc}") from exc
         self._gen = None
-        os.replace(self._tmp, self.path)
+        commit(self._tmp, self.path, "video", check=lambda p: check_clip(p, self.count))
 
     def abort(self) -> None:
         if self._gen is not None:

@@ -12,6 +12,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import SdfglError
+from ..files import written_atomically
 from .deps import require
 
 FORMATS = (".stl", ".obj", ".ply", ".glb", ".gltf", ".3mf")
@@ -28,26 +29,55 @@ def write(mesh: Any, path: Path, **options: Any) -> Path:
         raise SdfglError(f"mesh save: unknown option(s) {', '.join(sorted(options))} for '{path}'")
     if len(mesh.faces) == 0:
         raise SdfglError(f"cannot write mesh file '{path}': the mesh is empty (no surface in the box)")
-    try:
-        if suffix == ".obj":
-            _obj(mesh, path)
-        elif suffix == ".stl":
-            _stl(mesh, path)
+    if suffix == ".obj":
+        _obj(mesh, path)
+        return path
+    with written_atomically(path, "mesh file", check=lambda tmp: check_mesh_file(tmp, suffix, len(mesh.faces))) as tmp:
+        if suffix == ".stl":
+            _stl(mesh, tmp)
         elif suffix == ".ply":
-            _ply(mesh, path)
+            _ply(mesh, tmp)
         else:
             tm = mesh.to_trimesh()
             exchange = require("trimesh").exchange
             if suffix == ".3mf":
                 require("lxml")
-                path.write_bytes(exchange.threemf.export_3MF(tm))
+                tmp.write_bytes(exchange.threemf.export_3MF(tm))
             elif suffix == ".gltf":  # one file: the buffer embedded as a data URI
-                path.write_bytes(exchange.gltf.export_gltf(tm, embed_buffers=True, include_normals=True)["model.gltf"])
+                tmp.write_bytes(exchange.gltf.export_gltf(tm, embed_buffers=True, include_normals=True)["model.gltf"])
             else:
-                tm.export(str(path), file_type=suffix[1:])
-    except OSError as exc:
-        raise SdfglError(f"cannot write mesh file '{path}': {exc}") from exc
+                tmp.write_bytes(tm.export(file_type="glb"))
     return path
+
+
+def check_mesh_file(path: Path, suffix: str, faces: int) -> None:
+    """Read back the head of a mesh file just written and check it is whole: the STL's size
+    matches its triangle count, a PLY or OBJ ends where its writer ended, a GLB's length
+    field matches the file, a 3MF is a readable zip."""
+    size = path.stat().st_size
+    with open(path, "rb") as fh:
+        head = fh.read(84)
+        fh.seek(max(0, size - 1))
+        last = fh.read(1)
+    bad = ""
+    if suffix == ".stl":
+        if size != 84 + 50 * faces or int(np.frombuffer(head[80:84], "<u4")[0]) != faces:
+            bad = f"{size} bytes for {faces} triangles"
+    elif suffix == ".ply":
+        if not head.startswith(b"ply\n"):
+            bad = "no PLY header"
+    elif suffix in (".obj", ".mtl", ".gltf"):
+        if last not in (b"\n", b"}"):
+            bad = "the file stops mid-line"
+    elif suffix == ".glb":
+        if head[:4] != b"glTF" or int(np.frombuffer(head[8:12], "<u4")[0]) != size:
+            bad = "its length field does not match the file"
+    elif suffix == ".3mf":
+        import zipfile
+        if not zipfile.is_zipfile(path):
+            bad = "not a readable zip archive"
+    if bad:
+        raise SdfglError(f"mesh file '{path}' came out incomplete ({bad})")
 
 
 def materials(colors: np.ndarray | None, faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -68,13 +98,15 @@ def materials(colors: np.ndarray | None, faces: np.ndarray) -> tuple[np.ndarray,
 def _obj(mesh: Any, path: Path) -> None:
     mtl = path.with_suffix(".mtl")
     palette, index = materials(mesh.colors, mesh.faces)
-    with open(mtl, "w", encoding="ascii") as fh:
+    with written_atomically(mtl, "material file", check=lambda tmp: check_mesh_file(tmp, ".mtl", 0)) as tmp_mtl, \
+            open(tmp_mtl, "w", encoding="ascii") as fh:
         fh.write("# sdfgl mesh materials: one per scene colour\n")
         for i, rgb in enumerate(palette):
             fh.write(f"newmtl m{i}\nKd {rgb[0]:.4f} {rgb[1]:.4f} {rgb[2]:.4f}\nKa 0 0 0\nKs 0 0 0\nd 1\nillum 1\n\n")
     order = np.argsort(index, kind="stable")
     starts = np.searchsorted(index[order], np.arange(len(palette) + 1))
-    with open(path, "w", encoding="ascii") as fh:
+    with written_atomically(path, "mesh file", check=lambda tmp: check_mesh_file(tmp, ".obj", 0)) as tmp, \
+            open(tmp, "w", encoding="ascii") as fh:
         fh.write(f"# sdfgl mesh: {len(mesh.vertices)} vertices, {len(mesh.faces)} triangles\nmtllib {mtl.name}\n")
         np.savetxt(fh, mesh.vertices, fmt="v %.7g %.7g %.7g")
         np.savetxt(fh, mesh.normals, fmt="vn %.5f %.5f %.5f")

@@ -20,6 +20,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import SceneDocumentError, SdfglError
+from ..files import write_text_atomically
 from .decode import Document, from_document
 from .encode import to_document
 from .limits import FORMAT, MAX_ARRAY, MAX_BYTES, MAX_NESTING, MAX_NODES, MAX_PARAMS, VERSION
@@ -107,13 +108,8 @@ def save_scene(scene: Any, path: str | Path, camera: Any = None, settings: dict[
         >>> doc.settings, sg.compile(doc.scene) == sg.compile(sg.sphere(1) | sg.box(1.5))
         ({'aa': 2}, True)
     """
-    p = Path(path)
     text = dumps(scene, camera, settings)
-    try:
-        p.write_text(text + "\n", encoding="utf-8")
-    except OSError as exc:
-        raise SdfglError(f"cannot write scene document '{p}': {exc}") from exc
-    return p
+    return write_text_atomically(Path(path), text + "\n", "scene document")
 
 
 def load_scene(path: str | Path) -> Document:
