@@ -21,7 +21,9 @@ from .base import BOUND, EXACT, IMPLICIT, INF, Primitive
 if TYPE_CHECKING:  # pragma: no cover
     from ..codegen import Emitter
 
-_FORBIDDEN = re.compile(r"^\s*#|\b(uniform|layout|main|gl_FragColor|discard)\b", re.MULTILINE)
+# "#" anywhere (a comment before a directive would hide it from a line-start check) and "\\"
+# (a line continuation can join lines) are refused outright: GLSL has no other use for them
+_FORBIDDEN = re.compile(r"#|\\|\b(uniform|layout|main|gl_FragColor|discard)\b")
 
 
 def _check_code(code: Any) -> str:
@@ -31,7 +33,7 @@ def _check_code(code: Any) -> str:
     if m:
         line = code[:m.start()].count("\n") + 1
         raise ParameterError(f"glsl: line {line} of the code uses {m.group(0).strip()!r}, which the node's function "
-                             f"cannot contain (no preprocessor lines, uniforms, layouts, main or discard)")
+                             f"cannot contain (no '#' or preprocessor lines, no backslashes, uniforms, layouts, main or discard)")
     depth = 0
     for i, line in enumerate(code.split("\n"), start=1):
         for ch in line:
