@@ -33,7 +33,9 @@ def _connect(address: str, workers: int | None) -> Any:
     kwargs: dict[str, Any] = {"include_dashboard": False, "log_to_driver": False, "configure_logging": False}
     try:
         if address == "local":
-            ray.init(num_cpus=workers, **kwargs)
+            # "local" always starts a fresh cluster: a RAY_ADDRESS variable or the address file
+            # a killed cluster leaves in /tmp/ray would otherwise be joined (and num_cpus refused)
+            ray.init(address="local", num_cpus=workers, **kwargs)
         else:
             ray.init(address=address, **kwargs)
     except Exception as exc:  # ray raises ConnectionError, RuntimeError, ValueError ...
