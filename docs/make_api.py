@@ -14,13 +14,16 @@ from pathlib import Path
 
 # the public surface: the package (its __all__) and the modules users and node authors call
 MODULES = ["sdfgl", "sdfgl.settings", "sdfgl.scene_io", "sdfgl.expr", "sdfgl.nodes.record", "sdfgl.outputs",
-           "sdfgl.cli_common", "sdfgl.errors"]
+           "sdfgl.cli.common", "sdfgl.errors"]
 
 
 def build(out: Path) -> list[Path]:
     """Write the HTML reference into ``out``; returns the pages written."""
-    import pdoc
-    import pdoc.render
+    try:
+        import pdoc
+        import pdoc.render
+    except ImportError:
+        raise SystemExit("docs/make_api.py needs pdoc: pip install 'sdfgl[docs]'") from None
     pdoc.render.configure(docformat="google", footer_text="sdfgl API reference", search=True)
     pdoc.pdoc(*MODULES, output_directory=out)
     return sorted(out.rglob("*.html"))

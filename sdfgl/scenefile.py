@@ -1,10 +1,21 @@
-"""Scene files: Python files that define ``scene`` (a node) and optionally ``camera``."""
+"""The one way in for scenes: a Python scene file, a JSON scene document, or the demo.
+
+    sf = load_scene_file("scene.py")   # .scene, .camera, .settings, .camera_path
+    sf = load_demo()                   # the built-in showcase scene, on its ground plane
+
+A Python scene file defines ``scene`` (a node) and optionally ``camera`` (a fixed camera),
+``settings`` (a dict of render settings) and ``camera_path`` (``sg.turntable(...)``,
+``sg.camera_path(...)`` or a function of time, for ``sdfgl animate``). A ``.json`` file is
+read as a scene document (no code runs; see :mod:`sdfgl.scene_io`). Every command line
+subcommand, the batch workers and the viewer's hot reload load scenes through here.
+"""
 from __future__ import annotations
 
 import runpy
 import traceback
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 from .camera import Camera
 from .errors import SceneFileError, SdfglError
@@ -13,16 +24,34 @@ from .nodes.base import Node
 
 @dataclass
 class SceneFile:
-    path: Path
+    """A loaded scene and what its file asks for.
+
+    path: the file (None for the demo).
+    scene: the scene node.
+    camera: the file's fixed camera, or None (frame the scene).
+    settings: render settings the file asks for (e.g. ``{"method": "newton"}``).
+    camera_path: the file's camera over time for animations (a ``CameraPath`` or a
+        function of time), or None.
+    """
+
+    path: Path | None
     scene: Node
     camera: Camera | None
-    settings: dict  # render settings the file asks for (e.g. {"method": "newton"})
+    settings: dict[str, Any] = field(default_factory=dict)
+    camera_path: Any = None
+
+
+def load_demo() -> SceneFile:
+    """The built-in showcase scene with its camera, asking for the ground plane."""
+    from .demo import demo_camera, demo_scene
+    return SceneFile(None, demo_scene(), demo_camera(), {"ground": True})
 
 
 def load_scene_file(path: str | Path) -> SceneFile:
-    """Run ``path`` and return its ``scene``, ``camera`` and ``settings``; errors name the file and line.
+    """Load ``path``: run a Python scene file, or read a ``.json`` scene document.
 
-    A ``.json`` file is read as a scene document instead (no code runs; see sdfgl.scene_io)."""
+    Returns its ``scene``, ``camera``, ``settings`` and ``camera_path``; errors name the
+    file (and for Python, the line)."""
     p = Path(path)
     if not p.is_file():
         raise SceneFileError(f"scene file '{p}' does not exist")
@@ -48,8 +77,15 @@ def load_scene_file(path: str | Path) -> SceneFile:
         raise SceneFileError(f"scene file '{p}': 'scene' must be an sdfgl node, got {type(scene).__name__}")
     camera = ns.get("camera")
     if camera is not None and not isinstance(camera, Camera):
-        raise SceneFileError(f"scene file '{p}': 'camera' must be an sdfgl Camera, got {type(camera).__name__}")
+        hint = "; a camera that moves goes in 'camera_path'" if callable(getattr(camera, "camera", None)) else ""
+        raise SceneFileError(f"scene file '{p}': 'camera' must be an sdfgl Camera, got {type(camera).__name__}{hint}")
     settings = ns.get("settings", {})
     if not isinstance(settings, dict):
         raise SceneFileError(f"scene file '{p}': 'settings' must be a dict, got {type(settings).__name__}")
-    return SceneFile(p, scene, camera, dict(settings))
+    path_ = ns.get("camera_path")
+    if path_ is not None:
+        from .animate.paths import CameraPath
+        if not (isinstance(path_, CameraPath) or callable(path_)):
+            raise SceneFileError(f"scene file '{p}': 'camera_path' must be sg.turntable(...), sg.camera_path(...) "
+                                 f"or a function of time, got {type(path_).__name__}")
+    return SceneFile(p, scene, camera, dict(settings), path_)

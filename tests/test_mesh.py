@@ -481,7 +481,7 @@ def test_cli_writes_mesh_and_report(tmp_path):
     scene = tmp_path / "scene.py"
     scene.write_text("import sdfgl as sg\nscene = sg.sphere(1) - sg.box(0.8)\n")
     out = subprocess.run([sys.executable, "-m", "sdfgl.cli", "mesh", str(scene), "-o", str(tmp_path / "p.stl"),
-                          "--resolution", "24", "--sharp"], capture_output=True, text=True, timeout=120)
+                          "--resolution", "24", "--sharp", "--report"], capture_output=True, text=True, timeout=120)
     assert out.returncode == 0, out.stderr
     assert "wrote" in out.stdout and "Hausdorff" in out.stdout and "watertight" in out.stdout
     assert trimesh.load(str(tmp_path / "p.stl")).is_watertight

@@ -26,9 +26,8 @@ from ..camera import Camera, OrbitCamera
 from ..errors import ParameterError, SdfglError
 from ..params import Param, Time
 from ..render import Renderer
-from ..scenefile import SceneFile
+from ..scenefile import SceneFile, load_scene_file
 from .jobfile import Job
-from .scenes import load_scene
 
 _renderer: Renderer | None = None
 _scenes: dict[tuple, tuple[SceneFile, dict[Param, Any]]] = {}
@@ -82,7 +81,7 @@ def scene_for(path: str, text: bytes | None = None) -> tuple[SceneFile, dict[Par
             key = (str(p), 0, 0)
     if key not in _scenes:
         try:
-            sf = load_scene(local)
+            sf = load_scene_file(local)
         except SdfglError as exc:
             raise SdfglError(str(exc).replace(str(local), path)) from None
         _scenes[key] = (sf, {prm: prm.value for prm in sf.scene.live_params()})

@@ -1,17 +1,24 @@
-"""``sdfgl mesh scene.py -o part.stl --step 0.01``: mesh a scene file and print its report."""
+"""``sdfgl mesh scene.py -o part.stl --step 0.01``: mesh a scene file (or the demo), optionally with its report."""
 from __future__ import annotations
 
 import argparse
 import sys
 import time
+from pathlib import Path
+from typing import Any
 
 from ..errors import SdfglError
+from ..extras import require_extra
+from .common import add_scene_arguments, load_scene_args
+
+TRIMESH_FORMATS = {".glb": ("trimesh",), ".gltf": ("trimesh",), ".3mf": ("trimesh", "lxml")}
+"""Mesh formats written through trimesh, and the packages of the ``mesh`` extra each needs."""
 
 
-def add_parser(sub) -> None:  # noqa: ANN001 - argparse's private subparsers type
+def add_parser(sub: Any, command: str | None) -> None:
+    """Register ``sdfgl mesh``."""
     m = sub.add_parser("mesh", help="export a scene file (or the demo) as a mesh: .stl .obj .ply .glb .gltf .3mf")
-    m.add_argument("scene", nargs="?", help="Python file defining 'scene'")
-    m.add_argument("--demo", action="store_true", help="mesh the built-in showcase scene")
+    add_scene_arguments(m, "mesh the built-in showcase scene")
     m.add_argument("-o", "--output", default="out.stl", help="mesh path; the suffix picks the format (default out.stl)")
     size = m.add_mutually_exclusive_group()
     size.add_argument("--step", type=float, help="cell size in scene units")
@@ -20,15 +27,31 @@ def add_parser(sub) -> None:  # noqa: ANN001 - argparse's private subparsers typ
     m.add_argument("--bounds", type=float, nargs=6, metavar=("X0", "Y0", "Z0", "X1", "Y1", "Z1"),
                    help="box to mesh (default: the scene bounds padded by one cell; needed if unbounded)")
     m.add_argument("--sharp", action="store_true", help="dual contouring: keep edges and corners sharp")
-    m.add_argument("--no-report", action="store_true", help="skip the accuracy report (float64 twin, slower)")
+    m.add_argument("--report", action="store_true",
+                   help="also measure the mesh against the float64 twin and print the accuracy report "
+                        "(slow: often many times the meshing; needs scipy, sdfgl[mesh])")
+    m.add_argument("--no-report", action="store_true", help=argparse.SUPPRESS)  # the report used to be the default
     m.add_argument("--quiet", action="store_true", help="no progress line")
-    m.set_defaults(func=cmd_mesh)
+    m.set_defaults(func=run)
 
 
-def cmd_mesh(a: argparse.Namespace) -> int:
-    from ..cli import _load
-    from .build import mesh
-    scene, _, _ = _load(a)
+def check_extras(a: argparse.Namespace) -> None:
+    """Refuse before meshing when the output format or ``--report`` needs a missing package."""
+    suffix = Path(a.output).suffix.lower()
+    if suffix in TRIMESH_FORMATS:
+        require_extra("mesh", *TRIMESH_FORMATS[suffix], purpose=f"writing '{a.output}'")
+    if a.report:
+        require_extra("mesh", "scipy", purpose="the mesh report (--report)")
+
+
+def run(a: argparse.Namespace) -> int:
+    """Run ``sdfgl mesh``."""
+    from ..mesh.build import mesh
+    if a.no_report:
+        print("sdfgl mesh: --no-report is no longer needed: the report is off unless --report is given",
+              file=sys.stderr)
+    check_extras(a)
+    scene = load_scene_args(a).scene
     bounds = None if a.bounds is None else (a.bounds[:3], a.bounds[3:])
     t0 = time.perf_counter()
     m = mesh(scene, step=a.step, resolution=a.resolution, samples=a.samples, bounds=bounds,
@@ -40,7 +63,7 @@ def cmd_mesh(a: argparse.Namespace) -> int:
     refined = "" if m.default_step is None else f" (refined from {m.default_step:.4g} for thin or small curved parts)"
     print(f"wrote {path}: {len(m.vertices)} vertices, {len(m.faces)} triangles, cell {m.step:.4g}{refined}, "
           f"{m.timings['total_s']:.2f} s meshing, {t:.2f} s with writing")
-    if not a.no_report:
+    if a.report:
         print(f"report: {m.report()}")
     sys.stdout.flush()
     return 0

@@ -2,26 +2,12 @@
 from __future__ import annotations
 
 import argparse
+from typing import Any
+
+from ..extras import require_extra
 
 
-def cmd_batch(a: argparse.Namespace) -> int:
-    from .batch import run_batch, write_report
-    from .jobfile import load_jobs
-    jobs = load_jobs(a.jobfile)
-    if a.list:
-        for j in jobs:
-            cam = j.camera if j.camera is not None else "(scene's camera)"
-            print(f"{j.index}\t{j.label}\t{j.scene}\t{j.size[0]}x{j.size[1]}\t{cam}\t{', '.join(j.outputs)}")
-        return 0
-    summary = run_batch(jobs, workers=a.workers, ray=a.ray, retries=a.retries, force=a.force,
-                        progress=not a.no_progress, timeout=a.timeout or None)
-    print(summary.text())
-    if a.report:
-        write_report(summary, a.report)
-    return 1 if summary.failed else 0
-
-
-def add_parser(sub: argparse._SubParsersAction) -> None:
+def add_parser(sub: Any, command: str | None) -> None:
     """Register ``sdfgl batch``."""
     p = sub.add_parser("batch", help="render the jobs of a JSON job file (local processes or Ray); resumable",
                        description="Render every job of JOBFILE whose outputs do not exist yet. A failing job is "
@@ -38,4 +24,24 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--report", help="also write the summary as JSON to this file")
     p.add_argument("--list", action="store_true", help="print the expanded jobs and exit")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
-    p.set_defaults(func=cmd_batch)
+    p.set_defaults(func=run)
+
+
+def run(a: argparse.Namespace) -> int:
+    """Run ``sdfgl batch``; exit status 1 if any job failed."""
+    from ..animate.batch import run_batch, write_report
+    from ..animate.jobfile import load_jobs
+    jobs = load_jobs(a.jobfile)
+    if a.list:
+        for j in jobs:
+            cam = j.camera if j.camera is not None else "(scene's camera)"
+            print(f"{j.index}\t{j.label}\t{j.scene}\t{j.size[0]}x{j.size[1]}\t{cam}\t{', '.join(j.outputs)}")
+        return 0
+    if a.ray:
+        require_extra("ray", "ray", purpose="sdfgl batch --ray")
+    summary = run_batch(jobs, workers=a.workers, ray=a.ray, retries=a.retries, force=a.force,
+                        progress=not a.no_progress, timeout=a.timeout or None)
+    print(summary.text())
+    if a.report:
+        write_report(summary, a.report)
+    return 1 if summary.failed else 0

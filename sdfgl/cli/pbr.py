@@ -4,19 +4,20 @@ from __future__ import annotations
 import argparse
 import sys
 import time
-from typing import Callable
+from typing import Any, Callable
 
-from ..cli_common import add_camera_arguments, camera_from_args, require_scene
+from ..extras import require_extra
+from .common import (add_camera_arguments, add_scene_arguments, camera_from_args, image_size, load_scene_args,
+                     require_scene)
 
 
-def add_parser(sub: argparse._SubParsersAction, size_type: Callable[[str], tuple[int, int]]) -> None:
-    """Register the ``pbr`` subcommand."""
+def add_parser(sub: Any, command: str | None) -> None:
+    """Register ``sdfgl pbr``."""
     p = sub.add_parser("pbr", help="path-trace a scene file (or the demo) with Mitsuba 3 (extra sdfgl[pbr])")
-    p.add_argument("scene", nargs="?", help="scene file: Python defining 'scene' (and optionally 'camera'), or .json")
-    p.add_argument("--demo", action="store_true", help="render the built-in showcase scene")
+    add_scene_arguments(p, "render the built-in showcase scene")
     p.add_argument("-o", "--output", default="pbr.png",
                    help="image path: .png/.jpg (8-bit, gamma 2.2), .exr (linear float) or .npy (default pbr.png)")
-    p.add_argument("--size", type=size_type, default=(640, 480), help="WIDTHxHEIGHT (default 640x480)")
+    p.add_argument("--size", type=image_size, default=(640, 480), help="WIDTHxHEIGHT (default 640x480)")
     p.add_argument("--spp", type=int, default=64, help="samples per pixel (default 64)")
     p.add_argument("--resolution", type=int, help="SDF grid cells along the scene's longest side (default: "
                    "two per pixel footprint)")
@@ -29,10 +30,11 @@ def add_parser(sub: argparse._SubParsersAction, size_type: Callable[[str], tuple
     p.add_argument("--seed", type=int, default=0, help="sampler seed (default 0)")
     p.add_argument("--quiet", action="store_true", help="no progress line")
     add_camera_arguments(p)
-    p.set_defaults(func=cmd_pbr)
+    p.set_defaults(func=run)
 
 
-def _progress_line() -> Callable[[str, float], None]:
+def progress_line() -> Callable[[str, float], None]:
+    """A progress callback writing one updating line (stage, percent, ETA) to standard error."""
     start = time.perf_counter()
 
     def report(stage: str, fraction: float) -> None:
@@ -45,15 +47,16 @@ def _progress_line() -> Callable[[str, float], None]:
     return report
 
 
-def cmd_pbr(a: argparse.Namespace) -> int:
-    """Run ``sdfgl pbr``."""
-    from ..cli import _load
-    from .render import render_pbr
+def run(a: argparse.Namespace) -> int:
+    """Run ``sdfgl pbr`` (Mitsuba is checked for before the scene loads)."""
     require_scene(a, "pbr")
-    scene, camera, is_demo = _load(a)
-    img = render_pbr(scene, camera_from_args(a, scene, camera), a.size, a.spp, resolution=a.resolution, quality=a.quality,
-                     ground=a.ground or is_demo, max_depth=a.max_depth, seed=a.seed, variant=a.variant,
-                     progress=None if a.quiet else _progress_line())
+    require_extra("pbr", "mitsuba", purpose="sdfgl pbr")
+    from ..pbr.render import render_pbr
+    sf = load_scene_args(a)
+    scene = sf.scene
+    img = render_pbr(scene, camera_from_args(a, scene, sf.camera), a.size, a.spp, resolution=a.resolution,
+                     quality=a.quality, ground=a.ground or bool(sf.settings.get("ground")), max_depth=a.max_depth,
+                     seed=a.seed, variant=a.variant, progress=None if a.quiet else progress_line())
     path = img.save(a.output, exposure=a.exposure, transparent=a.transparent)
     s, t = img.settings, img.timings
     print(f"wrote {path} ({a.size[0]}x{a.size[1]}, {s['spp']} spp, Mitsuba {s['variant']}, "
