@@ -61,6 +61,8 @@ def test_mesh_without_scipy_writes_its_file_and_report_is_opt_in(tmp_path):
     r, _ = run_without("scipy", "mesh", "--demo", "-o", str(tmp_path / "r.stl"), "--resolution", "16", "--report")
     assert refused(r, "pip install 'sdfgl[mesh]'") and "scipy" in r.stderr, r.stderr
     assert not (tmp_path / "r.stl").exists()  # refused before meshing, not after writing
+    r, _ = run_without("scipy", "mesh", "--demo", "-o", str(out), "--resolution", "16", "--quiet", "--no-report")
+    assert r.returncode == 0 and "the report is off unless --report is given" in r.stderr, r.stderr
 
 
 @pytest.mark.parametrize("suffix, blocked", [(".glb", "trimesh"), (".3mf", "lxml")])
