@@ -83,9 +83,7 @@ def load_scene_file(path: str | Path) -> SceneFile:
     if not isinstance(settings, dict):
         raise SceneFileError(f"scene file '{p}': 'settings' must be a dict, got {type(settings).__name__}")
     path_ = ns.get("camera_path")
-    if path_ is not None:
-        from .animate.paths import CameraPath
-        if not (isinstance(path_, CameraPath) or callable(path_)):
-            raise SceneFileError(f"scene file '{p}': 'camera_path' must be sg.turntable(...), sg.camera_path(...) "
-                                 f"or a function of time, got {type(path_).__name__}")
+    if path_ is not None and not (callable(getattr(path_, "camera", None)) or callable(path_)):
+        raise SceneFileError(f"scene file '{p}': 'camera_path' must be sg.turntable(...), sg.camera_path(...) "
+                             f"or a function of time, got {type(path_).__name__}")
     return SceneFile(p, scene, camera, dict(settings), path_)
