@@ -19,7 +19,8 @@ def add_parser(sub: Any, command: str | None) -> None:
                    help=f"also write these images beside the colour one: a comma list of {', '.join(OUTPUTS[1:])} "
                         f"(e.g. depth,normal -> out.depth.png, out.normal.png)")
     r.add_argument("--size", type=image_size, default=(800, 600), help="WIDTHxHEIGHT (default 800x600)")
-    r.add_argument("--no-ground", action="store_true", help="leave the ground plane out (that --demo or the scene file asks for)")
+    r.add_argument("--no-ground", action="store_true",
+                   help="leave the ground plane out (that --demo or the scene file asks for)")
     r.add_argument("--background", help="a colour ('#ffffff', 'white') or TOP,BOTTOM for a gradient")
     r.add_argument("--alpha", action="store_true", help="transparent background: RGBA PNG, alpha = coverage")
     r.add_argument("--fog", type=finite_number, help="fade surfaces into the background over this distance")
