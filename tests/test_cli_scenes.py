@@ -131,3 +131,21 @@ def test_the_loader_gives_the_same_scene_for_py_json_and_the_demo(tmp_path):
     assert demo.path is None and demo.settings == {"ground": True} and demo.camera is not None
     with pytest.raises(sg.SceneFileError, match="does not exist"):
         load_scene_file(tmp_path / "nope.json")
+
+
+def test_setting_flags_default_to_the_settings_type_and_override_only_when_given(capsys):
+    from sdfgl.cli import build_parser
+    from sdfgl.cli.common import DEFAULTS, settings_overrides
+    from sdfgl.settings import Settings
+    st = Settings()
+    assert {k: DEFAULTS[k] for k in ("aa", "shadows", "ao", "ground", "method", "max_steps")} == {
+        "aa": st.aa, "shadows": st.shadows, "ao": st.ao, "ground": st.ground, "method": st.method,
+        "max_steps": st.max_steps}
+    parser = build_parser(["render"])
+    with pytest.raises(SystemExit):
+        parser.parse_args(["render", "--help"])
+    help_text = " ".join(capsys.readouterr().out.split())
+    assert f"(default {st.max_steps};" in help_text and f"(default {st.aa})" in help_text
+    assert settings_overrides(parser.parse_args(["render", "--demo"])) == {}
+    given = parser.parse_args(["render", "--demo", "--aa", "1", "--shadows", "off", "--no-ao", "--ground"])
+    assert settings_overrides(given) == {"aa": 1, "shadows": False, "ao": False, "ground": True}
