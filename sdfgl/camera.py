@@ -12,7 +12,7 @@ from typing import Sequence
 import numpy as np
 
 from .errors import ParameterError
-from .nodes import validate as v
+from .values import validate as v
 
 UP = np.array([0.0, 1.0, 0.0])
 PROJECTIONS = ("perspective", "orthographic")

@@ -22,6 +22,7 @@ from typing import TYPE_CHECKING, Any, Callable
 import numpy as np
 
 from .errors import ParameterError
+from .values.live import LiveValue
 
 if TYPE_CHECKING:  # pragma: no cover
     from .codegen import Emitter
@@ -54,7 +55,7 @@ def _owner() -> Any:
     return stack[-1] if stack else None
 
 
-class Live:
+class Live(LiveValue):
     """An expression over parameters, evaluated now (numpy) or per frame (GLSL)."""
 
     def __init__(self, op: str, *args: Any) -> None:

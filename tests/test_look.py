@@ -5,7 +5,7 @@ import pytest
 import sdfgl as sg
 from sdfgl.demo import demo_camera, demo_scene
 from sdfgl.look import DEFAULT_LIGHTS, MAX_LIGHTS
-from sdfgl.nodes.colors import parse, srgb_to_linear
+from sdfgl.values.colors import parse, srgb_to_linear
 
 FLAT = dict(lights=[], ambient="black", ao=False, shadows=False)  # colour = emission exactly
 CAM = sg.Camera((0, 0, 6), (0, 0, 0), fov=40)

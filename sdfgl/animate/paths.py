@@ -16,8 +16,8 @@ import numpy as np
 
 from ..camera import Camera, OrbitCamera
 from ..errors import ParameterError
-from ..nodes import validate as v
 from ..nodes.base import Node
+from ..values import validate as v
 from .keyframes import _keys
 
 PATH_EASES = ("spline", "linear", "smooth")

@@ -5,7 +5,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from ..errors import ParameterError
-from ..nodes.colors import parse
+from ..values.colors import parse
 
 
 @dataclass(frozen=True)

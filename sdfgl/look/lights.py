@@ -8,8 +8,8 @@ from typing import Any, Sequence
 import numpy as np
 
 from ..errors import ParameterError
-from ..nodes import validate as v
-from ..nodes.colors import parse
+from ..values import validate as v
+from ..values.colors import parse
 
 MAX_LIGHTS = 8  # each light is unrolled code (and a shadow march), so the count is capped
 SHADOW_KINDS = (None, False, "hard", "soft")

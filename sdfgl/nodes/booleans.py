@@ -12,7 +12,7 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..params import Live
-from . import validate as v
+from ..values import validate as v
 from .base import _CACHES, BOUND, EXACT, IMPLICIT, Node, box_of, grid_min_now
 
 if TYPE_CHECKING:  # pragma: no cover

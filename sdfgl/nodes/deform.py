@@ -15,7 +15,8 @@ from typing import TYPE_CHECKING, Sequence
 import numpy as np
 
 from ..errors import ParameterError
-from . import validate as v
+from ..values import axes
+from ..values import validate as v
 from .base import BOUND, IMPLICIT, Node, Unary
 from .primitives import Box
 
@@ -34,12 +35,10 @@ class _Warp(Unary):
     # per axis: (the two coordinates the warp rotates, the coordinate the angle follows)
     planes: dict[str, tuple[tuple[int, int], int]] = {}
 
-    def __init__(self, child: Node, rate: float, axis: str = "") -> None:
+    def __init__(self, child: Node, rate: float, axis: str | Sequence[float] | None = None) -> None:
         r = v.scalar(self.kind, "rate", rate)
         v.fixed(self.kind, "the step safety factor is compiled from it", rate=r)
-        axis = axis or self.default_axis
-        if not isinstance(axis, str) or axis not in self.planes:
-            raise ParameterError(f"{self.kind}: parameter 'axis' must be 'x', 'y' or 'z', got {axis!r}")
+        axis = self.default_axis if axis is None else axes.coordinate_name(self.kind, "axis", axis)
         lo, hi = child.bounds
         if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi))):
             raise ParameterError(f"{self.kind}: the child {child.label()} is unbounded; a warp needs finite bounds")
@@ -153,13 +152,12 @@ class Taper(_Warp):
     along it (u: the coordinate along the axis); s must stay positive over the solid."""
 
     kind = "taper"
-    AXES = {"x": 0, "y": 1, "z": 2}
 
     def __init__(self, child: Node, rate: float, axis: str | Sequence[float] = "y", origin: float = 0.0) -> None:
         r = v.scalar(self.kind, "rate", rate)
         o = v.scalar(self.kind, "origin", origin)
         v.fixed(self.kind, "the step safety factor is compiled from it", rate=r, origin=o)
-        self.ax = _coordinate_axis(self.kind, axis)
+        self.ax = axes.coordinate(self.kind, "axis", axis)
         lo, hi = child.bounds
         if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi))):
             raise ParameterError(f"{self.kind}: the child {child.label()} is unbounded; a taper needs finite bounds")
@@ -205,18 +203,6 @@ class Taper(_Warp):
         return q
 
 
-def _coordinate_axis(node: str, axis: str | Sequence[float]) -> int:
-    """Index of a coordinate axis given as "x"/"y"/"z" or a unit vector along one."""
-    if isinstance(axis, str) and axis.lower() in Taper.AXES:
-        return Taper.AXES[axis.lower()]
-    a = v.vector(node, "axis", axis, nonzero=True)
-    nz = np.flatnonzero(np.asarray(a))
-    if len(nz) != 1 or a[nz[0]] <= 0:
-        raise ParameterError(f"{node}: parameter 'axis' must be 'x', 'y', 'z' or a positive coordinate axis, "
-                             f"got {axis!r}")
-    return int(nz[0])
-
-
 def taper(node: Node, rate: float, axis: str | Sequence[float] = "y", origin: float = 0.0) -> Taper:
     """Scale ``node``'s cross-section across ``axis`` by 1 + rate (u - origin) along it.
 
@@ -224,7 +210,7 @@ def taper(node: Node, rate: float, axis: str | Sequence[float] = "y", origin: fl
         node: the node to taper; it must be bounded.
         rate: change of the scale per unit along the axis (a baked constant); the scale
             must stay > 0 over the node.
-        axis: "x", "y", "z" or a positive coordinate axis such as (0, 1, 0).
+        axis: "x", "y", "z" or a vector along one of them (``sg.Y``, (0, 1, 0)).
         origin: the coordinate u along the axis where the scale is 1.
 
     A bound (Lipschitz factor > 1, this subtree only).
@@ -236,13 +222,13 @@ def taper(node: Node, rate: float, axis: str | Sequence[float] = "y", origin: fl
     return Taper(node, rate, axis, origin)
 
 
-def twist(node: Node, rate: float, axis: str = "y") -> Twist:
+def twist(node: Node, rate: float, axis: str | Sequence[float] = "y") -> Twist:
     """Twist ``node`` about a coordinate axis.
 
     Args:
         node: the node to twist.
         rate: degrees of turn per unit along the axis (a baked constant).
-        axis: "x", "y" or "z".
+        axis: "x", "y", "z" or a vector along one of them (``sg.X``).
 
     A bound: the Lipschitz factor grows with rate and the node's radius; only this subtree's
     steps are shortened.
@@ -254,13 +240,13 @@ def twist(node: Node, rate: float, axis: str = "y") -> Twist:
     return Twist(node, rate, axis)
 
 
-def bend(node: Node, rate: float, axis: str = "z") -> Bend:
+def bend(node: Node, rate: float, axis: str | Sequence[float] = "z") -> Bend:
     """Bend ``node`` about a coordinate axis (the default "z" bends in the XY plane).
 
     Args:
         node: the node to bend.
         rate: degrees of bend per unit along the bent direction (a baked constant; see Bend).
-        axis: "x", "y" or "z".
+        axis: "x", "y", "z" or a vector along one of them (``sg.X``).
 
     A bound (Lipschitz factor > 1, this subtree only).
 

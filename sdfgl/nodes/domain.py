@@ -8,7 +8,7 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..params import Live
-from . import validate as v
+from ..values import validate as v
 from .base import BOUND, EXACT, IMPLICIT, INF, Node, Unary
 
 if TYPE_CHECKING:  # pragma: no cover

@@ -7,7 +7,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..errors import ParameterError
-from . import validate as v
+from ..values import validate as v
 from .base import BOUND, Primitive
 
 if TYPE_CHECKING:  # pragma: no cover

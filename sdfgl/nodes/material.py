@@ -9,7 +9,7 @@ from __future__ import annotations
 from typing import Any
 
 from ..errors import ParameterError
-from . import validate as v
+from ..values import validate as v
 from .base import Node, Unary
 from .transforms import Material
 

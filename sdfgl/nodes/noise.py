@@ -13,7 +13,7 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..noise import fbm3, fbm_lipschitz
-from . import validate as v
+from ..values import validate as v
 from .base import BOUND, IMPLICIT, Node, Primitive, Unary
 
 if TYPE_CHECKING:  # pragma: no cover

@@ -2,13 +2,14 @@
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Sequence
 
 import numpy as np
 
 from ..errors import ParameterError
 from ..params import Live
-from . import validate as v
+from ..values import axes
+from ..values import validate as v
 from .base import BOUND, IMPLICIT, Node, Unary
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -97,14 +98,16 @@ class Shear(Unary):
 
     kind = "shear"
 
-    def __init__(self, child: Node, amount: float, along: str = "x", by: str = "y") -> None:
+    def __init__(self, child: Node, amount: float, along: str | Sequence[float] = "x",
+                 by: str | Sequence[float] = "y") -> None:
         k = v.scalar(self.kind, "amount", amount)
         v.fixed(self.kind, "the step safety factor is compiled from it", amount=k)
-        if along not in AXES or by not in AXES or along == by:
+        a, b = axes.coordinate(self.kind, "along", along), axes.coordinate(self.kind, "by", by)
+        if a == b:
             raise ParameterError(f"{self.kind}: 'along' and 'by' must be two different axes of x, y, z, "
-                                 f"got {along!r}, {by!r}")
-        super().__init__(child, amount=k, along=along, by=by)
-        self.k, self.a, self.b = float(k), AXES.index(along), AXES.index(by)
+                                 f"got {axes.shown(along)}, {axes.shown(by)}")
+        super().__init__(child, amount=k, along=AXES[a], by=AXES[b])
+        self.k, self.a, self.b = float(k), a, b
         self.stretch = (abs(self.k) + math.sqrt(self.k ** 2 + 4.0)) / 2.0
 
     @property

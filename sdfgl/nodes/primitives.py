@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING, Any, Sequence
 import numpy as np
 
 from ..errors import ParameterError
-from . import validate as v
+from ..values import validate as v
 from ..params import Live
 from .base import INF, Primitive
 

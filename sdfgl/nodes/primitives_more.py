@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING, Sequence
 import numpy as np
 
 from ..errors import ParameterError
-from . import validate as v
+from ..values import validate as v
 from .base import INF, Primitive
 
 if TYPE_CHECKING:  # pragma: no cover

@@ -6,7 +6,7 @@ from typing import TYPE_CHECKING, Sequence
 import numpy as np
 
 from ..errors import ParameterError
-from . import validate as v
+from ..values import validate as v
 from .base import BOUND, EXACT, Node
 from .record import Recorded
 

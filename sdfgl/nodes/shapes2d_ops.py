@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING, Sequence
 import numpy as np
 
 from ..errors import ParameterError
-from . import validate as v
+from ..values import validate as v
 from .base import BOUND, EXACT, IMPLICIT, Node
 from .booleans import BLEND_GLSL, BLEND_REACH, BLENDS, K_MIN, _smin
 from .shapes2d import Shape2D

@@ -7,7 +7,7 @@ from typing import TYPE_CHECKING, Sequence
 import numpy as np
 
 from ..errors import ParameterError
-from . import validate as v
+from ..values import validate as v
 from .base import BOUND, IMPLICIT, Node, Unary
 
 if TYPE_CHECKING:  # pragma: no cover

@@ -7,7 +7,8 @@ from typing import TYPE_CHECKING, Sequence
 import numpy as np
 
 from ..errors import ParameterError
-from . import validate as v
+from ..values import axes
+from ..values import validate as v
 from ..params import Live
 from .base import BOUND, IMPLICIT, Node, Unary, box_of
 
@@ -83,7 +84,7 @@ class Rotate(Unary):
     def axis_angle(cls, child: Node, angle: float | Live, axis: Sequence[float]) -> "Rotate":
         """Rotate ``child`` by ``angle`` degrees about ``axis``."""
         deg = v.scalar(cls.kind, "angle", angle)
-        ax = v.vector(cls.kind, "axis", axis, nonzero=True)
+        ax = axes.direction(cls.kind, "axis", axis)
         if isinstance(deg, Live):
             if isinstance(ax, Live):
                 raise ParameterError(f"{cls.kind}: the axis cannot be a live parameter (the angle can)")
@@ -93,7 +94,7 @@ class Rotate(Unary):
     @classmethod
     def orient(cls, child: Node, axis: Sequence[float]) -> "Rotate":
         """Rotate ``child`` so that its +Y axis points along ``axis``."""
-        a = v.vector("orient", "axis", axis, nonzero=True)
+        a = axes.direction("orient", "axis", axis)
         a = a / np.linalg.norm(a)
         y = np.array([0.0, 1.0, 0.0])
         c = float(np.clip(a @ y, -1.0, 1.0))
@@ -256,7 +257,7 @@ def _scale(child: Node, s: float) -> "Scale":
 def rotate(node: Node, angle: float | Live, axis: Sequence[float]) -> Node:
     """``node`` rotated by ``angle`` degrees about ``axis``, folded into the moves under it."""
     deg = v.scalar(Rotate.kind, "angle", angle)
-    ax = v.vector(Rotate.kind, "axis", axis, nonzero=True)
+    ax = axes.direction(Rotate.kind, "axis", axis)
     if isinstance(deg, Live) or isinstance(ax, Live):
         return fold(Rotate.axis_angle(node, deg, ax))
     return fold(_rotate(node, _axis_angle_matrix(ax, deg)))  # a rotation by construction

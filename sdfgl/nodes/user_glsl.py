@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING, Any, Callable, Sequence
 import numpy as np
 
 from ..errors import ParameterError, SdfglError
-from . import validate as v
+from ..values import validate as v
 from .base import BOUND, EXACT, IMPLICIT, INF, Primitive
 
 if TYPE_CHECKING:  # pragma: no cover

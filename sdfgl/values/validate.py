@@ -12,7 +12,8 @@ from typing import Any, Callable, Sequence
 import numpy as np
 
 from ..errors import ParameterError
-from ..params import Live
+from .colors import parse
+from .live import LiveValue as Live
 
 
 def _roots(values: Sequence[Any]) -> list:
@@ -106,10 +107,9 @@ def vector(node: str, name: str, value: object, n: int = 3, *, positive: bool = 
 
 
 def color(node: str, value: object, name: str = "color") -> Any:
-    """A linear RGB triple (see sdfgl.nodes.colors: names, hex, 0..255 or 0..1), or a live
-    3-vector whose components must stay in [0, 1]."""
+    """A linear RGB triple (see :mod:`sdfgl.values.colors`: names, hex, 0..255 or 0..1), or a
+    live 3-vector whose components must stay in [0, 1]."""
     if not isinstance(value, Live):
-        from .colors import parse
         return parse(node, name, value)
     rgb = vector(node, name, value)
 

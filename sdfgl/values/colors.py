@@ -12,7 +12,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import ParameterError
-from ..params import Live
+from .live import LiveValue
 
 
 def srgb_to_linear(c: np.ndarray) -> np.ndarray:
@@ -58,6 +58,6 @@ def parse(node: str, name: str, value: Any) -> tuple[float, float, float]:
 
 def parse_or_live(node: str, name: str, value: Any) -> Any:
     """Like :func:`parse`, but a live 3-vector parameter passes through (checked by the caller)."""
-    if isinstance(value, Live):
+    if isinstance(value, LiveValue):
         return value
     return parse(node, name, value)
