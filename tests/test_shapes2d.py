@@ -73,12 +73,44 @@ def test_new_shapes_against_closed_forms():
     assert np.allclose(ring.distance2(q), np.abs(np.hypot(q[:, 0], q[:, 1]) - 1) - 0.1, atol=1e-12)
     half = sg.arc(1.0, 180, 0.2)
     assert half.distance2(np.array([[0.0, 1.0]]))[0] < 0 and half.distance2(np.array([[0.0, -1.0]]))[0] > 0.5
-    star = sg.star(5, 1.0, 3.0)
+    star = sg.star(5, 1.0, sharpness=3.0)
     assert star.distance2(np.array([[0.0, 1.0]]))[0] == pytest.approx(0.0, abs=1e-12)  # a tip on +Y
     with pytest.raises(sg.ParameterError, match="collinear"):
         sg.triangle((0, 0), (1, 1), (2, 2))
-    with pytest.raises(sg.ParameterError, match="inner"):
-        sg.star(5, 1.0, 6.0)
+    with pytest.raises(sg.ParameterError, match="sharpness"):
+        sg.star(5, 1.0, sharpness=6.0)
+
+
+def test_star_inner_radius_places_the_notches():
+    """The third argument is the notches' radius (star(5, 1, 0.3) was refused as a sharpness)."""
+    an = math.pi / 5
+    for inner in (0.0, 0.3, 0.6, math.cos(an)):
+        s = sg.star(5, 1.0, inner)
+        notch = np.array([[inner * math.sin(an), inner * math.cos(an)]])  # between the tips at +Y and 72 deg
+        assert s.distance2(notch)[0] == pytest.approx(0.0, abs=1e-12)
+        assert s.distance2(np.array([[0.0, 1.0]]))[0] == pytest.approx(0.0, abs=1e-12)
+    assert sg.star(5, 1.0, math.cos(an)).m == pytest.approx(2.0, abs=1e-12)  # the pentagon
+    assert sg.star(5, 1.0, 0.0).m == pytest.approx(5.0, abs=1e-12)
+    with pytest.raises(sg.ParameterError, match="inner_radius.*sharpness="):
+        sg.star(5, 1.0, 3.0)  # an old positional sharpness is refused, naming the keyword
+    with pytest.raises(sg.ParameterError, match="not both"):
+        sg.star(5, 1.0, 0.3, sharpness=3)
+
+
+def test_star_old_inner_keyword_warns_and_means_sharpness():
+    with pytest.warns(DeprecationWarning, match="sharpness"):
+        old = sg.star(5, 1.0, inner=3.5)
+    assert old.key() == sg.star(5, 1.0, sharpness=3.5).key()
+
+
+def test_star_document_round_trip_and_old_documents():
+    for s in (sg.star(5, 1.0, 0.3), sg.star(6, 0.8, sharpness=4), sg.star()):
+        scene = sg.extrude(s, 0.2)
+        assert sg.from_dict(scene.to_dict()).key == scene.key
+    old = sg.extrude(sg.star(5, 1.0, sharpness=3), 0.2).to_dict()
+    old["scene"]["shape"]["inner"] = old["scene"]["shape"].pop("sharpness")  # as documents were written
+    with pytest.warns(DeprecationWarning):
+        assert sg.from_dict(old).key == sg.extrude(sg.star(5, 1.0, sharpness=3), 0.2).key
 
 
 def test_slice_of_a_3d_node():

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import warnings
 from typing import TYPE_CHECKING, Sequence
 
 import numpy as np
@@ -14,6 +15,8 @@ from .shapes2d import Shape2D
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..codegen import Emitter
+
+DEFAULT_SHARPNESS = 3.0  # a star's sharpness when neither it nor the inner radius is given
 
 
 def _seg(q: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -110,20 +113,47 @@ class Arc(Shape2D):
 
 
 class Star(Shape2D):
-    """A star of ``points`` tips at ``radius``; ``inner`` in [2, points] sets the tips'
-    sharpness (2: a regular polygon, points: a sharp star)."""
+    """A star of ``points`` tips at ``radius`` whose notches lie ``inner_radius`` from the
+    centre; or, given instead, ``sharpness`` in [2, points] (2: a regular polygon, points: a
+    star whose notches meet at the centre)."""
 
     kind = "star"
 
-    def __init__(self, points: int, radius: float, inner: float) -> None:
+    def __init__(self, points: int, radius: float, inner_radius: float | None = None, *,
+                 sharpness: float | None = None, inner: float | None = None) -> None:
         if isinstance(points, bool) or not isinstance(points, (int, np.integer)) or not 3 <= points <= 1000:
             raise ParameterError(f"{self.kind}: parameter 'points' must be an integer 3..1000, got {points!r}")
         r = v.scalar(self.kind, "radius", radius, positive=True)
-        m = v.scalar(self.kind, "inner", inner)
-        if not 2.0 <= m <= points:
-            raise ParameterError(f"{self.kind}: parameter 'inner' must lie in [2, {points}], got {m:g}")
-        super().__init__(points=float(points), radius=r, inner=m)
+        if inner is not None:
+            warnings.warn("star: the keyword 'inner' is the tips' sharpness and is now named 'sharpness' "
+                          "(for the radius of the notches pass inner_radius)", DeprecationWarning, stacklevel=3)
+            if sharpness is not None:
+                raise ParameterError(f"{self.kind}: give 'sharpness' or the old 'inner', not both")
+            sharpness = inner
+        if inner_radius is not None and sharpness is not None:
+            raise ParameterError(f"{self.kind}: give 'inner_radius' or 'sharpness', not both")
+        if inner_radius is not None:
+            m = self._sharpness_for(int(points), r, inner_radius)
+        else:
+            m = v.scalar(self.kind, "sharpness", DEFAULT_SHARPNESS if sharpness is None else sharpness)
+            if not 2.0 <= m <= points:
+                raise ParameterError(f"{self.kind}: parameter 'sharpness' must lie in [2, {points}], got {m:g}")
+        super().__init__(points=float(points), radius=r, sharpness=m)
         self.n, self.r, self.m = float(points), float(r), float(m)
+
+    @classmethod
+    def _sharpness_for(cls, points: int, radius: float, inner_radius: object) -> float:
+        """The sharpness m whose notches lie ``inner_radius`` from the centre: the edge from
+        a tip meets the bisector between tips at r sin(pi/m - pi/n) / sin(pi/m)."""
+        ri = v.scalar(cls.kind, "inner_radius", inner_radius, nonnegative=True)
+        v.fixed(cls.kind, "the sharpness is computed from them", radius=radius, inner_radius=ri)
+        an = math.pi / points
+        most = float(radius) * math.cos(an)  # sharpness 2: the notches on the polygon's edges
+        if ri > most:
+            raise ParameterError(f"{cls.kind}: parameter 'inner_radius' must lie in [0, {most:g}] (radius * "
+                                 f"cos(180 / points)) for radius {float(radius):g}, got {ri:g}; a sharpness in "
+                                 f"[2, {points}] is passed as sharpness=")
+        return math.pi / math.atan2(math.sin(an), math.cos(an) - ri / float(radius))
 
     def expr(self, em: "Emitter", q: str) -> str:
         em.require("sd2_star")
@@ -211,19 +241,26 @@ def arc(radius: float, aperture: float, thickness: float) -> Arc:
     return Arc(radius, aperture, thickness)
 
 
-def star(points: int = 5, radius: float = 1.0, inner: float = 3.0) -> Star:
+def star(points: int = 5, radius: float = 1.0, inner_radius: float | None = None, *,
+         sharpness: float | None = None, inner: float | None = None) -> Star:
     """A 2D star with one tip at +Y. Exact.
 
     Args:
         points: the number of tips, >= 3.
         radius: distance from the centre to each tip, > 0.
-        inner: sharpness, from 2 (blunt: a polygon) to ``points`` (sharp).
+        inner_radius: distance from the centre to each notch between two tips, in
+            [0, radius * cos(180 / points)] (the upper end: a regular polygon).
+        sharpness: instead of ``inner_radius``, from 2 (blunt: a polygon) to ``points``
+            (sharp); the default, when neither is given, is 3.
+        inner: the old name of ``sharpness`` (deprecated).
 
     Example:
-        >>> float(sg.extrude(sg.star(5, 1, 3), 0.2).distance((0, 2, 0)))
+        >>> float(sg.extrude(sg.star(5, 1, 0.4), 0.2).distance((0, 2, 0)))
         1.0
     """
-    return Star(points, radius, inner)
+    given = {k: x for k, x in (("inner_radius", inner_radius), ("sharpness", sharpness), ("inner", inner))
+             if x is not None}  # only these are recorded (and so written to a scene document)
+    return Star(points, radius, **given)
 
 
 def regular_polygon(sides: int, radius: float = 1.0, rounding: float = 0.0) -> Shape2D:
@@ -246,7 +283,7 @@ def regular_polygon(sides: int, radius: float = 1.0, rounding: float = 0.0) -> S
     inner_r = r - rr
     if inner_r <= 0:
         raise ParameterError(f"regular_polygon: 'rounding' ({rr:g}) is too large for radius {r:g}")
-    base = Star(int(sides), inner_r, 2.0)
+    base = Star(int(sides), inner_r, sharpness=2.0)
     return base.round(rr) if rr > 0 else base
 
 
