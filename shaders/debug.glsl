@@ -4,9 +4,8 @@ vec3 heat(float x) {
     return clamp(vec3(1.5 * x - 0.25, 1.5 - abs(2.0 * x - 1.0) * 1.5, 1.25 - 1.5 * x), 0.0, 1.0);
 }
 
-// Linear-space colour shown instead of the shaded image.
-vec3 debugView(vec3 ro, vec3 rd) {
-    Hit h = tracePrimary(ro, rd);
+// Linear-space colour shown instead of the shaded image, for the pixel-centre ray's hit h.
+vec3 debugView(vec3 ro, vec3 rd, Hit h) {
 #if defined(DEBUG_STEPS)
     // 0 steps black, then blue -> green -> red on a log scale up to MAX_STEPS
     if (h.steps == 0) return vec3(0.0);

@@ -1,11 +1,13 @@
-// The image: trace each sample, shade, average, gamma-correct; write depth, normal and
-// step count of the pixel-centre ray when those outputs are on.
+// The image: trace each sample, shade, average, gamma-correct (or, in a debug view, the
+// view of the pixel-centre ray); write depth, normal and step count of the pixel-centre
+// ray when those outputs are on.
 void main() {
     vec3 ro = rayOrigin(gl_FragCoord.xy);
 #ifdef DEBUG_VIEW
-    outColor = vec4(pow(debugView(ro, rayDir(gl_FragCoord.xy)), vec3(1.0 / 2.2)), 1.0);
-    return;
-#endif
+    vec3 rd = rayDir(gl_FragCoord.xy);
+    Hit h = tracePrimary(ro, rd);
+    outColor = vec4(pow(debugView(ro, rd, h), vec3(1.0 / 2.2)), 1.0);
+#else
 #if AA == 1
     vec3 rd = rayDir(gl_FragCoord.xy);
     Hit h = tracePrimary(ro, rd);
@@ -27,6 +29,7 @@ void main() {
 #endif
 #endif
     outColor = pixelColor(col);
+#endif
 #ifdef OUT_DEPTH
     outDepth = h.t;
 #endif

@@ -1,4 +1,5 @@
 """The interactive viewer in a real window on Xvfb, driven by real input events."""
+import math
 import time
 
 import numpy as np
@@ -84,6 +85,18 @@ def test_toggles_recompile_and_screenshots_differ_after_orbit(viewer):
     b = np.asarray(Image.open(s2["screenshots"][1]), dtype=np.int16)
     assert a.shape == b.shape == (240, 320, 3)
     assert np.abs(a - b).mean() > 1.0
+
+
+def test_debug_views_report_finite_steps_per_pixel(viewer):
+    """The steps view read "nan steps/pixel": its program left the steps output unwritten."""
+    drv, _, _, _ = viewer
+    shaded = drv.wait_for(lambda s: s["samples"] >= 4 and not s["compiling"], what="a finished image")
+    assert shaded["mean_steps"] > 0
+    drv.key("d")
+    st = drv.wait_for(lambda s: s["settings"].get("debug") == "steps" and not s["compiling"] and s["samples"] >= 4,
+                      what="the steps view, finished")
+    assert math.isfinite(st["mean_steps"])
+    assert st["mean_steps"] == pytest.approx(shaded["mean_steps"], rel=0.05)
 
 
 def test_hot_reload_and_errors_keep_last_good_scene(viewer):
