@@ -19,6 +19,14 @@ PROJECTIONS = ("perspective", "orthographic")
 FRAME_MARGIN = 1.05  # framing leaves this much room around the box
 
 
+def check_fov(name: str, fov: object) -> float:
+    """A vertical field of view in degrees, in [1e-4, 179]; ParameterError naming ``name.fov``."""
+    out = float(v.scalar(name, "fov", fov))
+    if not 1e-4 <= out <= 179.0:
+        raise ParameterError(f"{name}: parameter 'fov' must be in [1e-4, 179] degrees, got {out:g}")
+    return out
+
+
 def _projection(name: str, projection: str, ortho_height: float | None) -> float | None:
     if projection not in PROJECTIONS:
         raise ParameterError(f"{name}: parameter 'projection' must be 'perspective' or 'orthographic', "
@@ -78,9 +86,7 @@ class Camera:
         self.eye = v.vector("camera", "eye", eye)
         self.target = v.vector("camera", "target", target)
         self.up_hint = v.vector("camera", "up", up, nonzero=True)
-        self.fov = v.scalar("camera", "fov", fov)
-        if not 1e-4 <= self.fov <= 179.0:
-            raise ParameterError(f"camera: parameter 'fov' must be in [1e-4, 179] degrees, got {self.fov:g}")
+        self.fov = check_fov("camera", fov)
         self.projection = projection
         self._ortho_height = _projection("camera", projection, ortho_height)
         _in_range("camera", "eye", self.eye)

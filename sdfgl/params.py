@@ -359,10 +359,8 @@ def apply(op: str, *args: Any, names: tuple[str, ...] = ()) -> Any:
         if isinstance(x, Live):
             vals.append(x)
             continue
-        if isinstance(x, bool):
-            x = None
-        try:
-            arr = np.asarray(x, dtype=np.float64)
+        try:  # None and bools are no numbers here (np.asarray would make them nan and 1.0)
+            arr = None if x is None or isinstance(x, bool) else np.asarray(x, dtype=np.float64)
         except (TypeError, ValueError):
             arr = None
         if arr is None or arr.shape not in ((), (3,)):

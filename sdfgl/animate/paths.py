@@ -14,7 +14,7 @@ from typing import Any, Mapping, Sequence
 
 import numpy as np
 
-from ..camera import Camera, OrbitCamera
+from ..camera import Camera, OrbitCamera, check_fov
 from ..errors import ParameterError
 from ..nodes.base import Node
 from ..values import validate as v
@@ -40,7 +40,7 @@ class Turntable(CameraPath):
         if abs(self.pitch) > 89.9:
             raise ParameterError(f"turntable: parameter 'pitch' must lie in [-89.9, 89.9], got {self.pitch:g}")
         self.target = None if target is None else v.vector("turntable", "target", target)
-        self.fov = v.scalar("turntable", "fov", fov)
+        self.fov = check_fov("turntable", fov)
         self.yaw = v.scalar("turntable", "yaw", yaw)
         self.turns = v.scalar("turntable", "turns", turns)
         self.period = None if period is None else v.scalar("turntable", "period", period, positive=True)
@@ -73,7 +73,7 @@ def turntable(distance: float | None = None, pitch: float = 20.0, target: Sequen
         pitch: elevation above the target's horizontal plane in degrees, in [-89.9, 89.9].
         target: the 3-vector it orbits (default: the centre of the scene's box, or the
             origin when there is no scene).
-        fov: vertical field of view in degrees.
+        fov: vertical field of view in degrees, in [1e-4, 179].
         yaw: the starting turn about the Y axis in degrees, as ``OrbitCamera`` (0 looks
             along -Z from +Z); the turntable adds 360 degrees per turn.
         turns: full turns over the clip; frames are at ``i / fps``, so a 1-turn clip loops

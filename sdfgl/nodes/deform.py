@@ -35,10 +35,10 @@ class _Warp(Unary):
     # per axis: (the two coordinates the warp rotates, the coordinate the angle follows)
     planes: dict[str, tuple[tuple[int, int], int]] = {}
 
-    def __init__(self, child: Node, rate: float, axis: str | Sequence[float] | None = None) -> None:
+    def __init__(self, child: Node, rate: float, axis: str | Sequence[float]) -> None:
         r = v.scalar(self.kind, "rate", rate)
         v.fixed(self.kind, "the step safety factor is compiled from it", rate=r)
-        axis = self.default_axis if axis is None else axes.coordinate_name(self.kind, "axis", axis)
+        axis = axes.coordinate_name(self.kind, "axis", axis)
         lo, hi = child.bounds
         if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi))):
             raise ParameterError(f"{self.kind}: the child {child.label()} is unbounded; a warp needs finite bounds")
@@ -126,6 +126,9 @@ class Twist(_Warp):
     glsl_fn = "opTwist"
     planes = {"y": ((0, 2), 1), "z": ((0, 1), 2), "x": ((1, 2), 0)}
 
+    def __init__(self, child: Node, rate: float, axis: str | Sequence[float] = "y") -> None:
+        super().__init__(child, rate, axis)
+
     def _stretch(self, r: float) -> float:
         h = abs(self.k) * r / 2  # largest singular value of the twist's Jacobian at radius r
         return h + math.sqrt(1 + h * h)
@@ -141,6 +144,9 @@ class Bend(_Warp):
     glsl_fn = "opBend"
     default_axis = "z"
     planes = {"z": ((0, 1), 0), "x": ((1, 2), 1), "y": ((2, 0), 2)}
+
+    def __init__(self, child: Node, rate: float, axis: str | Sequence[float] = "z") -> None:
+        super().__init__(child, rate, axis)
 
     def _stretch(self, r: float) -> float:
         return 1.0 + abs(self.k) * r  # ||R + u e_x^T|| <= 1 + |u|, |u| = k r
