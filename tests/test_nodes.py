@@ -89,3 +89,24 @@ def test_distance_values():
     assert sg.plane().distance([[0, 2, 7]])[0] == pytest.approx(2)
     with pytest.raises(ParameterError, match=r"points must have shape \(\.\.\., 3\)"):
         sg.sphere(1).distance([[1, 2]])
+
+
+def test_fluent_methods_are_their_family_functions():
+    """Node's modelling methods are registered by the modules of their nodes, with their signatures."""
+    import inspect
+
+    from sdfgl.nodes.base import FLUENT, fluent
+    assert set(FLUENT) == {"__or__", "__and__", "__sub__", "union", "intersection", "difference", "translate", "rotate",
+                           "orient", "scale", "twist", "bend", "taper", "dilate", "erode", "shear", "repeat", "mirror",
+                           "symmetric", "repeat_polar", "elongate", "round", "shell", "displace", "color", "material"}
+    for name, fn in FLUENT.items():
+        assert getattr(sg.Node, name) is fn and fn.__doc__, name
+        assert next(iter(inspect.signature(fn).parameters)) in ("node", "nodes"), name
+        assert fn.__module__.startswith("sdfgl.nodes.") and fn.__module__ != "sdfgl.nodes.base", name
+    assert sg.Node.twist is sg.twist and sg.Node.__or__ is sg.union and sg.Node.dilate is sg.Node.round
+    s = sg.sphere(1)
+    assert s.union(sg.box(1), k=0.1).key == sg.union(s, sg.box(1), k=0.1).key  # the same node either way
+    assert (s - sg.box(1)).key == sg.difference(s, sg.box(1)).key
+    assert s.twist(90, "x").key == sg.twist(s, 90, "x").key
+    with pytest.raises(TypeError, match="Node.twist is registered by sdfgl.nodes.deform.twist already"):
+        fluent("twist")(lambda node: node)

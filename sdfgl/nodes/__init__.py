@@ -1,4 +1,5 @@
 """The scene graph: one module per family of nodes."""
+from . import material, transforms  # noqa: F401 - they register Node.translate, .rotate, .color, .material, ...
 from .base import BOUND, EXACT, IMPLICIT, Node, Primitive
 from .booleans import difference, intersection, product, union
 from .deform import bend, twist

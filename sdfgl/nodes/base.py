@@ -8,7 +8,7 @@ from __future__ import annotations
 import contextlib
 import threading
 import weakref
-from typing import TYPE_CHECKING, Any, Callable, ClassVar, Iterator, Sequence
+from typing import TYPE_CHECKING, Any, Callable, ClassVar, Iterator, Sequence, TypeVar
 
 import numpy as np
 
@@ -161,9 +161,10 @@ class Node(Recorded, register=False):
     """Base class of every scene-graph node. Nodes are immutable after construction.
 
     Operators and methods build new nodes (fogleman/sdf style): ``a | b``, ``a & b``,
-    ``a - b``, ``.translate``, ``.rotate``, ``.scale``, ``.color`` and the rest. Every node
-    has ``distance(points)`` (the float64 twin of the generated GLSL), ``exactness``,
-    ``lipschitz`` and ``bounds``.
+    ``a - b``, ``.translate``, ``.rotate``, ``.scale``, ``.color`` and the rest. Each is a
+    function of the node family's module registered here with :func:`fluent` (the table
+    :data:`FLUENT` lists them). Every node has ``distance(points)`` (the float64 twin of the
+    generated GLSL), ``exactness``, ``lipschitz`` and ``bounds``.
 
     A subclass that sets ``kind`` is registered under it (see :mod:`sdfgl.nodes.record`):
     pickle and scene documents rebuild it from its constructor's arguments.
@@ -283,6 +284,15 @@ class Node(Recorded, register=False):
         from ..web.notebook import preview_png
         return preview_png(self)
 
+    def save(self, path: str, **mesh_options: Any) -> Any:
+        """Mesh this node and write it (fogleman/sdf's ``f.save("out.stl")``); returns the Mesh.
+
+        ``mesh_options`` are those of :func:`sdfgl.mesh` (step, resolution, samples, bounds, mode)."""
+        from ..mesh import mesh
+        m = mesh(self, **mesh_options)
+        m.save(path)
+        return m
+
     # -- the five things every node provides ----------------------------------------------
     def emit(self, em: "Emitter", p: str) -> str:
         """Append GLSL for this node's field at point variable ``p``; return the result variable.
@@ -387,157 +397,30 @@ class Node(Recorded, register=False):
             out += [p for p in c.__dict__["_live_cache"] if p not in out]
         return tuple(out)  # () for most nodes: no object for the garbage collector to track
 
-    # -- modelling API (fogleman/sdf style) ---------------------------------------------
-    def save(self, path: str, **mesh_options: Any) -> Any:
-        """Mesh this node and write it (fogleman/sdf's ``f.save("out.stl")``); returns the Mesh.
 
-        ``mesh_options`` are those of :func:`sdfgl.mesh` (step, resolution, samples, bounds, mode)."""
-        from ..mesh import mesh
-        m = mesh(self, **mesh_options)
-        m.save(path)
-        return m
+FluentT = TypeVar("FluentT", bound=Callable[..., Any])
 
-    def __or__(self, other: "Node") -> "Node":
-        from .booleans import union
-        return union(self, other)
+FLUENT: dict[str, Callable[..., Any]] = {}
+"""Node's modelling methods and operators by name, each the function its family registered."""
 
-    def __and__(self, other: "Node") -> "Node":
-        from .booleans import intersection
-        return intersection(self, other)
 
-    def __sub__(self, other: "Node") -> "Node":
-        from .booleans import difference
-        return difference(self, other)
+def fluent(*names: str) -> Callable[[FluentT], FluentT]:
+    """Register a function of a node as a :class:`Node` method (fogleman/sdf's op registry).
 
-    def union(self, *others: "Node", k: float = 0.0, blend: str = "quadratic") -> "Node":
-        """``self | others`` with blend radius ``k`` and ``blend`` style, as :func:`sdfgl.union`."""
-        from .booleans import union
-        return union(self, *others, k=k, blend=blend)
-
-    def intersection(self, *others: "Node", k: float = 0.0, blend: str = "quadratic") -> "Node":
-        """``self & others`` with blend radius ``k`` and ``blend`` style, as :func:`sdfgl.intersection`."""
-        from .booleans import intersection
-        return intersection(self, *others, k=k, blend=blend)
-
-    def difference(self, *others: "Node", k: float = 0.0, blend: str = "quadratic") -> "Node":
-        """``self - others`` with blend radius ``k`` and ``blend`` style, as :func:`sdfgl.difference`."""
-        from .booleans import difference
-        return difference(self, *others, k=k, blend=blend)
-
-    def translate(self, offset: Sequence[float]) -> "Node":
-        """Move by ``offset`` (consecutive rigid moves fold into one translate and one rotate)."""
-        from .transforms import Translate, fold
-        return fold(Translate(self, offset))
-
-    def rotate(self, angle: float, axis: Sequence[float] = (0.0, 0.0, 1.0)) -> "Node":
-        """Rotate by ``angle`` degrees about ``axis`` (through the origin)."""
-        from .transforms import rotate
-        return rotate(self, angle, axis)
-
-    def orient(self, axis: Sequence[float]) -> "Node":
-        """Rotate so that the node's Y axis points along ``axis``."""
-        from .transforms import Rotate, fold
-        return fold(Rotate.orient(self, axis))
-
-    def scale(self, factor: float | Sequence[float]) -> "Node":
-        """Scale uniformly (exactness kept) or per axis (the result is a bound)."""
-        from .transforms import fold, scale
-        return fold(scale(self, factor))
-
-    def twist(self, rate: float, axis: str = "y") -> "Node":
-        """Twist about ``axis`` (x, y or z) by ``rate`` degrees per unit along it (a bound; steps
-        shortened here only)."""
-        from .deform import Twist
-        return Twist(self, rate, axis)
-
-    def bend(self, rate: float, axis: str = "z") -> "Node":
-        """Bend about ``axis`` by ``rate`` degrees per unit: about Z the XY plane turns by
-        rate * x, about X the YZ plane by rate * y, about Y the ZX plane by rate * z (a bound)."""
-        from .deform import Bend
-        return Bend(self, rate, axis)
-
-    def taper(self, rate: float, axis: str | Sequence[float] = "y", origin: float = 0.0) -> "Node":
-        """Scale the cross-section across ``axis`` ("x", "y" or "z") by 1 + rate (u - origin)
-        along it (a bound; only this subtree's steps shrink)."""
-        from .deform import Taper
-        return Taper(self, rate, axis, origin)
-
-    def dilate(self, radius: float) -> "Node":
-        """Grow by ``radius`` (f - r; the same node as :meth:`round`)."""
-        return self.round(radius)
-
-    def erode(self, radius: float) -> "Node":
-        """Shrink by ``radius`` (f + r; a bound)."""
-        from .operators import Erode
-        return Erode(self, radius)
-
-    def shear(self, amount: float, along: str = "x", by: str = "y") -> "Node":
-        """Move coordinate ``along`` by ``amount`` times coordinate ``by`` (a bound; only this
-        subtree's steps shrink)."""
-        from .operators import Shear
-        return Shear(self, amount, along, by)
-
-    def repeat(self, period: float | Sequence[float], count: int | Sequence[int] | None = None) -> "Node":
-        """Copies every ``period`` along the axes with a non-zero period; ``count`` limits them."""
-        from .domain import Repeat
-        return Repeat(self, period, count)
-
-    def mirror(self, normal: Sequence[float] = (1.0, 0.0, 0.0), point: Sequence[float] = (0.0, 0.0, 0.0)) -> "Node":
-        """This node on the side ``normal`` points to, plus its reflection in that plane."""
-        from .shaping import Mirror
-        return Mirror(self, normal, point)
-
-    def symmetric(self, axes: str = "x") -> "Node":
-        """Mirror across the coordinate planes named in ``axes`` (e.g. "xz")."""
-        from .shaping import symmetric
-        return symmetric(self, axes)
-
-    def repeat_polar(self, count: int) -> "Node":
-        """``count`` copies (this node placed around +X) turned evenly about Y."""
-        from .shaping import PolarRepeat
-        return PolarRepeat(self, count)
-
-    def elongate(self, length: float | Sequence[float]) -> "Node":
-        """Stretch by ``length`` along each axis, inserted at the centre planes."""
-        from .shaping import Elongate
-        return Elongate(self, length)
-
-    def round(self, radius: float) -> "Node":
-        """Grow by ``radius`` (f - r): rounded edges."""
-        from .shaping import Round
-        return Round(self, radius)
-
-    def shell(self, thickness: float) -> "Node":
-        """A shell ``thickness`` thick around the surface (|f| - t/2)."""
-        from .shaping import Shell
-        return Shell(self, thickness)
-
-    def displace(self, amplitude: float, frequency: float = 1.0, octaves: int = 4,
-                 normal_octaves: int | None = None) -> "Node":
-        """Displace the surface by fBm noise (a bound; only this subtree's steps shrink)."""
-        from .noise import Displace
-        return Displace(self, amplitude, frequency, octaves, normal_octaves)
-
-    def color(self, r: float | Sequence[float], g: float | None = None, b: float | None = None) -> "Node":
-        """Give every part of this node that has no colour of its own the colour (r, g, b)."""
-        from .transforms import Material, fold_material
-        rgb = r if g is None and b is None else (r, g, b)
-        return fold_material(Material(self, rgb))
-
-    def material(self, color: object = None, *, specular: object = None, roughness: object = None,
-                 shininess: object = None, metallic: object = None, emission: object = None) -> "Node":
-        """Give every part of this node that does not set them itself these material fields.
-
-        ``color`` as for :meth:`color`; ``specular`` (>= 0, default 0.25) scales the
-        highlight; ``roughness`` in [0.05, 1] or ``shininess`` (the Blinn-Phong exponent,
-        1..10000, default 48) sets its size; ``metallic`` in [0, 1] tints the highlight by
-        the colour and removes the diffuse part; ``emission`` a colour added unlit. Fields
-        left out keep what an outer node (or the default) says.
-        """
-        from .material import SurfaceMaterial
-        from .transforms import fold_material
-        return fold_material(SurfaceMaterial(self, color, specular=specular, roughness=roughness, shininess=shininess,
-                                             metallic=metallic, emission=emission))
+    ``@fluent()`` over ``def twist(node, rate, axis="y")`` in the module of the twist node
+    makes ``s.twist(90)`` call ``twist(s, 90)``. ``names`` register it under other names
+    instead (an operator such as ``"__or__"``, or a method named otherwise than the
+    function). The function is returned unchanged: it stays its module's function, and its
+    signature and docstring are the method's (``help(sg.Node.twist)``)."""
+    def register(fn: FluentT) -> FluentT:
+        for name in names or (fn.__name__,):
+            old = FLUENT.get(name)
+            if old is not None and (old.__module__, old.__qualname__) != (fn.__module__, fn.__qualname__):
+                raise TypeError(f"Node.{name} is registered by {old.__module__}.{old.__qualname__} already")
+            FLUENT[name] = fn
+            setattr(Node, name, fn)
+        return fn
+    return register
 
 
 _CACHES = ("_m_", "_key", "_token", "_depth", "_bounds_cache", "_live_cache", "_detail", "_dag", "_grid", "_kids",

@@ -13,7 +13,7 @@ import numpy as np
 from ..errors import ParameterError
 from ..params import Live
 from ..values import validate as v
-from .base import _CACHES, BOUND, EXACT, IMPLICIT, Node, box_of, grid_min_now
+from .base import _CACHES, BOUND, EXACT, IMPLICIT, Node, box_of, fluent, grid_min_now
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..codegen import Emitter
@@ -380,6 +380,7 @@ def _build(cls: type, nodes: tuple, k: object, blend: str) -> Node:
     return cls(*nodes, k=k, blend=blend)
 
 
+@fluent("union", "__or__")
 def union(*nodes: Node, k: float = 0.0, blend: str = "quadratic") -> Node:
     """Union of two or more nodes (``a | b``), optionally blended; 2D shapes give a 2D union.
 
@@ -401,6 +402,7 @@ def union(*nodes: Node, k: float = 0.0, blend: str = "quadratic") -> Node:
     return _build(Union, nodes, k, blend)
 
 
+@fluent("intersection", "__and__")
 def intersection(*nodes: Node, k: float = 0.0, blend: str = "quadratic") -> Node:
     """Intersection of two or more nodes (``a & b``) or 2D shapes, optionally blended.
 
@@ -421,6 +423,7 @@ def intersection(*nodes: Node, k: float = 0.0, blend: str = "quadratic") -> Node
     return _build(Intersection, nodes, k, blend)
 
 
+@fluent("difference", "__sub__")
 def difference(*nodes: Node, k: float = 0.0, blend: str = "quadratic") -> Node:
     """The first node (or 2D shape) minus all the others (``a - b``), optionally blended.
 

@@ -17,7 +17,7 @@ import numpy as np
 from ..errors import ParameterError
 from ..values import axes
 from ..values import validate as v
-from .base import BOUND, IMPLICIT, Node, Unary
+from .base import BOUND, IMPLICIT, Node, Unary, fluent
 from .primitives import Box
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -209,6 +209,7 @@ class Taper(_Warp):
         return q
 
 
+@fluent()
 def taper(node: Node, rate: float, axis: str | Sequence[float] = "y", origin: float = 0.0) -> Taper:
     """Scale ``node``'s cross-section across ``axis`` by 1 + rate (u - origin) along it.
 
@@ -228,6 +229,7 @@ def taper(node: Node, rate: float, axis: str | Sequence[float] = "y", origin: fl
     return Taper(node, rate, axis, origin)
 
 
+@fluent()
 def twist(node: Node, rate: float, axis: str | Sequence[float] = "y") -> Twist:
     """Twist ``node`` about a coordinate axis.
 
@@ -246,6 +248,7 @@ def twist(node: Node, rate: float, axis: str | Sequence[float] = "y") -> Twist:
     return Twist(node, rate, axis)
 
 
+@fluent()
 def bend(node: Node, rate: float, axis: str | Sequence[float] = "z") -> Bend:
     """Bend ``node`` about a coordinate axis (the default "z" bends in the XY plane).
 

@@ -9,7 +9,7 @@ import numpy as np
 from ..errors import ParameterError
 from ..params import Live
 from ..values import validate as v
-from .base import BOUND, EXACT, IMPLICIT, INF, Node, Unary
+from .base import BOUND, EXACT, IMPLICIT, INF, Node, Unary, fluent
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..codegen import Emitter
@@ -157,6 +157,7 @@ class Repeat(Unary):
         return acc
 
 
+@fluent()
 def repeat(node: Node, period: float | Sequence[float], count: int | Sequence[int] | None = None) -> Repeat:
     """Repeat ``node`` on a grid.
 

@@ -10,8 +10,8 @@ from typing import Any
 
 from ..errors import ParameterError
 from ..values import validate as v
-from .base import Node, Unary
-from .transforms import Material
+from .base import Node, Unary, fluent
+from .transforms import Material, fold_material
 
 SHININESS_RANGE = (1.0, 10000.0)
 ROUGHNESS_MIN = 0.05
@@ -69,9 +69,19 @@ def _in_range(node: str, name: str, x: float, lo: float, hi: float) -> None:
         raise ParameterError(f"{node}: parameter '{name}' must lie in [{lo:g}, {hi:g}], got {x:g}")
 
 
-def material(node: Node, color: Any = None, **surface: Any) -> SurfaceMaterial:
-    """``node`` with a material; see :meth:`sdfgl.Node.material`."""
-    return SurfaceMaterial(node, color, **surface)
+@fluent()
+def material(node: Node, color: object = None, *, specular: object = None, roughness: object = None,
+             shininess: object = None, metallic: object = None, emission: object = None) -> Node:
+    """Give every part of ``node`` that does not set them itself these material fields.
+
+    ``color`` as for :meth:`sdfgl.Node.color`; ``specular`` (>= 0, default 0.25) scales the
+    highlight; ``roughness`` in [0.05, 1] or ``shininess`` (the Blinn-Phong exponent,
+    1..10000, default 48) sets its size; ``metallic`` in [0, 1] tints the highlight by
+    the colour and removes the diffuse part; ``emission`` a colour added unlit. Fields
+    left out keep what an outer node (or the default) says.
+    """
+    return fold_material(SurfaceMaterial(node, color, specular=specular, roughness=roughness, shininess=shininess,
+                                         metallic=metallic, emission=emission))
 
 
 __all__ = ["SurfaceMaterial", "material", "roughness_to_shininess"]

@@ -14,7 +14,7 @@ import numpy as np
 from ..errors import ParameterError
 from ..noise import fbm3, fbm_lipschitz
 from ..values import validate as v
-from .base import BOUND, IMPLICIT, Node, Primitive, Unary
+from .base import BOUND, IMPLICIT, Node, Primitive, Unary, fluent
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..codegen import Emitter
@@ -108,6 +108,7 @@ class NoiseField(Primitive):
         return np.full(3, -np.inf), np.full(3, np.inf)
 
 
+@fluent()
 def displace(node: Node, amplitude: float, frequency: float = 1.0, octaves: int = 4,
              normal_octaves: int | None = None) -> Displace:
     """Displace ``node``'s surface by fractal (fBm) gradient noise.

@@ -10,7 +10,7 @@ from ..errors import ParameterError
 from ..params import Live
 from ..values import axes
 from ..values import validate as v
-from .base import BOUND, IMPLICIT, Node, Unary
+from .base import BOUND, IMPLICIT, Node, Unary, fluent
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..codegen import Emitter
@@ -137,6 +137,20 @@ class Shear(Unary):
         lo2[self.a] = lo[self.a] + min(ext)
         hi2[self.a] = hi[self.a] + max(ext)
         return lo2, hi2
+
+
+@fluent()
+def erode(node: Node, radius: float) -> Erode:
+    """Shrink ``node`` by ``radius`` (f + r; a bound)."""
+    return Erode(node, radius)
+
+
+@fluent()
+def shear(node: Node, amount: float, along: str | Sequence[float] = "x", by: str | Sequence[float] = "y") -> Shear:
+    """Move coordinate ``along`` of ``node`` by ``amount`` times coordinate ``by`` (each "x",
+    "y", "z" or a vector along one, such as ``sg.X``); a bound, and only this subtree's steps
+    shrink."""
+    return Shear(node, amount, along, by)
 
 
 def morph(a: Node, b: Node, t: float | Live = 0.5) -> Morph:

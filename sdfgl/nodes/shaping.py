@@ -8,7 +8,7 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..values import validate as v
-from .base import BOUND, IMPLICIT, Node, Unary
+from .base import BOUND, IMPLICIT, Node, Unary, fluent
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..codegen import Emitter
@@ -71,6 +71,7 @@ class Mirror(Unary):
         return allc.min(axis=0), allc.max(axis=0)
 
 
+@fluent()
 def symmetric(node: Node, axes: str = "x") -> Node:
     """Mirror ``node`` across the planes x = 0, y = 0 and/or z = 0 named in ``axes``.
 
@@ -219,6 +220,7 @@ class Shell(_Offset):
     _is_shell = True
 
 
+@fluent()
 def mirror(node: Node, normal: Sequence[float] = (1.0, 0.0, 0.0), point: Sequence[float] = (0.0, 0.0, 0.0)) -> Node:
     """``node`` on the side ``normal`` points to, plus its reflection in that plane.
 
@@ -237,6 +239,7 @@ def mirror(node: Node, normal: Sequence[float] = (1.0, 0.0, 0.0), point: Sequenc
     return Mirror(node, normal, point)
 
 
+@fluent()
 def repeat_polar(node: Node, count: int) -> Node:
     """``count`` copies of ``node`` turned evenly about the Y axis.
 
@@ -252,6 +255,7 @@ def repeat_polar(node: Node, count: int) -> Node:
     return PolarRepeat(node, count)
 
 
+@fluent()
 def elongate(node: Node, length: float | Sequence[float]) -> Node:
     """Stretch ``node`` by inserting a slab at its centre planes.
 
@@ -268,8 +272,10 @@ def elongate(node: Node, length: float | Sequence[float]) -> Node:
     return Elongate(node, length)
 
 
+@fluent("round", "dilate")
 def rounded(node: Node, radius: float) -> Node:
-    """Grow ``node`` by ``radius`` (f - r): rounded edges and corners.
+    """Grow ``node`` by ``radius`` (f - r): rounded edges and corners (also ``node.round(r)``
+    and ``node.dilate(r)``).
 
     Args:
         node: the node.
@@ -284,6 +290,7 @@ def rounded(node: Node, radius: float) -> Node:
     return Round(node, radius)
 
 
+@fluent()
 def shell(node: Node, thickness: float) -> Node:
     """A shell of the given thickness around ``node``'s surface (|f| - t/2).
 

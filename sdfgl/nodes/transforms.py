@@ -10,7 +10,7 @@ from ..errors import ParameterError
 from ..values import axes
 from ..values import validate as v
 from ..params import Live
-from .base import BOUND, IMPLICIT, Node, Unary, box_of
+from .base import BOUND, IMPLICIT, Node, Unary, box_of, fluent
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..codegen import Emitter
@@ -189,8 +189,27 @@ class ScaleAxes(Unary):
         return lo * self.s, hi * self.s
 
 
+@fluent()
+def translate(node: Node, offset: Sequence[float]) -> Node:
+    """Move ``node`` by ``offset`` (consecutive rigid moves fold into one translate and one rotate)."""
+    return fold(Translate(node, offset))
+
+
+@fluent()
+def orient(node: Node, axis: str | Sequence[float]) -> Node:
+    """Rotate ``node`` so that its Y axis points along ``axis`` ("x", ``sg.X`` or any vector)."""
+    return fold(Rotate.orient(node, axis))
+
+
+@fluent()
 def scale(node: Node, factor: float | Sequence[float] | Live) -> Node:
-    """Scale ``node`` by a positive factor, or by one positive factor per axis."""
+    """Scale ``node`` uniformly by a positive factor (exactness kept) or by one positive factor
+    per axis (the result is a bound); folded into the moves under it."""
+    return fold(_scaled(node, factor))
+
+
+def _scaled(node: Node, factor: float | Sequence[float] | Live) -> Node:
+    """``node`` under a new Scale or ScaleAxes node for ``factor`` (not folded)."""
     if isinstance(factor, Live):
         return Scale(node, factor) if factor.dims == 1 else ScaleAxes(node, factor)
     if isinstance(factor, (int, float, np.floating, np.integer)) and not isinstance(factor, bool):
@@ -254,13 +273,23 @@ def _scale(child: Node, s: float) -> "Scale":
     return n
 
 
-def rotate(node: Node, angle: float | Live, axis: Sequence[float]) -> Node:
-    """``node`` rotated by ``angle`` degrees about ``axis``, folded into the moves under it."""
+@fluent()
+def rotate(node: Node, angle: float | Live, axis: str | Sequence[float] = (0.0, 0.0, 1.0)) -> Node:
+    """``node`` rotated by ``angle`` degrees about ``axis`` ("x", ``sg.X`` or any vector through
+    the origin; default Z), folded into the moves under it."""
     deg = v.scalar(Rotate.kind, "angle", angle)
     ax = axes.direction(Rotate.kind, "axis", axis)
     if isinstance(deg, Live) or isinstance(ax, Live):
         return fold(Rotate.axis_angle(node, deg, ax))
     return fold(_rotate(node, _axis_angle_matrix(ax, deg)))  # a rotation by construction
+
+
+@fluent()
+def color(node: Node, r: float | Sequence[float] | str, g: float | None = None, b: float | None = None) -> Node:
+    """Give every part of ``node`` that has no colour of its own the colour (r, g, b), or ``r``
+    alone: a name, "#rrggbb", three 0..255 integers or three 0..1 floats."""
+    rgb = r if g is None and b is None else (r, g, b)
+    return fold_material(Material(node, rgb))
 
 
 def fold_material(node: Node) -> Node:
@@ -298,4 +327,5 @@ def fold(node: Node) -> Node:
     return _rotate(fold(_scale(inner.child, s)), inner.m)  # scaling commutes with rotating
 
 
-__all__ = ["Translate", "Rotate", "Scale", "ScaleAxes", "Material", "scale", "fold", "fold_material", "rotate"]
+__all__ = ["Translate", "Rotate", "Scale", "ScaleAxes", "Material", "translate", "rotate", "orient", "scale", "color",
+           "fold", "fold_material"]
