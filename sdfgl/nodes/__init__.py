@@ -8,10 +8,11 @@ from .fractals import sierpinski, tree
 from .implicit import displace_expr, implicit, parametric
 from .noise import displace, noise
 from .shapes2d import Shape2D, circle, extrude, polygon, rectangle, revolve
-from .shapes2d_more import arc, capsule2, ellipse, regular_polygon, star, triangle
+from .shapes2d_figures import arc, capsule2, ellipse, regular_polygon, star, triangle
 from .shapes2d_ops import slice
-from .primitives_more import (bezier_tube, capped_torus, dodecahedron, gyroid, icosahedron, pyramid, slab,
-                              tetrahedron, tube)
+from .gyroid import gyroid
+from .polyhedra import dodecahedron, icosahedron, pyramid, slab, tetrahedron
+from .sweeps import bezier_tube, capped_torus, tube
 from .operators import morph
 from .deform import taper
 from .user_glsl import glsl

@@ -1,5 +1,7 @@
-"""More 2D shapes: triangle, ellipse (a bound), arc, star, regular (rounded) polygon and
-2D capsule. Formulas from Inigo Quilez's 2D distance functions (MIT)."""
+"""2D figures named by their parameters: triangle, ellipse (a bound), arc, star, regular
+(rounded) polygon and 2D capsule (the circle, rectangle and general polygon are in
+:mod:`.shapes2d`, beside the Shape2D protocol). Formulas from Inigo Quilez's 2D distance
+functions (MIT)."""
 from __future__ import annotations
 
 import math
