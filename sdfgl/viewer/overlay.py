@@ -3,7 +3,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from PIL import ImageDraw, ImageFont
+from PIL import Image, ImageDraw, ImageFont
 
 MAX_FONT, MIN_FONT = 22, 10  # pixels; below MIN_FONT PIL's default font is not legible
 
@@ -48,3 +48,20 @@ def layout_text(draw: ImageDraw.ImageDraw, text: str, width: int, height: int,
                 return font, wrapped, True
     font = ImageFont.load_default(size=MIN_FONT)
     return font, _wrap(draw, candidates[-1], font, width), False
+
+
+def overlay_image(text: str, x0: int, size: tuple[int, int], error: bool,
+                  shorter: tuple[str, str] | None = None) -> tuple[Image.Image, int | None, bool]:
+    """A transparent RGBA image of ``size`` with ``text`` on a dark box at (x0, 10), laid out by
+    :func:`layout_text` (``shorter`` as there), red for an ``error``; and the font size used
+    (None: no text) and whether all of the text fits."""
+    img = Image.new("RGBA", size, (0, 0, 0, 0))
+    if not text:
+        return img, None, True
+    draw = ImageDraw.Draw(img)
+    x0 = x0 if x0 + 200 < size[0] else 10  # a narrow view: over the panel rather than clipped
+    font, shown, fits = layout_text(draw, text, size[0] - x0 - 10, size[1] - 20, shorter=shorter)
+    box = draw.multiline_textbbox((x0, 10), shown, font=font)
+    draw.rectangle((box[0] - 6, box[1] - 6, box[2] + 6, box[3] + 6), fill=(0, 0, 0, 170))
+    draw.multiline_text((x0, 10), shown, font=font, fill=(255, 120, 110, 255) if error else (235, 235, 235, 255))
+    return img, font.size, fits
