@@ -13,8 +13,7 @@ PKG = pathlib.Path(sg.__file__).parent
 
 def _sdfgl_imports(path: pathlib.Path) -> set[str]:
     """The sdfgl modules ``path`` imports (at any depth of its code), as dotted names."""
-    here = path.relative_to(PKG.parent).with_suffix("").parts
-    package = here[:-1] if here[-1] != "__init__" else here[:-1]
+    package = path.relative_to(PKG.parent).with_suffix("").parts[:-1]  # what "." means in ``path``
     out = set()
     for node in ast.walk(ast.parse(path.read_text())):
         if isinstance(node, ast.ImportFrom):

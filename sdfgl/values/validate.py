@@ -13,13 +13,13 @@ import numpy as np
 
 from ..errors import ParameterError
 from .colors import parse
-from .live import LiveValue as Live
+from .live import LiveValue
 
 
 def _roots(values: Sequence[Any]) -> list:
     out = []
     for x in values:
-        if isinstance(x, Live):
+        if isinstance(x, LiveValue):
             out += [p for p in x.roots() if p not in out]
     return out
 
@@ -47,7 +47,7 @@ def _check_scalar(node: str, name: str, v: float, positive: bool, nonnegative: b
 def scalar(node: str, name: str, value: object, *, positive: bool = False,
            nonnegative: bool = False) -> Any:
     """``value`` as a finite float (or a live scalar), else ParameterError naming ``node.name``."""
-    if isinstance(value, Live):
+    if isinstance(value, LiveValue):
         if value.dims != 1:
             raise ParameterError(f"{node}: parameter '{name}' must be a scalar, got a 3-vector parameter")
         watch(lambda: _check_scalar(node, name, float(value.value), positive, nonnegative), value)
@@ -70,7 +70,7 @@ _PLAIN = (float, int)  # exactly these types (bool is not one of them)
 def vector(node: str, name: str, value: object, n: int = 3, *, positive: bool = False,
            nonzero: bool = False) -> Any:
     """``value`` as a float64 vector of length n (a scalar is broadcast), or a live value."""
-    if isinstance(value, Live):
+    if isinstance(value, LiveValue):
         watch(lambda: _check_vector(node, name, np.broadcast_to(np.asarray(value.value, float), (n,)),
                                     positive, nonzero), value)
         return value
@@ -109,22 +109,22 @@ def vector(node: str, name: str, value: object, n: int = 3, *, positive: bool = 
 def color(node: str, value: object, name: str = "color") -> Any:
     """A linear RGB triple (see :mod:`sdfgl.values.colors`: names, hex, 0..255 or 0..1), or a
     live 3-vector whose components must stay in [0, 1]."""
-    if not isinstance(value, Live):
+    if not isinstance(value, LiveValue):
         return parse(node, name, value)
     rgb = vector(node, name, value)
 
     def check() -> None:
-        c = np.broadcast_to(np.asarray(rgb.value if isinstance(rgb, Live) else rgb, float), (3,))
+        c = np.broadcast_to(np.asarray(rgb.value if isinstance(rgb, LiveValue) else rgb, float), (3,))
         if np.any(c < 0) or np.any(c > 1):
             raise ParameterError(f"{node}: colour components must lie in [0, 1], got {tuple(c)}")
     watch(check, rgb)
-    return rgb if isinstance(rgb, Live) else tuple(float(c) for c in rgb)
+    return rgb if isinstance(rgb, LiveValue) else tuple(float(c) for c in rgb)
 
 
 def fixed(node: str, reason: str, **values: object) -> None:
     """Refuse live parameters for values that shape the generated code (``reason`` says how)."""
     for name, val in values.items():
-        if isinstance(val, Live):
+        if isinstance(val, LiveValue):
             raise ParameterError(f"{node}: '{name}' cannot be a live parameter ({reason})")
 
 
