@@ -85,3 +85,9 @@ def test_warps_keep_their_default_axis_key():
     b = sg.box((0.6, 2.0, 0.4))
     assert b.twist(90, sg.Y).key == b.twist(90).key and "axis" not in b.twist(90).params
     assert b.bend(30, sg.Z).key == b.bend(30).key and b.bend(30, sg.X).params["axis"] == "x"
+
+
+def test_axes_given_as_vectors_round_trip_through_scene_documents():
+    b = sg.box((0.6, 2.0, 0.4))
+    for scene in (b.twist(90, sg.X), b.bend(30, (0, 0, 2)), b.shear(0.3, sg.Z, "x"), b.taper(0.1, sg.Z)):
+        assert sg.from_dict(scene.to_dict()).key == scene.key
