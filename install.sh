@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Set up sdfgl on a fresh Debian/Ubuntu machine: Mesa EGL (and, with --test, Xvfb,
 # xdotool, glslang-tools and chromium for the browser tests), a virtual environment in .venv, and the package in it.
-#   ./install.sh          the library and the `sdfgl` command
+#   ./install.sh          the library, the `sdfgl` command and every optional feature ([all])
 #   ./install.sh --test   also what the test suite needs
 set -euo pipefail
 cd "$(dirname "$0")"
@@ -33,6 +33,6 @@ python3 -m venv .venv
 if [ "$with_tests" = 1 ]; then
     .venv/bin/pip install -q --disable-pip-version-check -e ".[test]"
 else
-    .venv/bin/pip install -q --disable-pip-version-check ".[implicit,plots]"
+    .venv/bin/pip install -q --disable-pip-version-check ".[all]"
 fi
 echo "install.sh: sdfgl installed in $(pwd)/.venv"

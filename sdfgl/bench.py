@@ -3,7 +3,7 @@
 Frame times are wall-clock draws closed by ctx.finish() (GL timer queries are not
 trusted on llvmpipe), variants interleaved round by round so drift cancels, reported
 as medians, p95 and ratios. Errors come from the same shader against the float64
-reference (sdfgl.reference). Run it as ``sdfgl bench`` or ``python demos/bench.py``.
+reference (sdfgl.reference). Run it as ``sdfgl bench`` or ``python benchmarks/bench.py``.
 """
 from __future__ import annotations
 

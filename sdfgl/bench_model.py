@@ -4,6 +4,8 @@ shortcuts. Frame times interleaved in one run (see sdfgl.bench); ratios are what
 """
 from __future__ import annotations
 
+import sys
+from pathlib import Path
 from typing import Callable, Sequence
 
 import numpy as np
@@ -21,10 +23,14 @@ from .params import param
 from .render import Renderer
 
 NO_SHADING = {"shadows": False, "ao": False}
+BASELINES = Path(__file__).resolve().parents[1] / "benchmarks" / "baselines"
+"""The hand-written shaders the generated ones are timed against: in a source checkout only."""
+MISSING_BASELINES = (f"hand-written rows skipped: their shaders ({BASELINES}) are in a source checkout of sdfgl, "
+                     "not in the installed package")
 
 
 def csg_scene(live: bool = False) -> Node:
-    """demos/csg.py; with ``live`` every number that can be is a parameter."""
+    """examples/csg.py; with ``live`` every number that can be is a parameter."""
     v = (lambda x: param(x)) if live else (lambda x: x)
     ball = (sphere(v(1.0)) & box(v(1.5))).color(0.85, 0.3, 0.2)
     drill = (cylinder(v(0.5), v(4.0)).orient((1, 0, 0)) | cylinder(v(0.5), v(4.0))
@@ -33,7 +39,7 @@ def csg_scene(live: bool = False) -> Node:
 
 
 def blobs_scene() -> Node:
-    """The scene of shaders/handwritten/blobs.glsl."""
+    """The scene of benchmarks/baselines/blobs.glsl."""
     blob = union(sphere(0.5).translate((-0.6, 0, 0)), sphere(0.45).translate((0.1, 0.3, 0.2)),
                  sphere(0.4).translate((0.7, -0.1, -0.1)), sphere(0.35).translate((0.0, 0.6, -0.3)), k=0.3)
     slab = rounded_box((2.4, 0.3, 1.2), 0.1).color(0.6, 0.5, 0.4).rotate(30, (0, 1, 0)).translate((0, -0.9, 0))
@@ -49,11 +55,13 @@ HANDWRITTEN: dict[str, tuple[Callable[[], Node], Callable[[], Camera]]] = {
 
 
 def handwritten(name: str) -> Callable[[ShaderSource], ShaderSource]:
-    """Swap the generated map() and mapColor() for shaders/handwritten/<name>.glsl."""
+    """Swap the generated map() and mapColor() for benchmarks/baselines/<name>.glsl."""
+    code = (BASELINES / f"{name}.glsl").read_text(encoding="utf-8")
+
     def rewrite(src: ShaderSource) -> ShaderSource:
         start = src.text.index("float map(vec3 p) {")
         end = src.text.index(shaderlib.read("refine").split("\n")[0])
-        text = src.text[:start] + shaderlib.read(f"handwritten/{name}") + "\n" + src.text[end:]
+        text = src.text[:start] + code + "\n" + src.text[end:]
         return ShaderSource(text, ("(hand-written)",) * (text.count("\n") + 1), src.params, src.live_bounds,
                             src.data)
     return rewrite
@@ -79,7 +87,8 @@ def variants(sizes: Sequence[int]) -> list[tuple[str, list[Variant]]]:
     hand = []
     for name, (make, cam) in HANDWRITTEN.items():
         hand.append(Variant(name, "generated", dict(NO_SHADING), make(), cam()))
-        hand.append(Variant(name, "hand-written", dict(NO_SHADING), make(), cam(), source=handwritten(name)))
+        if BASELINES.is_dir():
+            hand.append(Variant(name, "hand-written", dict(NO_SHADING), make(), cam(), source=handwritten(name)))
     groups.append(("generated vs hand-written (same template and settings)", hand))
     for n in sizes:
         vs = []
@@ -108,6 +117,9 @@ def run_model(size: tuple[int, int], frames: int, warmup: int, sizes: Sequence[i
     renderer = Renderer(budget=CacheBudget(programs=None))  # timings hold every variant's program
     timer = FrameTimer(renderer, size)
     groups = variants(sizes)
+    note = "" if BASELINES.is_dir() else f" ({MISSING_BASELINES})"
+    if note:
+        print(f"bench: {MISSING_BASELINES}", file=sys.stderr)
     bar = Progress(sum(len(g) + warmup + frames for _, g in groups), progress)
     rows = ["| scene | variant | frame ms (median / p95) | ratio to the scene's first row | link ms | first frame ms | "
             "steps/px |", "|---|---|---|---|---|---|---|"]
@@ -124,5 +136,6 @@ def run_model(size: tuple[int, int], frames: int, warmup: int, sizes: Sequence[i
                         f"{1000 * r['first_frame_s']:.0f} | {steps} |")
     return (f"Size {size[0]}x{size[1]}, shadows and AO off (marching, normals and refinement only), "
             f"{frames} timed frames after {warmup} warm-up, interleaved within each comparison. "
-            "'link' is the driver's compile and link; 'first frame' adds llvmpipe's code generation.\n\n"
+            "'link' is the driver's compile and link; 'first frame' adds llvmpipe's code generation"
+            f"{note}.\n\n"
             + "\n".join(rows))

@@ -1,7 +1,7 @@
 """Writing a render's images: colour, depth, normal and step-count pictures, or one .npz.
 
 PNGs are written with zlib level 1 (``PNG_OPTIONS``): at 1920x1080 that took 75 ms against
-Pillow's default level 6 at 124 ms, for files 1.4x larger (demos/png_write_times.py).
+Pillow's default level 6 at 124 ms, for files 1.4x larger (benchmarks/png_write_times.py).
 """
 from __future__ import annotations
 

@@ -24,7 +24,7 @@ pytestmark = [pytest.mark.browser,
               pytest.mark.skipif(find_chromium() is None, reason="needs Chromium (./install.sh --test installs it)")]
 
 ROOT = Path(__file__).resolve().parents[1]
-GALLERY = sorted((ROOT / "demos" / "gallery").glob("*.py"))
+GALLERY = sorted((ROOT / "examples" / "gallery").glob("*.py"))
 W, H = 160, 120
 TOLERANCE = 8        # per channel, out of 255
 MAX_FRACTION = 0.01  # of pixels beyond the tolerance
@@ -177,7 +177,7 @@ def test_widget_script_syncs_with_its_model(browser):
 
 
 def test_several_sliders_at_once_match_egl(browser, tmp_path):
-    sf = load_scene_file(ROOT / "demos" / "live_params.py")
+    sf = load_scene_file(ROOT / "examples" / "live_params.py")
     html = save_html(sf.scene, tmp_path / "live.html", sf.camera, (W, H), **sf.settings)
     open_html(browser, html)
     n = frames(browser)

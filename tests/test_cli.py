@@ -16,7 +16,7 @@ def sdfgl(*args: str) -> subprocess.CompletedProcess:
 
 def test_render_scene_file(tmp_path):
     out = tmp_path / "csg.png"
-    r = sdfgl("render", "demos/csg.py", "-o", str(out), "--size", "64x48", "--aa", "2")
+    r = sdfgl("render", "examples/csg.py", "-o", str(out), "--size", "64x48", "--aa", "2")
     assert r.returncode == 0, r.stderr
     assert "wrote" in r.stdout
     img = Image.open(out)
@@ -32,7 +32,7 @@ def test_render_demo(tmp_path):
 
 
 def test_shader_prints_generated_glsl():
-    r = sdfgl("shader", "demos/csg.py", "--aa", "2", "--shadows", "off")
+    r = sdfgl("shader", "examples/csg.py", "--aa", "2", "--shadows", "off")
     assert r.returncode == 0, r.stderr
     assert r.stdout.startswith("#version 330 core")
     assert "float map(vec3 p)" in r.stdout and "#define AA 2" in r.stdout and "#define SHADOWS" not in r.stdout
@@ -62,7 +62,7 @@ def test_bad_size_argument():
 
 def test_render_transparent_orthographic(tmp_path):
     out = tmp_path / "cut.png"
-    r = sdfgl("render", "demos/csg.py", "-o", str(out), "--size", "48x96", "--alpha", "--ortho",
+    r = sdfgl("render", "examples/csg.py", "-o", str(out), "--size", "48x96", "--alpha", "--ortho",
               "--background", "white,#336699")
     assert r.returncode == 0, r.stderr
     a = np.asarray(Image.open(out))
@@ -70,5 +70,5 @@ def test_render_transparent_orthographic(tmp_path):
     alpha = a[..., 3]
     assert (alpha == 0).any() and (alpha == 255).any()
     assert alpha[0].max() == 0 and alpha[-1].max() == 0 and alpha[:, 0].max() == 0  # framed with room around
-    bad = sdfgl("render", "demos/csg.py", "-o", str(tmp_path / "x.png"), "--background", "nonsense")
+    bad = sdfgl("render", "examples/csg.py", "-o", str(tmp_path / "x.png"), "--background", "nonsense")
     assert bad.returncode != 0 and "not a colour" in bad.stderr and "Traceback" not in bad.stderr

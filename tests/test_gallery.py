@@ -8,7 +8,7 @@ import sdfgl as sg
 from sdfgl.nodes.implicit import implicitize
 from sdfgl.scenefile import load_scene_file
 
-GALLERY = sorted((Path(__file__).resolve().parents[1] / "demos" / "gallery").glob("*.py"))
+GALLERY = sorted((Path(__file__).resolve().parents[1] / "examples" / "gallery").glob("*.py"))
 
 
 def test_gallery_has_one_scene_per_family():

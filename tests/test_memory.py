@@ -136,7 +136,7 @@ def test_rebuilt_nodes_do_not_pile_up_checks():
 
 def test_soak_rss_stays_bounded():
     """Distinct scenes and baked turntable frames with a small program budget: RSS must stay flat."""
-    code = ("import sys, json; sys.path.insert(0, 'demos'); import soak, sdfgl as sg\n"
+    code = ("import sys, json; sys.path.insert(0, 'benchmarks'); import soak, sdfgl as sg\n"
             "sg.cache_budget(programs=4)\n"
             "warm = soak.run(8, 0, (24, 16))\n"
             "res = soak.run(40, 40, (24, 16))\n"

@@ -1,4 +1,4 @@
-"""demos/notebook.ipynb executed by nbconvert: inline images, a node preview and widget views."""
+"""examples/notebook.ipynb executed by nbconvert: inline images, a node preview and widget views."""
 import json
 import subprocess
 import sys
@@ -12,7 +12,7 @@ def test_demo_notebook_executes_with_images_and_widgets(tmp_path):
     out = tmp_path / "executed.ipynb"
     r = subprocess.run([sys.executable, "-m", "nbconvert", "--to", "notebook", "--execute",
                         "--ExecutePreprocessor.timeout=120", "--output", str(out),
-                        str(ROOT / "demos" / "notebook.ipynb")],
+                        str(ROOT / "examples" / "notebook.ipynb")],
                        capture_output=True, text=True, timeout=300)
     assert r.returncode == 0, r.stderr[-3000:]
     nb = json.loads(out.read_text())

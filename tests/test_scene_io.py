@@ -16,7 +16,7 @@ from sdfgl.scene_io import MAX_ARRAY, MAX_NESTING, dumps, loads
 from sdfgl.scenefile import load_scene_file
 
 ROOT = Path(__file__).resolve().parents[1]
-GALLERY = sorted((ROOT / "demos" / "gallery").glob("*.py")) + [ROOT / "demos" / "csg.py"]
+GALLERY = sorted((ROOT / "examples" / "gallery").glob("*.py")) + [ROOT / "examples" / "csg.py"]
 
 
 @pytest.mark.parametrize("path", GALLERY, ids=[p.stem for p in GALLERY])
@@ -248,7 +248,7 @@ def test_malformed_document_gives_one_clear_error_quickly(name, text, pattern):
 
 
 def test_fuzzed_truncations_and_mutations_never_escape_as_other_errors():
-    base = dumps(load_scene_file(ROOT / "demos" / "csg.py").scene)
+    base = dumps(load_scene_file(ROOT / "examples" / "csg.py").scene)
     cases = [base[:i] for i in range(0, len(base), max(1, len(base) // 60))]
     doc = json.loads(base)
     for junk in (None, 3, "x", [], {}, [1, 2, 3], True, -1.0):
@@ -280,7 +280,7 @@ def test_save_refuses_what_it_cannot_write(tmp_path):
 
 
 def test_cli_renders_and_prints_a_json_scene(tmp_path):
-    sf = load_scene_file(ROOT / "demos" / "csg.py")
+    sf = load_scene_file(ROOT / "examples" / "csg.py")
     path = sg.save_scene(sf.scene, tmp_path / "csg.json", camera=sf.camera, settings={"aa": 1, "ao": False})
     r = subprocess.run([sys.executable, "-m", "sdfgl", "shader", str(path)], capture_output=True, text=True,
                        timeout=120)

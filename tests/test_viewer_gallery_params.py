@@ -1,4 +1,4 @@
-"""Every live parameter of the gallery scenes (and of demos/live_params.py) has a working control in
+"""Every live parameter of the gallery scenes (and of examples/live_params.py) has a working control in
 the viewer's panel: its control's whole range is accepted by the nodes that use it and moves the
 image without a new program (headless, the panel's own control logic); the window lists them all."""
 from pathlib import Path
@@ -14,7 +14,7 @@ from .test_viewer import display  # noqa: F401 - the Xvfb fixture
 from .xserver import Driver
 
 ROOT = Path(__file__).resolve().parents[1]
-SCENES = sorted((ROOT / "demos" / "gallery").glob("*.py")) + [ROOT / "demos" / "live_params.py"]
+SCENES = sorted((ROOT / "examples" / "gallery").glob("*.py")) + [ROOT / "examples" / "live_params.py"]
 
 
 def scene_params(path: Path):
@@ -63,7 +63,7 @@ def test_every_param_control_works(path):
 
 @pytest.mark.window
 def test_the_window_shows_a_control_for_each_param(display, tmp_path):
-    path = ROOT / "demos" / "gallery" / "domain.py"
+    path = ROOT / "examples" / "gallery" / "domain.py"
     state = tmp_path / "state.json"
     drv = Driver(display, state)
     proc = drv.launch(str(path), "--size", "820x400", "--max-samples", "1")

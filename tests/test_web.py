@@ -128,7 +128,7 @@ def test_bad_html_input_says_what_is_wrong(tmp_path):
 
 def test_cli_html(tmp_path, capsys):
     out = tmp_path / "csg.html"
-    assert main(["html", str(ROOT / "demos" / "csg.py"), "-o", str(out), "--size", "320x200", "--aa", "2"]) == 0
+    assert main(["html", str(ROOT / "examples" / "csg.py"), "-o", str(out), "--size", "320x200", "--aa", "2"]) == 0
     spec = _spec_of(out.read_text())
     assert spec["size"] == [320, 200] and spec["settings"]["aa"] == 2
     assert "wrote" in capsys.readouterr().out

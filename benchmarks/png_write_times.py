@@ -1,6 +1,6 @@
 """How long writing the colour image takes at 1920x1080, by PNG option (and beside the render).
 
-    python demos/png_write_times.py [repeats]
+    python benchmarks/png_write_times.py [repeats]
 
 Renders the demo scene once at 1080p (aa 1, soft shadows, AO, ground), then writes it with
 each option, interleaved, and prints median write time and file size per option.

@@ -1,8 +1,8 @@
 """The sdfgl demo scene built with DistForge, timed through its ``save_frames`` (needs an X display).
 
-    DISPLAY=:99 python demos/animate/distforge_demo.py OUT.mp4 FRAMES WIDTH HEIGHT
+    DISPLAY=:99 python benchmarks/peers/distforge_demo.py OUT.mp4 FRAMES WIDTH HEIGHT
 
-Prints one JSON line: {"frames", "seconds", "fps"}. Run by demos/animate/figures.py under Xvfb.
+Prints one JSON line: {"frames", "seconds", "fps"}. Run by benchmarks/animate_figures.py under Xvfb.
 """
 import json
 import math

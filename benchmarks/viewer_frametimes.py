@@ -3,7 +3,7 @@
 Starts its own Xvfb, opens `sdfgl view` on the demo scene, drags the mouse in circles
 with xdotool for a few seconds, then lets it settle. Run from the repository root:
 
-    python demos/viewer_frametimes.py
+    python benchmarks/viewer_frametimes.py
 """
 import statistics
 import subprocess

@@ -1,6 +1,6 @@
 """Batch throughput with 1 and 2 (or more) local workers on 200 small jobs, interleaved.
 
-    python demos/animate/batch_scaling.py [--jobs 200] [--size 160x120] [--workers 1 2] [--rounds 2]
+    python benchmarks/batch_scaling.py [--jobs 200] [--size 160x120] [--workers 1 2] [--rounds 2]
 
 Each round renders the same job file once per worker count into a fresh folder
 (random views of the demo scene, colour PNG + depth/normal/steps .npz). Wall time includes

@@ -1,7 +1,7 @@
 """The frametime benchmark script: speed against error for every marching method.
 
-    python demos/bench.py --quick        # under a minute
-    python demos/bench.py                # the full run (tables in README.md)
+    python benchmarks/bench.py --quick        # the quick tier
+    python benchmarks/bench.py                # the full run (the tables of the documentation)
 """
 import sys
 

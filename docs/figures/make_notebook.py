@@ -1,5 +1,5 @@
-"""Write demos/notebook.ipynb (the notebook workflow); run it with
-`jupyter nbconvert --to notebook --execute --inplace demos/notebook.ipynb`."""
+"""Write examples/notebook.ipynb (the notebook workflow); run it with
+`jupyter nbconvert --to notebook --execute --inplace examples/notebook.ipynb`."""
 from pathlib import Path
 
 import nbformat
@@ -37,7 +37,7 @@ CELLS = [
 def main() -> None:
     nb = new_notebook(cells=CELLS, metadata={"kernelspec": {"name": "python3", "display_name": "Python 3",
                                                             "language": "python"}})
-    out = Path(__file__).with_name("notebook.ipynb")
+    out = Path(__file__).resolve().parents[2] / "examples" / "notebook.ipynb"
     nbformat.write(nb, out)
     print(f"wrote {out}")
 

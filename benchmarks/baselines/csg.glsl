@@ -1,4 +1,4 @@
-// Hand-written map() for the CSG scene (demos/csg.py): what a person would type.
+// Hand-written map() for the CSG scene (examples/csg.py): what a person would type.
 float map(vec3 p) {
     float ball = max(length(p) - 1.0, sdBox(p, vec3(0.75)));
     float drill = min(min(sdCylinder(p.yxz, 0.5, 2.0), sdCylinder(p, 0.5, 2.0)), sdCylinder(p.xzy, 0.5, 2.0));

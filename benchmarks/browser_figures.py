@@ -1,7 +1,7 @@
 """The browser view's figures: WebGL2 (headless Chromium, SwiftShader) against EGL for every
 gallery scene, HTML sizes and frame times, and the README screenshot docs/browser.png.
 
-    python demos/browser_figures.py [--size 320x240] [--no-screenshot] [--nodes]
+    python benchmarks/browser_figures.py [--size 320x240] [--no-screenshot] [--nodes]
 
 --nodes also compares every node type of the test zoo (tests/nodes_zoo.py) at 96x72.
 """
@@ -45,7 +45,7 @@ def compare(size: tuple[int, int], tmp: Path) -> None:
     print(f"| scene | HTML KiB | pixels > 8/255 | max diff | mean diff | WebGL2 frame ms | EGL frame ms |")
     print("|---|---|---|---|---|---|---|")
     with Chromium(size=(w + 360, h + 260)) as b:
-        scenes = [(p.stem, load_scene_file(p)) for p in sorted((ROOT / "demos" / "gallery").glob("*.py"))]
+        scenes = [(p.stem, load_scene_file(p)) for p in sorted((ROOT / "examples" / "gallery").glob("*.py"))]
         for name, sf in scenes:
             cam = OrbitCamera.of(sf.camera, *sf.scene.bounds)
             html = save_html(sf.scene, tmp / f"{name}.html", cam, size, **sf.settings)
@@ -84,7 +84,7 @@ def compare_nodes(tmp: Path, size: tuple[int, int] = (96, 72)) -> None:
 
 
 def screenshot(tmp: Path) -> None:
-    sf = load_scene_file(ROOT / "demos" / "live_params.py")
+    sf = load_scene_file(ROOT / "examples" / "live_params.py")
     html = save_html(sf.scene, tmp / "live.html", sf.camera, (560, 360), **sf.settings)
     with Chromium(size=(900, 372)) as b:
         b.goto(file_url(html))

@@ -1,6 +1,6 @@
-"""docs/panel.png: the viewer with its side panel on demos/live_params.py, under a private Xvfb.
+"""docs/panel.png: the viewer with its side panel on examples/live_params.py, under a private Xvfb.
 
-    python demos/panel_screenshot.py [--select drill]   (needs Xvfb and xdotool)
+    python docs/figures/panel_screenshot.py [--select drill]   (needs Xvfb and xdotool)
 """
 import json
 import os
@@ -12,7 +12,7 @@ from pathlib import Path
 
 from PIL import ImageGrab
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 W, H = 1100, 600
 
 
@@ -26,7 +26,7 @@ def main() -> None:
     tmp = Path(tempfile.mkdtemp())
     state = tmp / "state.json"
     time.sleep(1.0)
-    view = subprocess.Popen([sys.executable, "-m", "sdfgl.cli", "view", str(ROOT / "demos" / "live_params.py"),
+    view = subprocess.Popen([sys.executable, "-m", "sdfgl.cli", "view", str(ROOT / "examples" / "live_params.py"),
                              "--size", f"{W}x{H}", "--state-file", str(state), "--max-samples", "8",
                              "--aa", "1"], env=env)
     try:

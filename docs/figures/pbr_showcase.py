@@ -1,6 +1,6 @@
 """The seed thesis's showcase scenes path-traced through Mitsuba 3, beside the real-time render.
 
-    python demos/pbr_showcase.py [--size 360x240] [--spp 64]
+    python docs/figures/pbr_showcase.py [--size 360x240] [--spp 64]
 
 Writes docs/pbr_gallery.png (top row: real-time EGL render, bottom row: path traced) and
 prints each render's time. Materials follow the thesis: a glass core in the skyscrapers,
@@ -18,8 +18,8 @@ import sdfgl as sg
 from sdfgl.pbr import Blend, Material, Sky, Sun
 from sdfgl.scenefile import load_scene_file
 
-ROOT = Path(__file__).resolve().parents[1]
-GALLERY = ROOT / "demos" / "gallery"
+ROOT = Path(__file__).resolve().parents[2]
+GALLERY = ROOT / "examples" / "gallery"
 
 
 def skyscrapers() -> tuple:

@@ -1,7 +1,7 @@
-"""Figures for the animation note: a turntable of the demo scene to MP4 and GIF, time per
+"""Animation timing: a turntable of the demo scene to MP4 and GIF, time per
 frame against single render() calls of the same frames, and DistForge's save_frames.
 
-    python demos/animate/figures.py [--frames 120] [--size 640x360] [--rounds 2] [--out bench-out/animate]
+    python benchmarks/animate_figures.py [--frames 120] [--size 640x360] [--rounds 2] [--out bench-out/animate]
 
 Variants are interleaved round by round; medians over rounds are reported. DistForge
 runs in a subprocess under a private Xvfb (it draws through a glfw window).
@@ -61,7 +61,7 @@ def paired(out: Path, rounds: int, frames: int, size: tuple[int, int]) -> dict[s
 
 
 def distforge_clip(out: Path, frames: int, size: tuple[int, int], display: str) -> dict:
-    r = subprocess.run([sys.executable, str(HERE / "distforge_demo.py"), str(out), str(frames), str(size[0]),
+    r = subprocess.run([sys.executable, str(HERE / "peers" / "distforge_demo.py"), str(out), str(frames), str(size[0]),
                         str(size[1])], env={**os.environ, "DISPLAY": display}, capture_output=True, text=True,
                        timeout=1800)
     if r.returncode != 0:
@@ -86,7 +86,7 @@ def main() -> None:
     out.mkdir(parents=True, exist_ok=True)
     xvfb = None
     if not a.no_distforge:
-        sys.path.insert(0, str(HERE.parents[1]))
+        sys.path.insert(0, str(HERE.parent))
         from tests.xserver import start_xvfb
         xvfb, display = start_xvfb()
     rows: dict[str, list[dict]] = {"mp4": [], "gif": [], "single": [], "distforge_mp4": []}

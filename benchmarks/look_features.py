@@ -1,5 +1,5 @@
 """The benchmark's feature rows without AA (base, shadows, AO, lights, materials, alpha, fog)
-on the demo scene at 400x300, interleaved: `python demos/look_features.py`."""
+on the demo scene at 400x300, interleaved: `python benchmarks/look_features.py`."""
 import os
 os.environ.setdefault("MESA_SHADER_CACHE_DISABLE", "true")
 from sdfgl.bench import FrameTimer, Progress, feature_table, feature_variants, time_interleaved

@@ -1,5 +1,5 @@
 """Mesh fogleman's CSG example (sharp mode) and draw the mesh headless with matplotlib:
-docs/mesh_csg.png. Run: python demos/mesh_picture.py"""
+docs/mesh_csg.png. Run: python docs/figures/mesh_picture.py"""
 from pathlib import Path
 
 import matplotlib
@@ -27,6 +27,6 @@ ax.set_xlim(-0.8, 0.8), ax.set_ylim(-0.8, 0.8), ax.set_zlim(-0.8, 0.8)
 ax.view_init(elev=25, azim=35)
 ax.set_axis_off()
 ax.set_title(f"sg.mesh(part, resolution=40, mode='sharp'): {len(m.faces)} triangles", fontsize=9)
-out = Path(__file__).resolve().parent.parent / "docs" / "mesh_csg.png"
+out = Path(__file__).resolve().parents[1] / "mesh_csg.png"
 fig.savefig(out, bbox_inches="tight")
 print(f"wrote {out}")

@@ -1,7 +1,7 @@
 """Soak test: resident memory while rendering many distinct scenes and a baked-angle turntable.
 
-    python demos/soak.py                       # the full figures: 2000 scenes, 1000 frames
-    python demos/soak.py --scenes 300 --frames 300 --size 32x24 --json   # the CI size
+    python benchmarks/soak.py                       # the full figures: 2000 scenes, 1000 frames
+    python benchmarks/soak.py --scenes 300 --frames 300 --size 32x24 --json   # the CI size
 
 Every scene and every turntable frame has its own shader source (the angle is baked into
 the scene as a constant), so without bounded caches each one would keep a compiled program

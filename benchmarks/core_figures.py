@@ -1,7 +1,7 @@
 """Figures of the core pipeline: unit-sphere depth and silhouette against the closed form, and the
 end-to-end time of an 800x600 AA 2 render, cold (with compile; Mesa shader cache off) and warm.
 
-    python demos/core_figures.py
+    python benchmarks/core_figures.py
 """
 import os, time, numpy as np
 os.environ["MESA_SHADER_CACHE_DISABLE"] = "true"

@@ -1,6 +1,6 @@
 """An animated scene file: blobs that merge and part, a ring that turns, a keyframed colour.
 
-    sdfgl animate demos/animate/pulse.py -o pulse.mp4 --seconds 4 --turntable --ground
+    sdfgl animate examples/pulse.py -o pulse.mp4 --seconds 4 --turntable --ground
 """
 import sdfgl as sg
 

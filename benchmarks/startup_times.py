@@ -1,6 +1,6 @@
 """Whole-process start-up figures: `import sdfgl` and `sdfgl render` of an 800x600 CSG frame.
 
-    python demos/startup_times.py [runs] [--baseline DIR]
+    python benchmarks/startup_times.py [runs] [--baseline DIR]
 
 Each variant runs as a fresh process, interleaved with the others ``runs`` times, and the
 median wall time is printed (with the load average, since a shared machine skews them),
@@ -31,7 +31,7 @@ ROOT = Path(__file__).resolve().parents[1]
 def variants(baseline: str | None) -> dict[str, tuple[list[str], dict[str, str]]]:
     py = sys.executable
     out = str(Path(tempfile.gettempdir()) / "sdfgl_startup.png")
-    render = [py, "-m", "sdfgl", "render", str(ROOT / "demos" / "csg.py"), "-o", out, "--size", "800x600"]
+    render = [py, "-m", "sdfgl", "render", str(ROOT / "examples" / "csg.py"), "-o", out, "--size", "800x600"]
     v = {
         "python -c pass": ([py, "-c", "pass"], {}),
         "python -c 'import numpy'": ([py, "-c", "import numpy"], {}),
