@@ -1,4 +1,4 @@
-"""The seed thesis's showcase scenes path-traced through Mitsuba 3, beside the real-time render.
+"""The showcase scenes of Monzón González's thesis, path-traced through Mitsuba 3, beside the real-time render.
 
     python docs/figures/pbr_showcase.py [--size 360x240] [--spp 64]
 

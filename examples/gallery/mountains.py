@@ -1,4 +1,4 @@
-"""The seed thesis's noise mountains with a water plane: terrain marched with 5 octaves
+"""Noise mountains (after Monzón González's Zaragoza thesis) with a water plane: terrain marched with 5 octaves
 and shaded with 10, water flat but shaded with 6 octaves of ripples."""
 import sdfgl as sg
 

@@ -1,4 +1,4 @@
-"""The seed thesis's skyscrapers: mirror symmetry multiplies the columns, finite repetition
+"""Skyscrapers (after Monzón González's Zaragoza thesis): mirror symmetry multiplies the columns, finite repetition
 stacks the floors, a glass core, and a mirror copies the whole building."""
 import sdfgl as sg
 
