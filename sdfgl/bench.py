@@ -395,7 +395,7 @@ def run(quick: bool, size: tuple[int, int] | None, out: Path, progress: bool = T
         f"{frames} timed frames after {warmup} warm-up, variants interleaved.",
         "## Summary: default settings of each method\n\n" + summary_table(variants),
         "## Methods and settings: speed and error\n\n" + methods_table(variants),
-        "## Seed thesis tables beside ours\n\n" + seed_table(variants),
+        "## The tables of Monzón González's thesis beside ours\n\n" + seed_table(variants),
         "## Cost of each feature #define\n\n" + feature_table(features),
         "## Model only what a scene needs\n\n" + model,
         "## Big scenes\n\n" + big,

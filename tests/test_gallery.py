@@ -1,4 +1,4 @@
-"""Every gallery scene renders headless with its own settings, small, without NaN."""
+"""Every example scene renders headless with its own settings, small, without NaN."""
 from pathlib import Path
 
 import numpy as np
@@ -8,17 +8,20 @@ import sdfgl as sg
 from sdfgl.nodes.implicit import implicitize
 from sdfgl.scenefile import load_scene_file
 
-GALLERY = sorted((Path(__file__).resolve().parents[1] / "examples" / "gallery").glob("*.py"))
+EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+GALLERY = sorted((EXAMPLES / "gallery").glob("*.py"))
+SCENES = sorted(EXAMPLES.rglob("*.py"))
 
 
 def test_gallery_has_one_scene_per_family():
+    assert {"csg", "live_params", "pulse"} <= {p.stem for p in SCENES}
     names = {p.stem for p in GALLERY}
     assert {"primitives", "blends", "domain", "deform", "shapes2d", "implicit", "sierpinski", "tree",
             "skyscrapers", "mountains"} <= names
 
 
-@pytest.mark.parametrize("path", GALLERY, ids=[p.stem for p in GALLERY])
-def test_gallery_scene_renders(renderer, path):
+@pytest.mark.parametrize("path", SCENES, ids=[p.relative_to(EXAMPLES).as_posix() for p in SCENES])
+def test_example_scene_renders(renderer, path):
     sf = load_scene_file(path)
     res = renderer.render(sf.scene, sf.camera, (48, 32), outputs=("color", "depth", "normal"), **sf.settings)
     assert not np.isnan(res.depth).any() and np.isfinite(res.normal).all()

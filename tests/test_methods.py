@@ -105,7 +105,7 @@ def test_bench_quick_writes_reports(tmp_path):
                         "--scenes", "rounded_box", "product_union", "--out", str(tmp_path)],
                        capture_output=True, text=True, cwd=ROOT, timeout=300)
     assert r.returncode == 0, r.stderr
-    assert "## Summary: default settings of each method" in r.stdout and "Seed thesis tables" in r.stdout
+    assert "## Summary: default settings of each method" in r.stdout and "tables of Monzón González" in r.stdout
     data = json.loads((tmp_path / "bench.json").read_text())
     labels = {(v["scene"], v["label"]) for v in data["variants"]}
     assert ("rounded_box", "enhanced") in labels and ("product_union", "newton") in labels

@@ -305,7 +305,7 @@ class Difference(_Boolean):
 class Product(Node):
     """The product a * b of two fields: zero on both surfaces, but not a distance.
 
-    The seed thesis's "product union": an implicit field with no Lipschitz bound, which
+    The "product union" of Monzón González's thesis: an implicit field with no Lipschitz bound, which
     only the Newton and reference marchers may render. Its solid (a * b < 0) is where
     exactly one operand is inside.
     """
@@ -341,7 +341,7 @@ class Product(Node):
 
 
 def product(a: Node, b: Node) -> Node:
-    """The seed thesis's "product union": the implicit field a * b, zero on both surfaces.
+    """The "product union" of Monzón González's thesis: the implicit field a * b, zero on both surfaces.
 
     Args:
         a: first node.
