@@ -14,7 +14,7 @@ from .errors import SdfglError
 EXTRAS: dict[str, tuple[str, ...]] = {
     "implicit": ("sympy",),
     "plots": ("matplotlib",),
-    "docs": ("pdoc",),
+    "docs": ("mkdocs", "mkdocstrings"),
     "web": ("anywidget",),
     "mesh": ("trimesh", "scipy", "lxml", "networkx"),
     "video": ("imageio_ffmpeg",),
@@ -22,7 +22,8 @@ EXTRAS: dict[str, tuple[str, ...]] = {
     "pbr": ("mitsuba",),
     "panel": ("imgui_bundle", "OpenGL"),
 }
-"""Each extra of pyproject.toml and the modules (import names) it installs."""
+"""Each extra of pyproject.toml and the modules (import names) it installs (``all`` is every
+feature extra together, so it has no entry of its own)."""
 
 
 class MissingExtraError(SdfglError):

@@ -81,22 +81,18 @@ def test_video_pbr_and_ray_name_their_extra(tmp_path):
     assert refused(r, "pip install 'sdfgl[pbr]'"), r.stderr
     jobs = tmp_path / "jobs.json"
     jobs.write_text('{"jobs": [{"scene": "%s", "size": [32, 24], "output": "o.png"}]}'
-                    % (ROOT / "demos" / "csg.py").as_posix())
+                    % (ROOT / "examples" / "csg.py").as_posix())
     r, _ = run_without("ray", "batch", str(jobs), "--ray", "local", "--no-progress")
     assert refused(r, "pip install 'sdfgl[ray]'"), r.stderr
     assert list(tmp_path.iterdir()) == [jobs]
 
 
-@pytest.mark.skipif(not (ROOT / "docs" / "make_api.py").exists(), reason="no docs/make_api.py in this tree")
-def test_make_api_without_pdoc_says_what_to_install(tmp_path):
-    r, _ = run_without("pdoc", str(ROOT / "docs" / "make_api.py"), str(tmp_path / "api"))
-    assert r.returncode != 0 and "pip install 'sdfgl[docs]'" in r.stderr and "Traceback" not in r.stderr, r.stderr
-
-
 def test_require_extra_knows_every_extra_of_the_package():
     from sdfgl.extras import EXTRAS, MissingExtraError, require_extra
     declared = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["optional-dependencies"]
-    assert set(EXTRAS) == set(declared) - {"test"}
+    assert set(EXTRAS) == set(declared) - {"test", "all"}
+    (everything,) = declared["all"]  # [all] is every feature extra, all but the docs tools
+    assert set(everything.removeprefix("sdfgl[").removesuffix("]").split(",")) == set(EXTRAS) - {"docs"}
     require_extra("mesh", "scipy")  # installed here: no error
     with pytest.raises(MissingExtraError, match=r"the plot needs no_such_module_x, which is not installed: "
                                                 r"pip install 'sdfgl\[plots\]'"):
