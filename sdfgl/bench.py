@@ -168,7 +168,7 @@ FULL_EXTRA: list[dict] = [
 SEED_SCENES = ("rounded_box", "tunnel", "five_spheres", "product_union")
 MORE_SCENES = ("grazing_sphere", "horizon_plane", "thin_shell", "twist", "repeat_boundary")
 
-# The seed thesis's averages (Tables 5.1-5.3) and medians over 17 scenes (Table 5.4):
+# The averages of Monzón González's thesis ("Modelado de geometría mediante Signed Distance Functions", Zaragoza 2021) (Tables 5.1-5.3) and medians over 17 scenes (Table 5.4):
 # steps, time in seconds, squared depth error against Regular Marching.
 SEED_TABLES = {
     "rounded_box": {"sphere": (13.772, 0.12, 4.43e-06), "enhanced": (9.38034, 0.12, 5.12e-06),
@@ -416,11 +416,11 @@ def run(quick: bool, size: tuple[int, int] | None, out: Path, progress: bool = T
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
-    p.add_argument("--quick", action="store_true", help="small size, few frames, the seed scenes only (< 1 min)")
+    p.add_argument("--quick", action="store_true", help="small size, few frames, the thesis scenes only")
     p.add_argument("--size", type=lambda s: tuple(int(x) for x in s.lower().split("x")), default=None,
                    help="WIDTHxHEIGHT (default 400x300, 160x120 with --quick)")
     p.add_argument("--out", type=Path, default=Path("bench-out"), help="output folder (default bench-out)")
-    p.add_argument("--scenes", nargs="*", help="hard-case names to run (default: the seed scenes, and more)")
+    p.add_argument("--scenes", nargs="*", help="hard-case names to run (default: the thesis scenes, and more)")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
 
 

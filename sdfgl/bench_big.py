@@ -213,7 +213,7 @@ def run_big(quick: bool, size: tuple[int, int] = (320, 240)) -> str:
     measure([("growth: spheres r 0.15 in 12x2x12", n, lambda n=n: growth(n)) for n in sizes])
     n_inst = 64 if quick else 1000
     # the yardstick pair alone: a third, slower variant in the round-robin moved the pair's
-    # ratio from 2.1-2.2 (pairs) to 1.8 (session 7), so the free-way rows are groups of their own
+    # ratio from 2.1-2.2 (pairs) to 1.8, so the free-way rows are groups of their own
     measure([(f"{n_inst} spheres (yardstick)", n_inst, lambda: spheres_like(n_inst)),
              (f"{n_inst} moved copies of a 20-node subtree", n_inst, lambda: instances(n_inst))])
     for name, n, make in ((f"{n_inst} moved copies of a 20-node subtree", n_inst, lambda: instances(n_inst)),

@@ -50,13 +50,13 @@ class Settings:
     method: the marching algorithm: "auto" (the default: "enhanced" for exact and bound
         fields, "newton" for implicit ones; resolved per scene, and the result's settings
         show the choice), "sphere" (Hart), "relaxed" (Keinert et al.),
-        "enhanced" (Balint & Valasek), "newton", "forward_newton" (the seed thesis) or
+        "enhanced" (Balint & Valasek), "newton", "forward_newton" (Monzón González's thesis) or
         "reference" (fixed small steps and bisection, for validation).
     omega: relaxation of "relaxed" (in (1, 2), default 1.6) or "enhanced" (in (0, 1],
         default 0.9); None for the default.
     ref_step: the step of "reference" (default: the scene size / 512).
     newton_cap: the Newton methods' step is at most this many times the field value
-        (default 2; None for the seed thesis's uncapped Newton step).
+        (default 2; None for the uncapped Newton step of Monzón González's thesis).
     max_steps: the marching budget of a primary ray: loop rounds away from surfaces (one
         map() call each, a few more with a probe); the rounds that settle a ray near a
         surface (near misses) are counted apart, up to 2 max_steps rounds in all.

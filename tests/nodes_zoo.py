@@ -49,7 +49,7 @@ def all_nodes() -> dict[str, sg.Node]:
         "displace": sg.sphere(0.7).displace(0.08, 3.0, 3),
         "noise_field": sg.noise(1.5, 3, 1.0, 0.2) & sg.box(2.0),
         "displace_expr": sg.displace_expr(sg.box(0.8), "0.04*sin(9*x)*sin(9*y)*sin(9*z)"),
-        # 2D modelling (issue 15): each 2D shape and operator, made solid
+        # 2D modelling: each 2D shape and operator, made solid
         "extrude_boolean2d": sg.extrude(sg.circle(0.8) - sg.rectangle(0.8), 0.4),
         "extrude_union2d_smooth": sg.extrude(sg.union(sg.circle(0.5).translate((-0.3, 0)), sg.rectangle((0.6, 0.4)),
                                                       k=0.3), 0.5),
@@ -71,7 +71,7 @@ def all_nodes() -> dict[str, sg.Node]:
         "twist_x": sg.box((1.6, 0.6, 0.4)).twist(60, "x"),
         "bend_x": sg.box((0.3, 1.6, 0.4)).bend(40, "x"),
         "bend_y": sg.box((0.4, 0.3, 1.6)).bend(40, "y"),
-        # more solids and operators (issue 15)
+        # more solids and operators
         "tetrahedron": sg.tetrahedron(0.5),
         "dodecahedron": sg.dodecahedron(0.7),
         "icosahedron": sg.icosahedron(0.7),

@@ -1,5 +1,5 @@
 """Accuracy against closed-form ground truth (tests/closed_form.py, independent of
-sdfgl.reference), and the failure classes of issue 10 that are not a depth figure:
+sdfgl.reference), and the failure classes of the accuracy audit that are not a depth figure:
 NaN, bounds, shadows, anti-aliased thin wires, implicit fields by default."""
 import numpy as np
 import pytest
@@ -83,7 +83,7 @@ def test_bounded_scenes_are_not_clipped_by_max_dist():
 
 
 def test_no_nan_from_overflowing_fields_or_far_cameras():
-    with pytest.raises(sg.ParameterError, match="exponent 1000"):  # the expression parser's limit (issue 13)
+    with pytest.raises(sg.ParameterError, match="exponent 1000"):  # the expression parser's limit
         sg.implicit("x**1000 + y**1000 + z**1000 - 1")
     s = sg.implicit("x**64 + y**64 + z**64 - 1")  # the largest exponent accepted: overflows float32 all the same
     for method in ("newton", "forward_newton"):

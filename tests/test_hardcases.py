@@ -37,7 +37,7 @@ def test_camera_inside_solid_hits_at_zero():
 
 
 def test_tunnel_pixel_cone_needs_fewer_steps_than_fixed_epsilon():
-    # seed Exp. 2: shallow rays along planes. The footprint-relative hit test stops as soon
+    # Monzón González's thesis, Exp. 2: shallow rays along planes. The footprint-relative hit test stops as soon
     # as the pixel cannot resolve more, a fixed epsilon keeps stepping at every distance.
     case = next(c for c in CASES if c.name == "tunnel")
     cone, res_cone = run_case(case, (64, 48))

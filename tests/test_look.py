@@ -1,4 +1,4 @@
-"""Lights, materials, background, transparency and fog (issue 15, part 1)."""
+"""Lights, materials, background, transparency and fog."""
 import numpy as np
 import pytest
 

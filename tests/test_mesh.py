@@ -193,8 +193,8 @@ def _zoo():
 
 
 # Volumes are held against the twin's adaptive integral (48^3 cells, those the surface may cross
-# halved once: 96^3 effective; kept cheap for CI, see docs/notes for the finer levels).
-# Marching cubes at 48 cells misses it by > 1 % on these (measured, see docs/notes): it cuts
+# halved once: 96^3 effective; kept cheap for CI).
+# Marching cubes at 48 cells misses it by > 1 % on these (measured): it cuts
 # every sharp edge (a chamfer ~ cell^2 per unit of edge length), which on thin bars, small
 # copies and bent slabs is > 1 % of the solid; the sharp mode keeps those edges. (symmetric is
 # on the edge: -0.45 % against this cheap reference, -1.13 % against the 384^3-effective one.)

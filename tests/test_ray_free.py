@@ -148,7 +148,7 @@ def test_free_way_hits_what_the_reference_hits_in_fewer_steps():
     assert np.array_equal(hit, ref_hit)  # no surface stepped over, none made up
     assert np.percentile(err, 99) < 0.05
     # where it is off, the plain marcher is off the same way (a thin part both pass at a
-    # silhouette: issue 10's near misses), never worse
+    # silhouette: the near misses of the accuracy audit), never worse
     assert np.all(err <= plain_err + 0.05)
 
 

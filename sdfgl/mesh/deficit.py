@@ -6,7 +6,7 @@ to second order, a quadratic over the triangle that is zero at its corners; its 
 mean of its values at the three edge midpoints. The field divided by its gradient's length
 gives that gap at a midpoint (a distance even where the field is only a bound or warped), so
 the mesh's volume error is sum(area x mean midpoint gap), relative to the mesh's volume. It
-tracks the error against the twin's integral to 10-30 % on the zoo (docs/notes/session5).
+tracks the error against the twin's integral to 10-30 % on the zoo.
 """
 from __future__ import annotations
 

@@ -2,7 +2,7 @@
 
 The displacement's gradient bound (amplitude x frequency x the fBm's) is added to the
 child's, and only this subtree's field is divided by the sum. ``normal_octaves`` adds
-the seed thesis's trick: more octaves in a second field used only for normals, so a
+the trick of Monzón González's thesis: more octaves in a second field used only for normals, so a
 surface shows fine detail while it is marched with few octaves (terrain, water).
 """
 from __future__ import annotations
@@ -119,7 +119,7 @@ def displace(node: Node, amplitude: float, frequency: float = 1.0, octaves: int 
         frequency: noise frequency in cycles per unit, > 0.
         octaves: octaves marched, a whole number >= 1.
         normal_octaves: octaves used for shading normals (>= octaves; more shade finer
-            detail than is marched, the seeds' terrain and water trick). None: same as octaves.
+            detail than is marched, that thesis's terrain and water trick). None: same as octaves.
 
     A bound; only this subtree's steps shrink.
 

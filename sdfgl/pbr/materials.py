@@ -4,7 +4,7 @@ A :class:`Material` chooses among Mitsuba's ``diffuse``, ``roughplastic``,
 ``roughconductor`` / ``conductor`` and ``roughdielectric`` / ``dielectric`` by its terms;
 its colour is either given or taken from the scene's colour field (sampled on a grid
 by the same generated ``mapColor()`` that shades the real-time image). A :class:`Blend`
-is the seed thesis's SDF material: two materials mixed across the zero set of another
+is an SDF material in the manner of the Mitsuba plug-in thesis (see the docs' sources): two materials mixed across the zero set of another
 field (``boundary``), continuously over ``width`` — rock below a plane and snow above it,
 or a painted and a bare metal split by noise.
 """
