@@ -2,7 +2,10 @@
 from __future__ import annotations
 
 import argparse
+import math
 from typing import Any
+
+from ..scenefile_process import DEFAULT_TIMEOUT_S, SceneFileLoader
 
 from .common import (SCENE_HELP, add_camera_arguments, add_scene_arguments, add_settings_arguments,
                      camera_flags_given, camera_from_args, image_size, load_scene_args, render_settings,
@@ -25,11 +28,25 @@ def add_parser(sub: Any, command: str | None) -> None:
     v.add_argument("--max-samples", type=int, default=16, help="jittered samples accumulated when idle (16)")
     v.add_argument("--screenshot-dir", default=".", help="where P saves screenshots (default: here)")
     v.add_argument("--state-file", help="keep a JSON file with the view's state up to date (for scripts)")
+    v.add_argument("--load-timeout", type=positive_seconds, default=DEFAULT_TIMEOUT_S, metavar="SECONDS",
+                   help="stop loading the scene file after this long, at the start (then exit) and on each "
+                        f"reload (then keep the last scene) (default {DEFAULT_TIMEOUT_S:g})")
     v.add_argument("--panel", action=argparse.BooleanOptionalAction, default=None,
                    help="open with the side panel shown / hidden (default: shown if the window is >= 800 wide)")
     add_camera_arguments(v)
     add_settings_arguments(v)
     v.set_defaults(func=run)
+
+
+def positive_seconds(text: str) -> float:
+    """A number of seconds > 0 (argparse type)."""
+    try:
+        x = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a number of seconds, got {text!r}") from None
+    if not (math.isfinite(x) and x > 0):
+        raise argparse.ArgumentTypeError(f"expected a number of seconds > 0, got {text!r}")
+    return x
 
 
 def run(a: argparse.Namespace) -> int:
@@ -43,8 +60,12 @@ def run(a: argparse.Namespace) -> int:
     else:
         camera = None
         if camera_flags_given(a):
-            sf = load_scene_args(a)
+            loader = SceneFileLoader(a.load_timeout)
+            try:
+                sf = loader.wait(a.scene)  # the file is run in a child process, as the window runs it
+            finally:
+                loader.close()
             camera = camera_from_args(a, sf.scene, sf.camera)
-        v = Viewer(camera=camera, path=a.scene, **common, **settings_overrides(a))
+        v = Viewer(camera=camera, path=a.scene, load_timeout=a.load_timeout, **common, **settings_overrides(a))
     v.run()
     return 0

@@ -4,6 +4,10 @@ A reload's settings are the window's current ones with what the file changed app
 (a setting removed from the file goes back to the window's default) and what the caller
 gave explicitly on top. The new scene is shown once it has compiled and drawn: a file
 that fails to load, or a program that fails to compile, leaves the last good scene up.
+
+The file is run in a child process with a time limit (:mod:`sdfgl.scenefile_process`), never
+on the window's thread: a file that loops, sleeps or ends its process costs the window
+nothing, and a reload is polled for while the window keeps answering.
 """
 from __future__ import annotations
 
@@ -11,7 +15,8 @@ from pathlib import Path
 from typing import Any
 
 from ..nodes.base import IMPLICIT, Node
-from ..scenefile import SceneFile, load_scene_file
+from ..scenefile import SceneFile
+from ..scenefile_process import DEFAULT_TIMEOUT_S, SceneFileLoader
 from ..settings import DISTANCE_METHODS, Settings
 
 
@@ -24,20 +29,37 @@ def window_defaults(scene: Node) -> dict[str, Any]:
 
 
 class SceneFileWatch:
-    """The scene file at ``path``; ``explicit`` are the settings the caller gave (they win)."""
+    """The scene file at ``path``; ``explicit`` are the settings the caller gave (they win).
 
-    def __init__(self, path: str | Path, explicit: dict[str, Any]) -> None:
+    Each load of the file is stopped after ``timeout`` seconds."""
+
+    def __init__(self, path: str | Path, explicit: dict[str, Any], timeout: float = DEFAULT_TIMEOUT_S) -> None:
         self.path = Path(path)
         self.explicit = dict(explicit)
         self.file_settings: dict[str, Any] = {}  # the settings of the file as last shown
         self.mtime = 0.0
+        self.loader = SceneFileLoader(timeout)
 
     def load(self) -> SceneFile:
-        """The file's scene, camera and settings now (the window's first scene)."""
-        sf = load_scene_file(self.path)
+        """The file's scene, camera and settings now (the window's first scene); waits for the load.
+
+        Raises SceneFileError when the file fails, runs past the time limit or ends its process."""
+        mtime = self._mtime()
+        sf = self.loader.wait(self.path)
         self.file_settings = sf.settings
-        self.mtime = self.path.stat().st_mtime
+        self.mtime = mtime
         return sf
+
+    def _mtime(self) -> float:
+        try:
+            return self.path.stat().st_mtime
+        except OSError:
+            return 0.0
+
+    @property
+    def loading(self) -> float | None:
+        """Seconds the reload in progress has run, or None when none is."""
+        return self.loader.elapsed() if self.loader.loading is not None else None
 
     def changed(self) -> bool:
         """Whether the file was written since it was last loaded (taken as seen: asked once a change)."""
@@ -50,11 +72,19 @@ class SceneFileWatch:
         self.mtime = mtime
         return True
 
-    def reload(self, wanted: dict[str, Any]) -> tuple[Node, dict[str, Any], dict[str, Any]]:
-        """Load the file again: (scene, the settings to show it with, the file's own settings).
+    def start_reload(self) -> None:
+        """Start loading the file again (a reload still in progress is stopped: the newest wins)."""
+        self.loader.start(self.path)
 
-        ``wanted`` are the window's settings now. Raises whatever loading the file raises."""
-        sf = load_scene_file(self.path)
+    def poll_reload(self, wanted: dict[str, Any]) -> tuple[Node, dict[str, Any], dict[str, Any]] | None:
+        """The finished reload: (scene, the settings to show it with, the file's own settings); None
+        while it runs or when none was started. Never blocks.
+
+        ``wanted`` are the window's settings now. Raises SceneFileError when the file failed, ran
+        past the time limit or ended its process, and ParameterError for settings it cannot use."""
+        sf = self.loader.poll()
+        if sf is None:
+            return None
         settings = self.reloaded_settings(sf.scene, sf.settings, wanted)
         if sf.scene.exactness == IMPLICIT and settings.get("method", "enhanced") in DISTANCE_METHODS:
             settings.update(method="newton", ao=False)
@@ -75,3 +105,7 @@ class SceneFileWatch:
                     or self.file_settings[k] != v})
         new.update(self.explicit)
         return new
+
+    def close(self) -> None:
+        """Stop any load in progress and the process kept for the next one."""
+        self.loader.close()

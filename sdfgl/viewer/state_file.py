@@ -35,6 +35,7 @@ class ViewState:
     screenshots: list[str] = field(default_factory=list)
     frame_log: list[tuple[bool, float, float]] = field(default_factory=list)  # (moving, ms, scale)
     compiling: bool = False
+    loading: float | None = None  # seconds the scene file's reload has been loading (None: none is)
     param_edits: int = 0
     overlay: str = ""  # the text drawn over the image (help, hint, status, error)
     overlay_font: int = 0  # its font size in pixels

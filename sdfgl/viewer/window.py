@@ -22,6 +22,7 @@ from .. import shaderlib
 from ..camera import Camera, OrbitCamera
 from ..errors import ContextError, SdfglError
 from ..nodes.base import Node
+from ..scenefile_process import DEFAULT_TIMEOUT_S
 from ..settings import Settings
 from . import panel as panel_mod
 from . import rawgl
@@ -37,17 +38,23 @@ from .state_file import StateFile, ViewState, window_title
 class Viewer:
     """A glfw window showing a scene (or a scene file, reloaded when it changes).
 
+    A scene file is loaded in a child process (:mod:`.reload`), stopped after ``load_timeout``
+    seconds; the first load is waited for (a failure raises SceneFileError before any window opens),
+    a reload is not: the last good scene stays on screen meanwhile and when it fails.
+
     ``dirty`` says the render threads need a new frame spec (camera, parameters, size or
     program changed), ``repaint`` that the window needs presenting again (overlay, panel)."""
 
     def __init__(self, scene: Node | None = None, camera: Camera | None = None, *, path: str | Path | None = None,
                  size: tuple[int, int] = (960, 540), target_ms: float = 50.0, adaptive: bool = True,
                  max_samples: int = 16, state_file: str | Path | None = None,
-                 screenshot_dir: str | Path = ".", panel: bool | None = None, **settings: Any) -> None:
+                 screenshot_dir: str | Path = ".", panel: bool | None = None,
+                 load_timeout: float = DEFAULT_TIMEOUT_S, **settings: Any) -> None:
         self.path = Path(path) if path else None
         self.watch: SceneFileWatch | None = None
         if self.path is not None:
-            self.watch = SceneFileWatch(self.path, settings)  # the caller's settings: a reload keeps them
+            # the caller's settings: a reload keeps them
+            self.watch = SceneFileWatch(self.path, settings, load_timeout)
             sf = self.watch.load()
             scene, camera = sf.scene, camera or sf.camera
             settings = {**sf.settings, **settings}
@@ -256,6 +263,7 @@ class Viewer:
 
     def _overlay(self) -> moderngl.Texture:
         text = "\n".join(x for x in ((KEYS_HELP if self.show_help else "H: help" if self.show_hint else ""),
+                                     self._loading_text(),
                                      ("compiling..." if self.state.compiling else ""),
                                      (f"error: {self.state.error}" if self.state.error else "")) if x)
         x0 = self.view_rect()[0] + 10
@@ -291,16 +299,32 @@ class Viewer:
         self.progressive.error_token = self.progressive.token  # the newest request when the error came
         self.repaint = True
 
+    def _loading_text(self) -> str:
+        """The overlay's line for a reload in progress (its seconds once it takes a while)."""
+        if self.state.loading is None or self.path is None:
+            return ""
+        took = f" {self.state.loading:.0f} s (stopped at {self.watch.loader.timeout:g} s)" \
+            if self.watch is not None and self.state.loading >= 1 else ""
+        return f"loading {self.path.name}...{took}"
+
     def _check_reload(self) -> None:
-        if self.watch is None or not self.watch.changed():
+        """Start a reload when the file changed; take a finished one (never waits for it)."""
+        if self.watch is None:
             return
+        if self.watch.changed():
+            self.watch.start_reload()
         try:
-            scene, settings, file_settings = self.watch.reload(self.wanted_settings)
+            got = self.watch.poll_reload(self.wanted_settings)
         except Exception as exc:  # noqa: BLE001 - a scene file may raise anything: show it, keep the window
             self.set_error(describe_error(exc, f"reload of '{self.path}'"))
-            return
-        # shown when compiled: a GLSL error keeps the old scene
-        self.progressive.request(scene, settings, "reload", file_settings=file_settings)
+            got = None
+        loading = self.watch.loading
+        if (loading is None) != (self.state.loading is None) or int(loading or 0) != int(self.state.loading or 0):
+            self.repaint = True  # the overlay's line changes
+        self.state.loading = loading
+        if got is not None:  # shown when compiled: a GLSL error keeps the old scene
+            scene, settings, file_settings = got
+            self.progressive.request(scene, settings, "reload", file_settings=file_settings)
 
     def _write_state(self) -> None:
         self.state_file.write(self.state, self.camera, self.scene.label(), self.fb_size)
@@ -342,6 +366,8 @@ class Viewer:
 
     def close(self) -> None:
         """Stop the render threads and release the window."""
+        if getattr(self, "watch", None) is not None:
+            self.watch.close()
         if getattr(self, "window", None) is None:
             return
         if getattr(self, "progressive", None) is not None:
