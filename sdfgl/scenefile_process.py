@@ -40,6 +40,9 @@ from .errors import ParameterError, SceneFileError, SdfglError
 from .scenefile import SceneFile, load_scene_file
 
 DEFAULT_TIMEOUT_S = 30.0  # a scene file that takes longer to load is stopped
+# the child's program: the parent's import path, then main() (argv: the path as JSON, the answer's fd)
+_CHILD = ("import json, sys\nsys.path[:] = json.loads(sys.argv[1])\n"
+          "from sdfgl.scenefile_process import main\nmain(int(sys.argv[2]))\n")
 
 
 def _message(exc: BaseException) -> str:
@@ -52,11 +55,9 @@ class _Child:
 
     def __init__(self) -> None:
         read, write = os.pipe()
-        root = str(Path(__file__).resolve().parent.parent)  # this copy of sdfgl, whatever the child's path
-        env = {**os.environ, "PYTHONPATH": os.pathsep.join(x for x in (root, os.environ.get("PYTHONPATH")) if x)}
-        try:
-            self.proc = subprocess.Popen([sys.executable, "-m", "sdfgl.scenefile_process", str(write)],
-                                         stdin=subprocess.PIPE, pass_fds=(write,), env=env,
+        try:  # with this process's import path, so the child imports what this process would
+            self.proc = subprocess.Popen([sys.executable, "-c", _CHILD, json.dumps(sys.path), str(write)],
+                                         stdin=subprocess.PIPE, pass_fds=(write,),
                                          start_new_session=True)  # Ctrl-C is the parent's to handle
         finally:
             os.close(write)
@@ -72,9 +73,9 @@ class _Child:
         self.answered.set()
 
     def request(self, path: Path) -> None:
-        """Load ``path`` (with this process's import path and folder)."""
+        """Load ``path`` (in this process's current folder)."""
         self.path, self.started = path, time.monotonic()
-        line = json.dumps({"path": str(path), "sys_path": sys.path, "cwd": os.getcwd()}) + "\n"
+        line = json.dumps({"path": str(path), "cwd": os.getcwd()}) + "\n"
         try:
             self.proc.stdin.write(line.encode())
             self.proc.stdin.flush()
@@ -82,7 +83,7 @@ class _Child:
             pass
 
     def result(self, timeout: float) -> tuple | None:
-        """The child's answer ("ok", scene, camera, settings) / ("error", text) / ("local", why); None while
+        """The child's answer ("ok", scene, camera, settings) / ("error", text) / ("local",); None while
         it runs. Raises SceneFileError past ``timeout`` (the child is killed) or when it ended unanswered."""
         exited = self.proc.poll() is not None
         if not self.answered.is_set() and exited:
@@ -252,7 +253,6 @@ def main(result_fd: int) -> None:
         return
     req = json.loads(line)
     threading.Thread(target=_watch_parent, args=(sys.stdin.buffer,), daemon=True).start()
-    sys.path[:] = req["sys_path"]
     os.chdir(req["cwd"])
     try:
         sf = load_scene_file(req["path"])
@@ -261,14 +261,11 @@ def main(result_fd: int) -> None:
         answer = ("error", _message(exc))
     try:
         data = pickle.dumps(answer)
-    except Exception as exc:  # noqa: BLE001 - e.g. nodes of a class the file defines
-        data = pickle.dumps(("local", _message(exc)))
+    except Exception:  # noqa: BLE001 - e.g. nodes of a class the file defines
+        data = pickle.dumps(("local",))  # the parent loads it in a thread
     sys.stdout.flush()  # what the file printed, before the parent, answered, ends this process
     sys.stderr.flush()
     with os.fdopen(result_fd, "wb") as out:
         out.write(data)
     os._exit(0)  # the file's atexit handlers and threads are not waited for
 
-
-if __name__ == "__main__":
-    main(int(sys.argv[1]))

@@ -39,7 +39,7 @@ def _answers_a_key(drv: Driver) -> None:
     st = drv.state()
     ao, frames = st["settings"]["ao"], st["frames"]
     drv.key("o")
-    drv.wait_for(lambda s: s["settings"]["ao"] != ao and s["frames"] > frames, timeout=10.0,
+    drv.wait_for(lambda s: s["settings"]["ao"] != ao and s["frames"] > frames, timeout=20.0,
                  what="the key's toggle drawn")
 
 
