@@ -34,7 +34,7 @@ import sys
 import threading
 import time
 from pathlib import Path
-from typing import Any
+from typing import Any, NoReturn
 
 from .errors import ParameterError, SceneFileError, SdfglError
 from .scenefile import SceneFile, load_scene_file
@@ -103,12 +103,14 @@ class _Child:
                                  "(an endless loop?): stopped")
         return None
 
-    def _ended(self) -> tuple:
+    def _ended(self) -> NoReturn:
         rc = self.proc.returncode
-        how = (f"was killed by {signal.Signals(-rc).name}" if rc is not None and rc < 0 and -rc in signal.valid_signals()
-               else f"ended with exit status {rc}")
-        raise SceneFileError(f"scene file '{self.path}': the process loading it {how} before the file defined "
-                             "'scene' (does the file call os._exit?)")
+        if rc is not None and rc < 0 and -rc in signal.valid_signals():
+            how, hint = f"was killed by {signal.Signals(-rc).name}", ""
+        else:
+            how, hint = f"ended with exit status {rc}", " (does the file call os._exit?)"
+        raise SceneFileError(f"scene file '{self.path}': the process loading it {how} before the file "
+                             f"defined 'scene'{hint}")
 
     def kill(self) -> None:
         """End the child (it may be running the file) and reap it."""

@@ -96,7 +96,8 @@ def test_polling_never_waits_for_a_slow_file(tmp_path, loader):
 
 
 @pytest.mark.parametrize("code, match", [
-    ("import os\nos._exit(3)\n", "ended with exit status 3"),
+    ("import os\nos._exit(3)\n",
+     r"ended with exit status 3 before the file defined 'scene' \(does the file call os._exit\?\)"),
     ("import os, signal\nos.kill(os.getpid(), signal.SIGKILL)\n", "killed by SIGKILL"),
     ("import sys\nsys.exit(4)\n", r"sys.exit\(4\)"),
     ("scene = 1 +\n", "line 1: syntax error"),

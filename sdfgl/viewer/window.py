@@ -53,8 +53,7 @@ class Viewer:
         self.path = Path(path) if path else None
         self.watch: SceneFileWatch | None = None
         if self.path is not None:
-            # the caller's settings: a reload keeps them
-            self.watch = SceneFileWatch(self.path, settings, load_timeout)
+            self.watch = SceneFileWatch(self.path, settings, load_timeout)  # the caller's settings: reloads keep them
             sf = self.watch.load()
             scene, camera = sf.scene, camera or sf.camera
             settings = {**sf.settings, **settings}
@@ -303,7 +302,7 @@ class Viewer:
         """The overlay's line for a reload in progress (its seconds once it takes a while)."""
         if self.state.loading is None or self.path is None:
             return ""
-        took = f" {self.state.loading:.0f} s (stopped at {self.watch.loader.timeout:g} s)" \
+        took = f" {self.state.loading:.0f} s (limit {self.watch.loader.timeout:g} s)" \
             if self.watch is not None and self.state.loading >= 1 else ""
         return f"loading {self.path.name}...{took}"
 
