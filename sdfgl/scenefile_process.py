@@ -61,15 +61,24 @@ class _Child:
                                          start_new_session=True)  # Ctrl-C is the parent's to handle
         finally:
             os.close(write)
-        self.data = b""
-        self.answered = threading.Event()
+        self.eof = threading.Event()  # the child's answer is all read (or it closed its end)
+        self.answered = threading.Event()  # ... and unpickled here, off the caller's thread
+        self.answer: tuple | None = None
+        self.unreadable = ""  # why the answer could not be unpickled
         threading.Thread(target=self._read, args=(read,), daemon=True, name="sdfgl-scene-load").start()
         self.path = Path()
         self.started = 0.0
 
     def _read(self, fd: int) -> None:
+        """Read the answer and unpickle it (which rebuilds the nodes: their constructors may take a while)."""
         with os.fdopen(fd, "rb") as f:
-            self.data = f.read()
+            data = f.read()
+        self.eof.set()
+        if data:
+            try:
+                self.answer = pickle.loads(data)
+            except Exception as exc:  # noqa: BLE001 - a half answer: the child died while writing it
+                self.unreadable = _message(exc)
         self.answered.set()
 
     def request(self, path: Path) -> None:
@@ -86,17 +95,16 @@ class _Child:
         """The child's answer ("ok", scene, camera, settings) / ("error", text) / ("local",); None while
         it runs. Raises SceneFileError past ``timeout`` (the child is killed) or when it ended unanswered."""
         exited = self.proc.poll() is not None
-        if not self.answered.is_set() and exited:
-            self.answered.wait(0.2)  # what it wrote before ending
-        if self.answered.is_set() or exited:
+        if exited and not self.eof.is_set():
+            self.eof.wait(0.2)  # what it wrote before ending
+        if self.answered.is_set() or (exited and not self.eof.is_set()):
             self.kill()
-            try:
-                return pickle.loads(self.data) if self.data else self._ended()
-            except SceneFileError:
-                raise
-            except Exception as exc:  # noqa: BLE001 - a half answer: the child died while writing it
+            if self.answer is not None:
+                return self.answer
+            if self.unreadable:
                 raise SceneFileError(f"scene file '{self.path}': its scene could not be read back from the "
-                                     f"process that loaded it ({_message(exc)})") from exc
+                                     f"process that loaded it ({self.unreadable})")
+            self._ended()
         if time.monotonic() - self.started > timeout:
             self.kill()
             raise SceneFileError(f"scene file '{self.path}' did not finish loading within {timeout:g} s "
