@@ -99,14 +99,15 @@ def _set_uniform(prog: moderngl.Program, name: str, value: object) -> None:
         prog[name].value = value
 
 
-def _check_size(size: Sequence[int]) -> tuple[int, int]:
+def checked_size(size: Sequence[int], what: str = "render", limit: int = 16384) -> tuple[int, int]:
+    """(width, height) from ``size``, refused (naming ``what``) unless two whole numbers in 1..limit."""
     try:
         w, h = (int(x) for x in size)
         ok = all(float(x) == int(x) for x in size)
-    except (TypeError, ValueError):
-        raise ParameterError(f"render: 'size' must be (width, height), got {size!r}") from None
-    if not ok or not (1 <= w <= 16384 and 1 <= h <= 16384):
-        raise ParameterError(f"render: 'size' must be two integers in 1..16384, got {size!r}")
+    except (TypeError, ValueError, OverflowError):
+        raise ParameterError(f"{what}: 'size' must be (width, height), got {size!r}") from None
+    if not ok or not (1 <= w <= limit and 1 <= h <= limit):
+        raise ParameterError(f"{what}: 'size' must be two integers in 1..{limit}, got {size!r}")
     return w, h
 
 
@@ -295,7 +296,7 @@ class Renderer:
         if not isinstance(scene, Node):
             raise ParameterError(f"render: 'scene' must be an sdfgl node, got {type(scene).__name__} {scene!r}")
         st = Settings.build(**settings).resolved(scene.exactness)
-        wh = _check_size(size)
+        wh = checked_size(size)
         cam = camera if camera is not None else OrbitCamera.framing(*scene.bounds, aspect=wh[0] / wh[1])
         if not isinstance(cam, Camera):
             raise ParameterError(f"render: 'camera' must be an sdfgl Camera, got {type(cam).__name__}")

@@ -15,7 +15,7 @@ from ..camera import Camera, OrbitCamera
 from ..errors import ParameterError
 from ..nodes.base import Node
 from ..params import Time
-from ..render import Renderer, _check_size, default_renderer
+from ..render import Renderer, checked_size, default_renderer
 from .paths import CameraPath
 from .progress import ProgressBar
 from .writers import FrameWriter, open_writer
@@ -115,7 +115,7 @@ def animate(scene: Node, output: str | Path | FrameWriter, seconds: float = 4.0,
     """
     if not isinstance(scene, Node):
         raise ParameterError(f"animate: 'scene' must be an sdfgl node, got {type(scene).__name__}")
-    wh = _check_size(size)
+    wh = checked_size(size)
     if not (isinstance(fps, (int, float)) and 0 < fps <= 1000):
         raise ParameterError(f"animate: 'fps' must be a number in (0, 1000], got {fps!r}")
     n = frames if frames is not None else round(float(seconds) * fps)

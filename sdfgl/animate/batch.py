@@ -66,7 +66,7 @@ def finished(job: Job) -> bool:
     return all(os.path.exists(p) for p in job.outputs)
 
 
-class _Tracker:
+class Tracker:
     """Attempts, retries and the summary, shared by the local and Ray back ends."""
 
     def __init__(self, summary: BatchSummary, jobs: list[Job], retries: int, bar: ProgressBar | None) -> None:
@@ -97,7 +97,7 @@ class _Tracker:
         return False
 
 
-def _run_local(jobs: list[Job], workers: int, tracker: _Tracker, timeout: float | None) -> None:
+def _run_local(jobs: list[Job], workers: int, tracker: Tracker, timeout: float | None) -> None:
     """Run ``jobs`` on a spawn process pool. When a worker dies, the pool is made anew and the jobs
     that were in flight run again one at a time, so only the job that kills its worker is charged."""
     threads = max(1, (os.cpu_count() or 1) // workers)
@@ -163,7 +163,7 @@ def run_batch(jobs: str | Path | Iterable[Job], workers: int | None = None, ray:
                            workers=min(n_workers, max(len(pending), 1)), backend="ray" if ray else "local")
     t0 = time.perf_counter()
     bar = ProgressBar(len(pending), "job") if progress and pending else None
-    tracker = _Tracker(summary, pending, retries, bar)
+    tracker = Tracker(summary, pending, retries, bar)
     if pending:
         if ray:
             from .raypool import run_ray

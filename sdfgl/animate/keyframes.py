@@ -20,7 +20,8 @@ from ..params import Live, Time
 EASES = ("linear", "smooth", "step")
 
 
-def _keys(keys: Mapping[float, Any] | Sequence[tuple[float, Any]], what: str) -> list[tuple[float, Any]]:
+def keyframe_list(keys: Mapping[float, Any] | Sequence[tuple[float, Any]], what: str) -> list[tuple[float, Any]]:
+    """Keyframes given as a mapping or (time, value) pairs, as a list sorted by time (``what`` names them in errors)."""
     if isinstance(keys, Mapping):
         items = list(keys.items())
     elif isinstance(keys, (Sequence, np.ndarray)) and not isinstance(keys, (str, bytes)):
@@ -94,7 +95,7 @@ def keyframes(keys: Mapping[float, Any] | Sequence[tuple[float, Any]], ease: str
     clock = time if time is not None else Time()
     if not isinstance(clock, Live) or clock.dims != 1:
         raise ParameterError(f"{what}: 'time' must be a live scalar such as sg.time(), got {clock!r}")
-    ks = _keys(keys, what)
+    ks = keyframe_list(keys, what)
     vals: list[np.ndarray] = []
     for i, (_, v) in enumerate(ks):
         vals.append(_value(v, what, i, vals[0].shape if vals else None))

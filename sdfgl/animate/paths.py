@@ -18,7 +18,7 @@ from ..camera import Camera, OrbitCamera, check_fov
 from ..errors import ParameterError
 from ..nodes.base import Node
 from ..values import validate as v
-from .keyframes import _keys
+from .keyframes import keyframe_list
 
 PATH_EASES = ("spline", "linear", "smooth")
 
@@ -124,7 +124,7 @@ class LookAtPath(CameraPath):
         self.up = v.vector(what, "up", up, nonzero=True)
         fov = v.scalar(what, "fov", fov, positive=True)
         rows = []
-        for i, (t, key) in enumerate(_keys(keys, what)):
+        for i, (t, key) in enumerate(keyframe_list(keys, what)):
             if isinstance(key, Mapping):
                 unknown = set(key) - {"eye", "target", "fov"}
                 if unknown or "eye" not in key:

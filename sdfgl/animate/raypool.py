@@ -15,7 +15,7 @@ from .jobfile import Job
 from .worker import Outcome, init_worker, run_job
 
 if TYPE_CHECKING:  # pragma: no cover
-    from .batch import _Tracker
+    from .batch import Tracker
 
 
 def _task(job: Job, scene_text: bytes, threads: int, timeout: float | None) -> Outcome:
@@ -43,7 +43,7 @@ def _connect(address: str, workers: int | None) -> Any:
     return ray
 
 
-def run_ray(jobs: list[Job], address: str, workers: int | None, tracker: "_Tracker", timeout: float | None) -> int:
+def run_ray(jobs: list[Job], address: str, workers: int | None, tracker: "Tracker", timeout: float | None) -> int:
     """Run ``jobs`` as Ray tasks (one CPU each); returns the cluster's CPU count."""
     ray = _connect(address, workers)
     cpus = int(ray.cluster_resources().get("CPU", 1))

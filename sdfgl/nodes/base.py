@@ -423,7 +423,7 @@ def fluent(*names: str) -> Callable[[FluentT], FluentT]:
     return register
 
 
-_CACHES = ("_m_", "_key", "_token", "_depth", "_bounds_cache", "_live_cache", "_detail", "_dag", "_grid", "_kids",
+CACHES = ("_m_", "_key", "_token", "_depth", "_bounds_cache", "_live_cache", "_detail", "_dag", "_grid", "_kids",
            "_data_min",
            "_seq", "_fields", "_facts")
 

@@ -13,7 +13,7 @@ import numpy as np
 from ..errors import ParameterError
 from ..params import Live
 from ..values import validate as v
-from .base import _CACHES, BOUND, EXACT, IMPLICIT, Node, box_of, fluent, grid_min_now
+from .base import CACHES, BOUND, EXACT, IMPLICIT, Node, box_of, fluent, grid_min_now
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..codegen import Emitter
@@ -28,7 +28,8 @@ BLEND_REACH = {"quadratic": 0.25, "circular": 1.0, "chamfer": 0.5}
 BLEND_GLSL = {"circular": ("op_circular", "opCircular"), "chamfer": ("op_chamfer", "opChamfer")}
 
 
-def _smin(a: np.ndarray, b: np.ndarray, k: float, blend: str = "quadratic") -> np.ndarray:
+def smooth_min(a: np.ndarray, b: np.ndarray, k: float, blend: str = "quadratic") -> np.ndarray:
+    """The float64 twin of the GLSL smooth minimum ``blend`` with radius ``k`` (elementwise)."""
     if blend == "chamfer":
         return np.minimum(np.minimum(a, b), (a + b - k) * 0.5)
     if blend == "circular":
@@ -39,8 +40,9 @@ def _smin(a: np.ndarray, b: np.ndarray, k: float, blend: str = "quadratic") -> n
     return np.minimum(a, b) - h * h * k * 0.25
 
 
-def _smax(a: np.ndarray, b: np.ndarray, k: float, blend: str = "quadratic") -> np.ndarray:
-    return -_smin(-a, -b, k, blend)
+def smooth_max(a: np.ndarray, b: np.ndarray, k: float, blend: str = "quadratic") -> np.ndarray:
+    """The float64 twin of the smooth maximum: ``-smooth_min(-a, -b)``."""
+    return -smooth_min(-a, -b, k, blend)
 
 
 class _Boolean(Node):
@@ -97,7 +99,7 @@ class _Boolean(Node):
             n += 1
         out = type(self).__new__(type(self))
         out.__dict__.update({k: v for k, v in self.__dict__.items()
-                             if not k.startswith(_CACHES) and k not in ("_kids", "_seq")})
+                             if not k.startswith(CACHES) and k not in ("_kids", "_seq")})
         out.__dict__["_seq"] = (back, n, fr, m)
         return out
 
@@ -239,7 +241,7 @@ class Union(_Boolean):
         return em.assign("vec4", f"vec4({mixed}.rgb, {self._smooth(em, f'{a}.w', f'{b}.w')})")
 
     def _fold(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
-        return np.minimum(a, b) if self._hard else _smin(a, b, float(self.k), self.blend)
+        return np.minimum(a, b) if self._hard else smooth_min(a, b, float(self.k), self.blend)
 
     @property
     def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
@@ -266,7 +268,7 @@ class Intersection(_Boolean):
         return em.assign("vec4", f"vec4({mixed}.rgb, {self._smooth(em, f'{a}.w', f'{b}.w', negate=True)})")
 
     def _fold(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
-        return np.maximum(a, b) if self._hard else _smax(a, b, float(self.k), self.blend)
+        return np.maximum(a, b) if self._hard else smooth_max(a, b, float(self.k), self.blend)
 
     @property
     def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
@@ -295,7 +297,7 @@ class Difference(_Boolean):
         return em.assign("vec4", f"vec4({mixed}.rgb, {self._smooth(em, f'{a}.w', f'(-{b}.w)', negate=True)})")
 
     def _fold(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
-        return np.maximum(a, -b) if self._hard else _smax(a, -b, float(self.k), self.blend)
+        return np.maximum(a, -b) if self._hard else smooth_max(a, -b, float(self.k), self.blend)
 
     @property
     def _bounds(self) -> tuple[np.ndarray, np.ndarray]:

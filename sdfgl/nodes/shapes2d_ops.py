@@ -13,7 +13,7 @@ import numpy as np
 from ..errors import ParameterError
 from ..values import validate as v
 from .base import BOUND, EXACT, IMPLICIT, Node
-from .booleans import BLEND_GLSL, BLEND_REACH, BLENDS, K_MIN, _smin
+from .booleans import BLEND_GLSL, BLEND_REACH, BLENDS, K_MIN, smooth_min
 from .shapes2d import Shape2D
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -56,7 +56,7 @@ class _Boolean2D(Shape2D):
         return f"-{self._min(em, f'(-{a})', f'(-{b})')}" if self.k else f"max({a}, {b})"
 
     def _fmin(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
-        return np.minimum(a, b) if self.k == 0 else _smin(a, b, self.k, self.blend)
+        return np.minimum(a, b) if self.k == 0 else smooth_min(a, b, self.k, self.blend)
 
     def _fmax(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
         return -self._fmin(-a, -b)

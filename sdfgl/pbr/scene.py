@@ -20,6 +20,7 @@ from ..errors import ParameterError
 from ..nodes.base import Node
 from ..codegen import material_channels
 from ..evaluate import evaluate, evaluate_channel
+from ..render import checked_size
 from .field_grid import (Progress, SampledField, auto_resolution, sample_cells, sample_colors, sample_field,
                          scene_box)
 from .lighting import Sky, Sun
@@ -55,16 +56,6 @@ def _check_camera(camera: object, scene: Node) -> Camera:
     if not isinstance(cam, Camera):
         raise ParameterError(f"pbr: 'camera' must be an sdfgl Camera, got {type(cam).__name__}")
     return cam
-
-
-def _check_size(size: object) -> tuple[int, int]:
-    try:
-        w, h = (int(x) for x in size)  # type: ignore[union-attr]
-    except (TypeError, ValueError):
-        raise ParameterError(f"pbr: 'size' must be (width, height), got {size!r}") from None
-    if not (1 <= w <= 8192 and 1 <= h <= 8192):
-        raise ParameterError(f"pbr: 'size' must be two integers in 1..8192, got {size!r}")
-    return w, h
 
 
 def sensor(mi: Any, camera: Camera, size: tuple[int, int], spp: int, offset: np.ndarray, far: float) -> dict:
@@ -109,7 +100,7 @@ def build(mi: Any, scene: Node, camera: Camera | None = None, size: object = (64
     if not isinstance(scene, Node):
         raise ParameterError(f"pbr: 'scene' must be an sdfgl node, got {type(scene).__name__}")
     cam = _check_camera(camera, scene)
-    wh = _check_size(size)
+    wh = checked_size(size, "pbr", 8192)
     if not (isinstance(spp, (int, np.integer)) and 1 <= spp <= 1 << 16):
         raise ParameterError(f"pbr: 'spp' must be an integer in 1..65536, got {spp!r}")
     if not (isinstance(max_depth, (int, np.integer)) and 1 <= max_depth <= 64):

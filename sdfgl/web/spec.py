@@ -58,7 +58,8 @@ def _blocks(text: str, owners: tuple[str, ...]) -> list[str]:
     return out
 
 
-def _camera_state(cam: OrbitCamera) -> dict[str, Any]:
+def orbit_state(cam: OrbitCamera) -> dict[str, Any]:
+    """The orbit camera as the page and widget keep it: target, distance, yaw, pitch, fov."""
     return {"target": [float(x) for x in cam.target], "distance": float(cam.distance), "yaw": float(cam.yaw),
             "pitch": float(cam.pitch), "fov": float(cam.fov)}
 
@@ -249,7 +250,7 @@ def build(scene: Node, camera: Camera | None = None, size: tuple[int, int] = (64
         "origin": [float(x) for x in origin],
         "bounds": [[float(x) if np.isfinite(x) else (-GLSL_FAR if i == 0 else GLSL_FAR) for x in b]
                    for i, b in enumerate(scene.bounds)],
-        "camera": _camera_state(cam),
+        "camera": orbit_state(cam),
         "params": [{"uniform": f"uP{i}", "label": p.label, "dims": p.dims,
                     "value": p.value.tolist() if p.dims == 3 else float(p.value),
                     "min": lo, "max": hi} for i, (p, (lo, hi)) in enumerate(zip(first.params, ranges))],

@@ -23,7 +23,7 @@ from ..nodes.base import Node
 from ..params import Param
 from ..render import live_frame
 from . import assets
-from .spec import _camera_state, build, camera_from_state
+from .spec import orbit_state, build, camera_from_state
 
 try:
     import anywidget
@@ -117,7 +117,7 @@ class SceneWidget(anywidget.AnyWidget):
     def camera(self, cam: Camera) -> None:
         if not isinstance(cam, Camera):
             raise ParameterError(f"widget.camera must be an sdfgl Camera, got {type(cam).__name__}")
-        self.camera_state = _camera_state(OrbitCamera.of(cam, *self.scene.bounds))
+        self.camera_state = orbit_state(OrbitCamera.of(cam, *self.scene.bounds))
 
     @property
     def settings(self) -> dict[str, Any]:
