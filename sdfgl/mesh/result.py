@@ -72,7 +72,9 @@ class Mesh:
 
     def save(self, path: str | Path, **options: Any) -> Path:
         """Write the mesh; the format comes from the suffix: .stl (binary), .obj (+ .mtl with
-        one material per colour), .ply (vertex colours), .glb / .gltf (vertex colours), .3mf."""
+        one material per colour), .ply (vertex colours), .glb / .gltf (vertex colours), .3mf
+        (one object with a base material per colour; ``units="mm"`` etc. names what a scene
+        unit is, default millimetres). Several parts in one file: :func:`sdfgl.save_3mf`."""
         from .writers import write
         return write(self, Path(path), **options)
 
