@@ -37,6 +37,11 @@ def add_parser(sub: Any, command: str | None) -> None:
     m.add_argument("--report", action="store_true",
                    help="also measure the mesh against the float64 twin and print the accuracy report "
                         "(slow: often many times the meshing; needs scipy, sdfgl[mesh])")
+    g = m.add_argument_group("printing checks (printed when any is given; lengths in --units, default mm)")
+    g.add_argument("--min-wall", type=float, metavar="T", help="flag the thinnest wall thinner than T, with where it is")
+    g.add_argument("--overhang", type=float, metavar="DEG",
+                   help="area facing down more than DEG degrees from vertical (default 45)")
+    g.add_argument("--density", type=float, metavar="G_CM3", help="the mass for this density in g/cm^3")
     m.add_argument("--no-report", action="store_true", help=argparse.SUPPRESS)  # the report used to be the default
     m.add_argument("--quiet", action="store_true", help="no progress line")
     m.set_defaults(func=run)
@@ -80,6 +85,10 @@ def run(a: argparse.Namespace) -> int:
           f"{m.timings['total_s']:.2f} s meshing, {t:.2f} s with writing")
     if a.report:
         print(f"report: {m.report()}")
+    if a.min_wall is not None or a.overhang is not None or a.density is not None:
+        checks = m.print_report(min_wall=a.min_wall, overhang=45.0 if a.overhang is None else a.overhang,
+                                density=a.density, units=a.units or "millimeter")
+        print(f"print: {checks}")
     sys.stdout.flush()
     return 0
 

@@ -11,6 +11,7 @@ from ..nodes.base import Node
 from .lattice import Lattice
 
 if TYPE_CHECKING:  # pragma: no cover - imported where report() runs
+    from .printing import PrintReport
     from .report import MeshReport
 
 
@@ -82,3 +83,12 @@ class Mesh:
         """Accuracy of the mesh against the float64 twin (see :class:`sdfgl.mesh.report.MeshReport`)."""
         from .report import measure
         return measure(self, twin_samples, volume_resolution)
+
+    def print_report(self, min_wall: float | None = None, overhang: float = 45.0, density: float | None = None,
+                     units: str = "millimeter", up: object = "z") -> PrintReport:
+        """Printing checks (see :class:`sdfgl.mesh.printing.PrintReport`): bounding box and
+        volume in ``units`` (scene units taken as that unit), mass in grams for a ``density``
+        in g/cm^3, the area facing down more than ``overhang`` degrees from vertical (``up``
+        is the build direction), and with ``min_wall`` the thinnest wall below it and where."""
+        from .printing import measure_print
+        return measure_print(self, min_wall, overhang, density, units, up)
