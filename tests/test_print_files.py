@@ -62,6 +62,8 @@ def test_a_single_mesh_keeps_its_colours_as_base_materials_and_its_unit(tmp_path
     colours = set(doc["objects"]["one"]["colors"])
     assert {"#FF0000FF", "#0000FFFF"} <= colours
     assert trimesh.load(str(path)).units == "centimeter"
+    m = two.save(tmp_path / "node.3mf", units="inch", resolution=16)  # Node.save passes the unit on
+    assert read_3mf(tmp_path / "node.3mf")["unit"] == "inch" and len(m.faces) > 0
 
 
 def test_obj_and_glb_keep_the_parts_and_their_materials(tmp_path):
