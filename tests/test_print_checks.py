@@ -70,6 +70,10 @@ def test_bad_print_report_options_are_clear_errors(box):
         box.print_report(min_wall=0)
     with pytest.raises(sg.ParameterError, match="unknown unit 'parsec'"):
         box.print_report(units="parsec")
+    bare = sg.Mesh(box.vertices, box.faces, box.normals)
+    assert abs(bare.print_report().volume - 800) < 1e-3  # what needs no field works without a scene
+    with pytest.raises(sg.ParameterError, match="'min_wall' reads the scene's field, and this mesh has no scene"):
+        bare.print_report(min_wall=1)
 
 
 def test_cli_prints_the_checks(tmp_path):

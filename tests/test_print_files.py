@@ -105,6 +105,11 @@ def test_cli_writes_the_parts_of_a_scene_file_with_its_unit(tmp_path):
     r = subprocess.run([sys.executable, "-m", "sdfgl", "mesh", str(scene), "-o", str(tmp_path / "p.stl"),
                         "--units", "mm"], capture_output=True, text=True, cwd=ROOT, timeout=120)
     assert r.returncode == 2 and "--units is stored by 3MF only" in r.stderr
+    r = subprocess.run([sys.executable, "-m", "sdfgl", "mesh", str(scene), "-o", str(tmp_path / "p.glb"),
+                        "--units", "cm", "--density", "1", "--resolution", "16", "--quiet"],
+                       capture_output=True, text=True, cwd=ROOT, timeout=120)
+    assert r.returncode == 0, r.stderr
+    assert "print inlay: size 6 x 6 x 5.2 cm" in r.stdout and "print body: size 20 x 20 x 5 cm" in r.stdout
 
 
 def test_a_scene_file_with_bad_parts_is_refused(tmp_path):

@@ -66,8 +66,9 @@ def run(a: argparse.Namespace) -> int:
     if a.units is not None:
         from ..values.units import unit_name
         unit_name(a.units, "--units")
-        if Path(a.output).suffix.lower() != ".3mf":
-            raise SdfglError(f"--units is stored by 3MF only, not by '{a.output}'")
+        if Path(a.output).suffix.lower() != ".3mf" and not print_checks_asked(a):
+            raise SdfglError(f"--units is stored by 3MF only, not by '{a.output}' "
+                             "(it also names the unit of the printing checks)")
     sf = load_scene_args(a)
     bounds = None if a.bounds is None else (a.bounds[:3], a.bounds[3:])
     options = dict(step=a.step, resolution=a.resolution, samples=a.samples, bounds=bounds,
@@ -78,31 +79,51 @@ def run(a: argparse.Namespace) -> int:
     m = mesh(sf.scene, **options)
     if len(m.faces) == 0:
         raise SdfglError("the scene has no surface inside the box: nothing to write")
-    path = m.save(a.output, **({} if a.units is None else {"units": a.units}))
+    path = m.save(a.output, **file_units(a))
     t = time.perf_counter() - t0
     refined = "" if m.default_step is None else f" (refined from {m.default_step:.4g} for thin or small curved parts)"
     print(f"wrote {path}: {len(m.vertices)} vertices, {len(m.faces)} triangles, cell {m.step:.4g}{refined}, "
           f"{m.timings['total_s']:.2f} s meshing, {t:.2f} s with writing")
     if a.report:
         print(f"report: {m.report()}")
-    if a.min_wall is not None or a.overhang is not None or a.density is not None:
-        checks = m.print_report(min_wall=a.min_wall, overhang=45.0 if a.overhang is None else a.overhang,
-                                density=a.density, units=a.units or "millimeter")
-        print(f"print: {checks}")
+    if print_checks_asked(a):
+        print(f"print: {print_checks(m, a)}")
     sys.stdout.flush()
     return 0
 
 
+def print_checks_asked(a: argparse.Namespace) -> bool:
+    """Whether any of ``--min-wall --overhang --density`` was given."""
+    return a.min_wall is not None or a.overhang is not None or a.density is not None
+
+
+def print_checks(m: Any, a: argparse.Namespace) -> Any:
+    """The mesh's printing checks as the flags ask (lengths in ``--units``, default mm)."""
+    return m.print_report(min_wall=a.min_wall, overhang=45.0 if a.overhang is None else a.overhang,
+                          density=a.density, units=a.units or "millimeter")
+
+
+def file_units(a: argparse.Namespace) -> dict[str, str]:
+    """The ``units=`` option for the writer: given, and the output is a 3MF file."""
+    return {"units": a.units} if a.units is not None and Path(a.output).suffix.lower() == ".3mf" else {}
+
+
 def write_parts_file(parts: dict, a: argparse.Namespace, options: dict[str, Any]) -> int:
-    """Mesh and write a scene file's ``parts`` to ``a.output`` (one object per part)."""
+    """Mesh and write a scene file's ``parts`` to ``a.output`` (one object per part); the
+    printing checks, when asked for, are printed part by part."""
+    from ..mesh.build import mesh
     from ..mesh.parts import parts_of
     from ..mesh.writers import write_parts
     t0 = time.perf_counter()
-    meshed = parts_of(parts, **options)
-    path = write_parts(meshed, Path(a.output), a.units)
+    meshes = {name: mesh(node, **options) for name, node in parts.items()}
+    meshed = parts_of(meshes)
+    path = write_parts(meshed, Path(a.output), file_units(a).get("units"))
     sizes = ", ".join(f"{p.name} {len(p.faces)} triangles" for p in meshed)
     print(f"wrote {path}: {len(meshed)} parts ({sizes}), {time.perf_counter() - t0:.2f} s")
     if a.report:
         print("report: --report measures a single scene; it is skipped for a file of parts", file=sys.stderr)
+    if print_checks_asked(a):
+        for name, m in meshes.items():
+            print(f"print {name}: {print_checks(m, a)}")
     sys.stdout.flush()
     return 0

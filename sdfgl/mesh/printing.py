@@ -99,6 +99,9 @@ def measure_print(mesh, min_wall: float | None = None, overhang: float = 45.0, d
         raise ParameterError(f"print_report: parameter 'min_wall' must be a length > 0, got {min_wall!r}")
     if len(mesh.faces) == 0:
         raise ParameterError("print_report: the mesh is empty")
+    if min_wall is not None and (mesh.scene is None or mesh.lattice is None):
+        raise ParameterError("print_report: 'min_wall' reads the scene's field, and this mesh has no scene "
+                             "(mesh it with sg.mesh)")
     up_dir = direction("print_report", "up", up)
     up_dir = up_dir / np.linalg.norm(up_dir)
     V, F = mesh.vertices, mesh.faces
