@@ -87,6 +87,8 @@ def test_bad_parts_units_and_suffixes_are_clear_errors(tmp_path):
         sg.save_parts(PARTS, tmp_path / "a.stl", resolution=8)
     with pytest.raises(sg.ParameterError, match="part 'lid' must be an sdfgl node or mesh, got int"):
         sg.save_3mf({"lid": 3}, tmp_path / "a.3mf")
+    with pytest.raises(sg.SdfglError, match="OBJ names cannot hold spaces, and part 'the lid' has one"):
+        sg.save_parts({"the lid": sg.sphere(1)}, tmp_path / "a.obj", resolution=8)
     with pytest.raises(sg.SdfglError, match="'units' is stored by 3MF only"):
         sg.mesh(sg.sphere(1), resolution=8).save(tmp_path / "a.stl", units="mm")
     assert not list(tmp_path.iterdir())

@@ -74,6 +74,10 @@ def write_parts(parts: list[Part], path: Path, units: str | None = None) -> Path
     if units is not None and suffix != ".3mf":
         raise SdfglError(f"cannot write parts to '{path}': 'units' is stored by 3MF only, not by {suffix}")
     if suffix == ".obj":
+        spaced = [n for n in names if len(n.split()) != 1]
+        if spaced:
+            raise SdfglError(f"cannot write parts to '{path}': OBJ names cannot hold spaces, and part "
+                             f"{spaced[0]!r} has one")
         _obj(parts, path, named=True)
         return path
     unit = unit_name(units or "millimeter", f"saving '{path}'")
