@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Set up sdfgl on a fresh Debian/Ubuntu machine: Mesa EGL (and, with --test, Xvfb,
-# xdotool, glslang-tools and chromium for the browser tests), a virtual environment in .venv, and the package in it.
+# xdotool, glslang-tools and chromium for the browser tests, prusa-slicer for the print-file tests), a virtual environment in .venv, and the package in it.
 #   ./install.sh          the library, the `sdfgl` command and every optional feature ([all])
 #   ./install.sh --test   also what the test suite needs
 set -euo pipefail
@@ -10,7 +10,7 @@ with_tests=0
 [ "${1:-}" = "--test" ] && with_tests=1
 
 packages=(libegl1 libegl-mesa0 libgl1-mesa-dri)
-[ "$with_tests" = 1 ] && packages+=(xvfb xdotool glslang-tools chromium)
+[ "$with_tests" = 1 ] && packages+=(xvfb xdotool glslang-tools chromium prusa-slicer)
 
 missing=()
 for p in "${packages[@]}"; do

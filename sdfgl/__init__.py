@@ -35,6 +35,7 @@ from .version import __version__
 # module would replace it).
 _LAZY = {
     "save_scene": "scene_io", "load_scene": "scene_io", "from_dict": "scene_io",
+    "save_3mf": "mesh.multipart", "save_parts": "mesh.multipart",
 }
 
 
@@ -215,5 +216,5 @@ __all__ = [
     "morph", "taper", "glsl",
     "time", "keyframes", "turntable", "camera_path", "animate", "sin", "cos", "tan", "abs", "sqrt", "exp", "log",
     "sign", "floor", "fract", "radians", "min", "max", "pow", "mod", "step", "clamp", "mix", "smoothstep",
-    "mesh", "Mesh", "cache_budget", "CacheBudget",
+    "mesh", "Mesh", "save_3mf", "save_parts", "cache_budget", "CacheBudget",
 ]

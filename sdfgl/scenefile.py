@@ -5,7 +5,8 @@
 
 A Python scene file defines ``scene`` (a node) and optionally ``camera`` (a fixed camera),
 ``settings`` (a dict of render settings) and ``camera_path`` (``sg.turntable(...)``,
-``sg.camera_path(...)`` or a function of time, for ``sdfgl animate``). A ``.json`` file is
+``sg.camera_path(...)`` or a function of time, for ``sdfgl animate``) and ``parts`` (a dict of
+part names to nodes, which ``sdfgl mesh`` writes as separate parts with their materials). A ``.json`` file is
 read as a scene document (no code runs; see :mod:`sdfgl.scene_io`). Every command line
 subcommand, the batch workers and the viewer's hot reload load scenes through here.
 """
@@ -32,6 +33,7 @@ class SceneFile:
     settings: render settings the file asks for (e.g. ``{"method": "newton"}``).
     camera_path: the file's camera over time for animations (a ``CameraPath`` or a
         function of time), or None.
+    parts: the file's named parts to print (``{"body": node, ...}``), or None.
     """
 
     path: Path | None
@@ -39,6 +41,7 @@ class SceneFile:
     camera: Camera | None
     settings: dict[str, Any] = field(default_factory=dict)
     camera_path: Any = None
+    parts: dict[str, Node] | None = None
 
 
 def load_demo() -> SceneFile:
@@ -86,4 +89,14 @@ def load_scene_file(path: str | Path) -> SceneFile:
     if path_ is not None and not (callable(getattr(path_, "camera", None)) or callable(path_)):
         raise SceneFileError(f"scene file '{p}': 'camera_path' must be sg.turntable(...), sg.camera_path(...) "
                              f"or a function of time, got {type(path_).__name__}")
-    return SceneFile(p, scene, camera, dict(settings), path_)
+    parts = ns.get("parts")
+    if parts is not None:
+        if not isinstance(parts, dict) or not parts:
+            raise SceneFileError(f"scene file '{p}': 'parts' must be a non-empty dict of name -> node, "
+                                 f"got {type(parts).__name__}")
+        for name, node in parts.items():
+            if not isinstance(name, str) or not isinstance(node, Node):
+                raise SceneFileError(f"scene file '{p}': 'parts' must map names (strings) to sdfgl nodes; "
+                                     f"{name!r} maps to {type(node).__name__}")
+        parts = dict(parts)
+    return SceneFile(p, scene, camera, dict(settings), path_, parts)

@@ -65,12 +65,18 @@ def test_mesh_without_scipy_writes_its_file_and_report_is_opt_in(tmp_path):
     assert r.returncode == 0 and "the report is off unless --report is given" in r.stderr, r.stderr
 
 
-@pytest.mark.parametrize("suffix, blocked", [(".glb", "trimesh"), (".3mf", "lxml")])
+@pytest.mark.parametrize("suffix, blocked", [(".glb", "trimesh")])
 def test_mesh_formats_written_through_trimesh_are_checked_first(tmp_path, suffix, blocked):
     out = tmp_path / f"m{suffix}"
     r, _ = run_without(blocked, "mesh", "--demo", "-o", str(out), "--resolution", "16", "--quiet")
     assert refused(r, "pip install 'sdfgl[mesh]'") and blocked in r.stderr, r.stderr
     assert not out.exists()
+
+
+def test_3mf_is_written_without_trimesh_or_lxml(tmp_path):
+    out = tmp_path / "m.3mf"
+    r, _ = run_without("trimesh,lxml", "mesh", "--demo", "-o", str(out), "--resolution", "16", "--quiet")
+    assert r.returncode == 0 and out.stat().st_size > 1000, r.stderr
 
 
 def test_video_pbr_and_ray_name_their_extra(tmp_path):

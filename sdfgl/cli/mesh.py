@@ -1,4 +1,9 @@
-"""``sdfgl mesh scene.py -o part.stl --step 0.01``: mesh a scene file (or the demo), optionally with its report."""
+"""``sdfgl mesh scene.py -o part.stl --step 0.01``: mesh a scene file (or the demo), optionally with its report.
+
+A scene file that defines ``parts = {"body": node, "inlay": node}`` is written part by part
+(.3mf, .obj, .glb, .gltf: one object per part with its materials; see sdfgl.mesh.multipart);
+``--units mm`` says what a scene unit is in a 3MF file.
+"""
 from __future__ import annotations
 
 import argparse
@@ -11,7 +16,7 @@ from ..errors import SdfglError
 from ..extras import require_extra
 from .common import add_scene_arguments, load_scene_args
 
-TRIMESH_FORMATS = {".glb": ("trimesh",), ".gltf": ("trimesh",), ".3mf": ("trimesh", "lxml")}
+TRIMESH_FORMATS = {".glb": ("trimesh",), ".gltf": ("trimesh",)}
 """Mesh formats written through trimesh, and the packages of the ``mesh`` extra each needs."""
 
 
@@ -27,9 +32,16 @@ def add_parser(sub: Any, command: str | None) -> None:
     m.add_argument("--bounds", type=float, nargs=6, metavar=("X0", "Y0", "Z0", "X1", "Y1", "Z1"),
                    help="box to mesh (default: the scene bounds padded by one cell; needed if unbounded)")
     m.add_argument("--sharp", action="store_true", help="dual contouring: keep edges and corners sharp")
+    m.add_argument("--units", help="what one scene unit is in a .3mf file: mm (default), cm, m, inch, ft, um; "
+                                   "coordinates are not scaled")
     m.add_argument("--report", action="store_true",
                    help="also measure the mesh against the float64 twin and print the accuracy report "
                         "(slow: often many times the meshing; needs scipy, sdfgl[mesh])")
+    g = m.add_argument_group("printing checks (printed when any is given; lengths in --units, default mm)")
+    g.add_argument("--min-wall", type=float, metavar="T", help="flag the thinnest wall thinner than T, with where it is")
+    g.add_argument("--overhang", type=float, metavar="DEG",
+                   help="area facing down more than DEG degrees from vertical (default 45)")
+    g.add_argument("--density", type=float, metavar="G_CM3", help="the mass for this density in g/cm^3")
     m.add_argument("--no-report", action="store_true", help=argparse.SUPPRESS)  # the report used to be the default
     m.add_argument("--quiet", action="store_true", help="no progress line")
     m.set_defaults(func=run)
@@ -51,19 +63,67 @@ def run(a: argparse.Namespace) -> int:
         print("sdfgl mesh: --no-report is no longer needed: the report is off unless --report is given",
               file=sys.stderr)
     check_extras(a)
-    scene = load_scene_args(a).scene
+    if a.units is not None:
+        from ..values.units import unit_name
+        unit_name(a.units, "--units")
+        if Path(a.output).suffix.lower() != ".3mf" and not print_checks_asked(a):
+            raise SdfglError(f"--units is stored by 3MF only, not by '{a.output}' "
+                             "(it also names the unit of the printing checks)")
+    sf = load_scene_args(a)
     bounds = None if a.bounds is None else (a.bounds[:3], a.bounds[3:])
+    options = dict(step=a.step, resolution=a.resolution, samples=a.samples, bounds=bounds,
+                   mode="sharp" if a.sharp else "mc", progress=not a.quiet)
+    if sf.parts is not None:
+        return write_parts_file(sf.parts, a, options)
     t0 = time.perf_counter()
-    m = mesh(scene, step=a.step, resolution=a.resolution, samples=a.samples, bounds=bounds,
-             mode="sharp" if a.sharp else "mc", progress=not a.quiet)
+    m = mesh(sf.scene, **options)
     if len(m.faces) == 0:
         raise SdfglError("the scene has no surface inside the box: nothing to write")
-    path = m.save(a.output)
+    path = m.save(a.output, **file_units(a))
     t = time.perf_counter() - t0
     refined = "" if m.default_step is None else f" (refined from {m.default_step:.4g} for thin or small curved parts)"
     print(f"wrote {path}: {len(m.vertices)} vertices, {len(m.faces)} triangles, cell {m.step:.4g}{refined}, "
           f"{m.timings['total_s']:.2f} s meshing, {t:.2f} s with writing")
     if a.report:
         print(f"report: {m.report()}")
+    if print_checks_asked(a):
+        print(f"print: {print_checks(m, a)}")
+    sys.stdout.flush()
+    return 0
+
+
+def print_checks_asked(a: argparse.Namespace) -> bool:
+    """Whether any of ``--min-wall --overhang --density`` was given."""
+    return a.min_wall is not None or a.overhang is not None or a.density is not None
+
+
+def print_checks(m: Any, a: argparse.Namespace) -> Any:
+    """The mesh's printing checks as the flags ask (lengths in ``--units``, default mm)."""
+    return m.print_report(min_wall=a.min_wall, overhang=45.0 if a.overhang is None else a.overhang,
+                          density=a.density, units=a.units or "millimeter")
+
+
+def file_units(a: argparse.Namespace) -> dict[str, str]:
+    """The ``units=`` option for the writer: given, and the output is a 3MF file."""
+    return {"units": a.units} if a.units is not None and Path(a.output).suffix.lower() == ".3mf" else {}
+
+
+def write_parts_file(parts: dict, a: argparse.Namespace, options: dict[str, Any]) -> int:
+    """Mesh and write a scene file's ``parts`` to ``a.output`` (one object per part); the
+    printing checks, when asked for, are printed part by part."""
+    from ..mesh.build import mesh
+    from ..mesh.parts import parts_of
+    from ..mesh.writers import write_parts
+    t0 = time.perf_counter()
+    meshes = {name: mesh(node, **options) for name, node in parts.items()}
+    meshed = parts_of(meshes)
+    path = write_parts(meshed, Path(a.output), file_units(a).get("units"))
+    sizes = ", ".join(f"{p.name} {len(p.faces)} triangles" for p in meshed)
+    print(f"wrote {path}: {len(meshed)} parts ({sizes}), {time.perf_counter() - t0:.2f} s")
+    if a.report:
+        print("report: --report measures a single scene; it is skipped for a file of parts", file=sys.stderr)
+    if print_checks_asked(a):
+        for name, m in meshes.items():
+            print(f"print {name}: {print_checks(m, a)}")
     sys.stdout.flush()
     return 0

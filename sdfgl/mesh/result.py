@@ -11,6 +11,7 @@ from ..nodes.base import Node
 from .lattice import Lattice
 
 if TYPE_CHECKING:  # pragma: no cover - imported where report() runs
+    from .printing import PrintReport
     from .report import MeshReport
 
 
@@ -72,7 +73,9 @@ class Mesh:
 
     def save(self, path: str | Path, **options: Any) -> Path:
         """Write the mesh; the format comes from the suffix: .stl (binary), .obj (+ .mtl with
-        one material per colour), .ply (vertex colours), .glb / .gltf (vertex colours), .3mf."""
+        one material per colour), .ply (vertex colours), .glb / .gltf (vertex colours), .3mf
+        (one object with a base material per colour; ``units="mm"`` etc. names what a scene
+        unit is, default millimetres). Several parts in one file: :func:`sdfgl.save_3mf`."""
         from .writers import write
         return write(self, Path(path), **options)
 
@@ -80,3 +83,12 @@ class Mesh:
         """Accuracy of the mesh against the float64 twin (see :class:`sdfgl.mesh.report.MeshReport`)."""
         from .report import measure
         return measure(self, twin_samples, volume_resolution)
+
+    def print_report(self, min_wall: float | None = None, overhang: float = 45.0, density: float | None = None,
+                     units: str = "millimeter", up: object = "z") -> PrintReport:
+        """Printing checks (see :class:`sdfgl.mesh.printing.PrintReport`): bounding box and
+        volume in ``units`` (scene units taken as that unit), mass in grams for a ``density``
+        in g/cm^3, the area facing down more than ``overhang`` degrees from vertical (``up``
+        is the build direction), and with ``min_wall`` the thinnest wall below it and where."""
+        from .printing import measure_print
+        return measure_print(self, min_wall, overhang, density, units, up)

@@ -1,8 +1,12 @@
 """Mesh files: binary STL, OBJ + MTL, PLY, glTF (.glb / .gltf) and 3MF.
 
 STL, PLY and OBJ are written here with numpy (fast; OBJ so each scene colour becomes a
-material in the .mtl beside it); trimesh writes glTF and 3MF. glTF indices are 32-bit whenever a mesh has more than
+material in the .mtl beside it); 3MF with the standard library (sdfgl.mesh.threemf: base
+materials per colour, the model's unit); trimesh writes glTF. glTF indices are 32-bit whenever a mesh has more than
 65535 vertices (the writer picks the index type from the count, never wrapping).
+
+:func:`write_parts` writes several named parts to one file (3MF, OBJ, glTF): one object
+(3MF), ``o`` group (OBJ) or node (glTF) per part, each with its materials.
 """
 from __future__ import annotations
 
@@ -13,25 +17,35 @@ import numpy as np
 
 from ..errors import SdfglError
 from ..files import written_atomically
+from ..values.units import unit_name
 from .deps import require
+from .parts import Part, part_of
+from .threemf import write_3mf
 
 FORMATS = (".stl", ".obj", ".ply", ".glb", ".gltf", ".3mf")
-MAX_MATERIALS = 256
+PART_FORMATS = (".obj", ".glb", ".gltf", ".3mf")
+"""The formats that keep several named parts apart."""
 
 
 def write(mesh: Any, path: Path, **options: Any) -> Path:
-    """Write ``mesh`` to ``path`` in the format its suffix names."""
+    """Write ``mesh`` to ``path`` in the format its suffix names; ``units=`` (3MF only, default
+    millimetres) names the unit the scene's coordinates are taken as."""
     suffix = path.suffix.lower()
     if suffix not in FORMATS:
         raise SdfglError(f"cannot write mesh file '{path}': unknown format {suffix or '(no suffix)'!r}; "
                          f"use one of {', '.join(FORMATS)}")
+    units = options.pop("units", None)
     if options:
         raise SdfglError(f"mesh save: unknown option(s) {', '.join(sorted(options))} for '{path}'")
+    if units is not None and suffix != ".3mf":
+        raise SdfglError(f"mesh save: 'units' is stored by 3MF only, not by {suffix} ('{path}')")
     if len(mesh.faces) == 0:
         raise SdfglError(f"cannot write mesh file '{path}': the mesh is empty (no surface in the box)")
     if suffix == ".obj":
-        _obj(mesh, path)
+        _obj([part_of("", mesh)], path, named=False)
         return path
+    if suffix == ".3mf":
+        return write_parts([part_of(path.stem or "mesh", mesh)], path, units)
     with written_atomically(path, "mesh file", check=lambda tmp: check_mesh_file(tmp, suffix, len(mesh.faces))) as tmp:
         if suffix == ".stl":
             _stl(mesh, tmp)
@@ -40,14 +54,58 @@ def write(mesh: Any, path: Path, **options: Any) -> Path:
         else:
             tm = mesh.to_trimesh()
             exchange = require("trimesh").exchange
-            if suffix == ".3mf":
-                require("lxml")
-                tmp.write_bytes(exchange.threemf.export_3MF(tm))
-            elif suffix == ".gltf":  # one file: the buffer embedded as a data URI
+            if suffix == ".gltf":  # one file: the buffer embedded as a data URI
                 tmp.write_bytes(exchange.gltf.export_gltf(tm, embed_buffers=True, include_normals=True)["model.gltf"])
             else:
                 tmp.write_bytes(tm.export(file_type="glb"))
     return path
+
+
+def write_parts(parts: list[Part], path: Path, units: str | None = None) -> Path:
+    """Write named parts to one ``path`` (.3mf, .obj, .glb or .gltf by suffix); ``units``
+    (3MF only; default millimetres) is the unit scene coordinates are taken as."""
+    suffix = path.suffix.lower()
+    if suffix not in PART_FORMATS:
+        raise SdfglError(f"cannot write parts to '{path}': {suffix or '(no suffix)'!r} keeps no parts apart; "
+                         f"use one of {', '.join(PART_FORMATS)}")
+    names = [p.name for p in parts]
+    if len(set(names)) != len(names):
+        raise SdfglError(f"cannot write parts to '{path}': part names repeat ({', '.join(names)})")
+    if units is not None and suffix != ".3mf":
+        raise SdfglError(f"cannot write parts to '{path}': 'units' is stored by 3MF only, not by {suffix}")
+    if suffix == ".obj":
+        spaced = [n for n in names if len(n.split()) != 1]
+        if spaced:
+            raise SdfglError(f"cannot write parts to '{path}': OBJ names cannot hold spaces, and part "
+                             f"{spaced[0]!r} has one")
+        _obj(parts, path, named=True)
+        return path
+    unit = unit_name(units or "millimeter", f"saving '{path}'")
+    faces = sum(len(p.faces) for p in parts)
+    with written_atomically(path, "mesh file", check=lambda tmp: check_mesh_file(tmp, suffix, faces)) as tmp:
+        if suffix == ".3mf":
+            write_3mf(parts, tmp, unit)
+        else:
+            _gltf_parts(parts, tmp, suffix)
+    return path
+
+
+def _gltf_parts(parts: list[Part], path: Path, suffix: str) -> None:
+    """A glTF scene with one node per part and material (a PBR base colour each)."""
+    trimesh = require("trimesh")
+    scene = trimesh.Scene()
+    for part in parts:
+        for name, v, f, n, rgb in part.split():
+            material = trimesh.visual.material.PBRMaterial(name=name, baseColorFactor=[*map(float, rgb), 1.0],
+                                                           metallicFactor=0.0, roughnessFactor=0.8)
+            tm = trimesh.Trimesh(v, f, vertex_normals=n, process=False, validate=False,
+                                 visual=trimesh.visual.TextureVisuals(material=material))
+            scene.add_geometry(tm, geom_name=name, node_name=name)
+    if suffix == ".gltf":
+        path.write_bytes(trimesh.exchange.gltf.export_gltf(scene, embed_buffers=True, include_normals=True)
+                         ["model.gltf"])
+    else:
+        path.write_bytes(scene.export(file_type="glb"))
 
 
 def check_mesh_file(path: Path, suffix: str, faces: int) -> None:
@@ -80,40 +138,40 @@ def check_mesh_file(path: Path, suffix: str, faces: int) -> None:
         raise SdfglError(f"mesh file '{path}' came out incomplete ({bad})")
 
 
-def materials(colors: np.ndarray | None, faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(palette (K, 3), material index per face): face colours (the mean of their vertices')
-    rounded to 8 bits per channel, coarser if needed to keep at most MAX_MATERIALS."""
-    if colors is None:
-        return np.array([[0.7, 0.68, 0.64]]), np.zeros(len(faces), np.int64)
-    fc = colors[faces].mean(axis=1)
-    levels = 255
-    while True:
-        q = np.round(fc * levels).astype(np.int64)
-        palette, index = np.unique(q, axis=0, return_inverse=True)
-        if len(palette) <= MAX_MATERIALS or levels <= 3:
-            return palette / levels, index.ravel()
-        levels //= 2
-
-
-def _obj(mesh: Any, path: Path) -> None:
+def _obj(parts: list[Part], path: Path, named: bool) -> None:
+    """OBJ + MTL: one material per colour (``m<k>``, or ``part`` / ``part.k`` when ``named``),
+    and with ``named`` an ``o part`` group per part."""
     mtl = path.with_suffix(".mtl")
-    palette, index = materials(mesh.colors, mesh.faces)
     with written_atomically(mtl, "material file", check=lambda tmp: check_mesh_file(tmp, ".mtl", 0)) as tmp_mtl, \
-            open(tmp_mtl, "w", encoding="ascii") as fh:
+            open(tmp_mtl, "w", encoding="utf-8") as fh:
         fh.write("# sdfgl mesh materials: one per scene colour\n")
-        for i, rgb in enumerate(palette):
-            fh.write(f"newmtl m{i}\nKd {rgb[0]:.4f} {rgb[1]:.4f} {rgb[2]:.4f}\nKa 0 0 0\nKs 0 0 0\nd 1\nillum 1\n\n")
-    order = np.argsort(index, kind="stable")
-    starts = np.searchsorted(index[order], np.arange(len(palette) + 1))
+        for part in parts:
+            for i, rgb in enumerate(part.palette):
+                fh.write(f"newmtl {_material_name(part, i, named)}\n"
+                         f"Kd {rgb[0]:.4f} {rgb[1]:.4f} {rgb[2]:.4f}\nKa 0 0 0\nKs 0 0 0\nd 1\nillum 1\n\n")
+    nv, nf = sum(len(p.vertices) for p in parts), sum(len(p.faces) for p in parts)
     with written_atomically(path, "mesh file", check=lambda tmp: check_mesh_file(tmp, ".obj", 0)) as tmp, \
-            open(tmp, "w", encoding="ascii") as fh:
-        fh.write(f"# sdfgl mesh: {len(mesh.vertices)} vertices, {len(mesh.faces)} triangles\nmtllib {mtl.name}\n")
-        np.savetxt(fh, mesh.vertices, fmt="v %.7g %.7g %.7g")
-        np.savetxt(fh, mesh.normals, fmt="vn %.5f %.5f %.5f")
-        for i in range(len(palette)):
-            f = mesh.faces[order[starts[i]:starts[i + 1]]] + 1
-            fh.write(f"usemtl m{i}\n")
-            np.savetxt(fh, np.repeat(f, 2, axis=1), fmt="f %d//%d %d//%d %d//%d")
+            open(tmp, "w", encoding="utf-8") as fh:
+        fh.write(f"# sdfgl mesh: {nv} vertices, {nf} triangles\nmtllib {mtl.name}\n")
+        base = 1
+        for part in parts:
+            if named:
+                fh.write(f"o {part.name}\n")
+            np.savetxt(fh, part.vertices, fmt="v %.7g %.7g %.7g")
+            np.savetxt(fh, part.normals, fmt="vn %.5f %.5f %.5f")
+            order = np.argsort(part.material, kind="stable")
+            starts = np.searchsorted(part.material[order], np.arange(len(part.palette) + 1))
+            for i in range(len(part.palette)):
+                f = part.faces[order[starts[i]:starts[i + 1]]] + base
+                fh.write(f"usemtl {_material_name(part, i, named)}\n")
+                np.savetxt(fh, np.repeat(f, 2, axis=1), fmt="f %d//%d %d//%d %d//%d")
+            base += len(part.vertices)
+
+
+def _material_name(part: Part, i: int, named: bool) -> str:
+    if not named:
+        return f"m{i}"
+    return part.name if len(part.palette) == 1 else f"{part.name}.{i}"
 
 
 def _stl(mesh: Any, path: Path) -> None:

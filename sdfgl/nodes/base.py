@@ -284,13 +284,14 @@ class Node(Recorded, register=False):
         from ..web.notebook import preview_png
         return preview_png(self)
 
-    def save(self, path: str, **mesh_options: Any) -> Any:
+    def save(self, path: str, units: str | None = None, **mesh_options: Any) -> Any:
         """Mesh this node and write it (fogleman/sdf's ``f.save("out.stl")``); returns the Mesh.
 
+        ``units`` (3MF only: "mm" by default, "cm", "inch", ...) says what a scene unit is;
         ``mesh_options`` are those of :func:`sdfgl.mesh` (step, resolution, samples, bounds, mode)."""
         from ..mesh import mesh
         m = mesh(self, **mesh_options)
-        m.save(path)
+        m.save(path, **({} if units is None else {"units": units}))
         return m
 
     # -- the five things every node provides ----------------------------------------------

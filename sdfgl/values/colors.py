@@ -21,6 +21,13 @@ def srgb_to_linear(c: np.ndarray) -> np.ndarray:
     return np.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4)
 
 
+def linear_to_srgb(c: np.ndarray) -> np.ndarray:
+    """The sRGB transfer function (components in [0, 1]): what file formats that store sRGB
+    colours (3MF's display colours) are given."""
+    c = np.clip(np.asarray(c, dtype=np.float64), 0.0, 1.0)
+    return np.where(c <= 0.0031308, c * 12.92, 1.055 * c ** (1 / 2.4) - 0.055)
+
+
 def parse(node: str, name: str, value: Any) -> tuple[float, float, float]:
     """A linear RGB triple from a colour in any accepted form; ParameterError naming ``node.name``.
 
