@@ -43,6 +43,7 @@ from typing import Any, Callable, TypeVar
 import moderngl
 
 from ..errors import ContextError
+from .memory import limit_malloc_arenas
 
 T = TypeVar("T")
 
@@ -147,6 +148,7 @@ class GLThread:
 
     def _ensure(self) -> moderngl.Context:
         if self._ctx is None:
+            limit_malloc_arenas()
             try:
                 ctx = moderngl.create_context(standalone=True, backend="egl", require=330)
             except Exception as exc:  # moderngl/glcontext raise plain Exceptions
