@@ -36,6 +36,7 @@ from .version import __version__
 _LAZY = {
     "save_scene": "scene_io", "load_scene": "scene_io", "from_dict": "scene_io",
     "save_3mf": "mesh.multipart", "save_parts": "mesh.multipart",
+    "live_control": "live",
 }
 
 
@@ -216,5 +217,5 @@ __all__ = [
     "morph", "taper", "glsl",
     "time", "keyframes", "turntable", "camera_path", "animate", "sin", "cos", "tan", "abs", "sqrt", "exp", "log",
     "sign", "floor", "fract", "radians", "min", "max", "pow", "mod", "step", "clamp", "mix", "smoothstep",
-    "mesh", "Mesh", "save_3mf", "save_parts", "cache_budget", "CacheBudget",
+    "mesh", "Mesh", "save_3mf", "save_parts", "cache_budget", "CacheBudget", "live_control",
 ]

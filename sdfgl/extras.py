@@ -21,6 +21,7 @@ EXTRAS: dict[str, tuple[str, ...]] = {
     "ray": ("ray",),
     "pbr": ("mitsuba",),
     "panel": ("imgui_bundle", "OpenGL"),
+    "live": ("mido", "rtmidi", "pythonosc"),
 }
 """Each extra of pyproject.toml and the modules (import names) it installs (``all`` is every
 feature extra together, so it has no entry of its own)."""
