@@ -33,6 +33,18 @@ def add_parser(sub: Any, command: str | None) -> None:
                         f"reload (then keep the last scene) (default {DEFAULT_TIMEOUT_S:g})")
     v.add_argument("--panel", action=argparse.BooleanOptionalAction, default=None,
                    help="open with the side panel shown / hidden (default: shown if the window is >= 800 wide)")
+    live = v.add_argument_group("live control (needs pip install 'sdfgl[live]')")
+    live.add_argument("--osc", type=port_number, metavar="PORT",
+                      help="receive OSC messages on this UDP port (bound as --bindings says)")
+    live.add_argument("--osc-host", default="127.0.0.1",
+                      help="the address OSC listens on (default 127.0.0.1; 0.0.0.0 for other machines)")
+    live.add_argument("--midi", metavar="PORT_NAME",
+                      help="read MIDI control changes from this input port ('' for the first one)")
+    live.add_argument("--midi-virtual", action="store_true",
+                      help="open --midi as a new virtual port other programs connect to")
+    live.add_argument("--bindings", metavar="FILE",
+                      help="a JSON bindings file (MIDI CC / OSC address -> parameter); the panel's "
+                           "'save bindings' writes it back")
     add_camera_arguments(v)
     add_settings_arguments(v)
     v.set_defaults(func=run)
@@ -49,11 +61,37 @@ def positive_seconds(text: str) -> float:
     return x
 
 
+def port_number(text: str) -> int:
+    """A UDP port 0..65535 (argparse type; 0 picks a free one)."""
+    try:
+        n = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a port number, got {text!r}") from None
+    if not 0 <= n <= 65535:
+        raise argparse.ArgumentTypeError(f"expected a port number 0..65535, got {text!r}")
+    return n
+
+
+def live_options(a: argparse.Namespace) -> dict[str, Any]:
+    """The Viewer's ``live`` and ``bindings`` arguments from --osc, --midi and --bindings (none: {})."""
+    if a.osc is None and a.midi is None and a.bindings is None and not a.midi_virtual:
+        return {}
+    from ..extras import require_extra
+    from ..live import LiveControl
+    modules = (("pythonosc",) if a.osc is not None else ()) + (("mido", "rtmidi") if a.midi is not None
+                                                                or a.midi_virtual else ())
+    if modules:
+        require_extra("live", *modules, purpose="live control (--osc, --midi)")
+    midi = a.midi if a.midi is not None else ("sdfgl" if a.midi_virtual else None)
+    control = LiveControl(osc=a.osc, osc_host=a.osc_host, midi=midi, midi_virtual=a.midi_virtual, deferred=True)
+    return {"live": control, "bindings": a.bindings}
+
+
 def run(a: argparse.Namespace) -> int:
     """Run ``sdfgl view`` until the window closes."""
     from ..viewer import Viewer
     common = dict(size=a.size, target_ms=a.target_ms, adaptive=not a.no_adaptive, max_samples=a.max_samples,
-                  state_file=a.state_file, screenshot_dir=a.screenshot_dir, panel=a.panel)
+                  state_file=a.state_file, screenshot_dir=a.screenshot_dir, panel=a.panel, **live_options(a))
     if a.scene is None or a.demo:
         sf = load_scene_args(a)
         v = Viewer(sf.scene, camera_from_args(a, sf.scene, sf.camera), **common, **render_settings(a, sf))

@@ -55,6 +55,7 @@ class LiveControl:
                  bindings: Iterable[Binding] = (), deferred: bool = False,
                  wake: Callable[[], None] | None = None) -> None:
         self._lock = threading.RLock()
+        self.scene = scene  # held: the checks of its nodes live as long as it does
         self._params: dict[str, Param] = {}
         self._known: tuple[int, ...] = ()
         self.osc_request, self.osc_host = osc, osc_host

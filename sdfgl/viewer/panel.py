@@ -5,7 +5,9 @@ uses the same pyGLFW the window does). Needs the optional extra ``sdfgl[panel]``
 (imgui-bundle and PyOpenGL, which its renderer draws with); without it the window works
 and the panel key says what to install.
 
-A slider writes ``param.value``: the next frame sets the uniform, nothing recompiles.
+A slider writes ``param.value``: the next frame sets the uniform, nothing recompiles. With
+live control on, each parameter has a "learn" button (the next MIDI control moved, or OSC
+address sent, drives it) and the bindings can be saved.
 A render setting goes through the window's asynchronous compile.
 """
 from __future__ import annotations
@@ -206,6 +208,8 @@ class Panel:
                 changed, xyz = imgui.slider_float3(label, [float(x) for x in p.value], lo, hi)
                 new = tuple(xyz)
                 self.rects[label] = (*imgui.get_item_rect_min(), *imgui.get_item_rect_max())
+            if v.live is not None:
+                self._live_row(p, label)
             imgui.pop_id()
             if changed:
                 self.set_param(p, new)
@@ -216,6 +220,26 @@ class Panel:
         if imgui.button("save JSON"):
             self.message = self._save_json()
         self.rects["save JSON"] = (*imgui.get_item_rect_min(), *imgui.get_item_rect_max())
+        if v.live is not None:
+            if imgui.button("save bindings"):
+                self.message = v.live.save()
+            self.rects["save bindings"] = (*imgui.get_item_rect_min(), *imgui.get_item_rect_max())
+
+    def _live_row(self, p: Param, label: str) -> None:
+        """The parameter's MIDI/OSC row: a "learn" button and the controls bound to it."""
+        imgui, live = self.imgui, self.viewer.live
+        assert live is not None
+        learning = live.control.learning
+        waiting = learning is not None and learning[0] == live.control.key(p)
+        if imgui.small_button("cancel" if waiting else "learn"):
+            if waiting:
+                live.control.cancel_learn()
+                self.message = ""
+            else:
+                self.message = live.learn(p)
+        self.rects[f"learn:{label}"] = (*imgui.get_item_rect_min(), *imgui.get_item_rect_max())
+        imgui.same_line()
+        imgui.text("waiting for a control..." if waiting else (live.sources(p) or "no MIDI/OSC"))
 
     def set_param(self, p: Param, value: Any) -> None:
         """Set a live value (validated by its nodes); the image re-renders with the same program."""

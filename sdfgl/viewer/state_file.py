@@ -46,6 +46,7 @@ class ViewState:
     present_log: list[tuple[float, float | None, bool]] = field(default_factory=list)  # (wall time, yaw drawn, compiling)
     mean_steps: float = 0.0  # map() calls per pixel of the image on screen (pixel-centre rays)
     view: tuple[int, int, int, int] = (0, 0, 0, 0)  # the image's rectangle in the window: x, y, width, height
+    live: dict[str, Any] = field(default_factory=dict)  # MIDI/OSC control: bindings, learning, messages, errors
 
     def log_present(self, yaw: float | None) -> None:
         """Note a present: when, the yaw of the frame shown (None: no frame yet), whether compiling."""

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import time
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import glfw
 import moderngl
@@ -27,12 +27,16 @@ from ..settings import Settings
 from . import panel as panel_mod
 from . import rawgl
 from .input import KEYS_COMPACT, KEYS_HELP, MOVE_HOLD_S, Input
+from .live_input import LiveInput
 from .overlay import overlay_image
 from .progressive import Progressive
 from .reload import SceneFileWatch, window_defaults
 from .render_thread import describe_error
 from .screenshots import Screenshots
 from .state_file import StateFile, ViewState, window_title
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ..live import LiveControl
 
 
 class Viewer:
@@ -42,6 +46,9 @@ class Viewer:
     seconds; the first load is waited for (a failure raises SceneFileError before any window opens),
     a reload is not: the last good scene stays on screen meanwhile and when it fails.
 
+    ``live`` (a :class:`~sdfgl.live.LiveControl`) lets MIDI and OSC messages move the live
+    parameters, with the bindings of the file ``bindings`` (names checked before the window opens).
+
     ``dirty`` says the render threads need a new frame spec (camera, parameters, size or
     program changed), ``repaint`` that the window needs presenting again (overlay, panel)."""
 
@@ -49,7 +56,8 @@ class Viewer:
                  size: tuple[int, int] = (960, 540), target_ms: float = 50.0, adaptive: bool = True,
                  max_samples: int = 16, state_file: str | Path | None = None,
                  screenshot_dir: str | Path = ".", panel: bool | None = None,
-                 load_timeout: float = DEFAULT_TIMEOUT_S, **settings: Any) -> None:
+                 load_timeout: float = DEFAULT_TIMEOUT_S, live: "LiveControl | None" = None,
+                 bindings: str | Path | None = None, **settings: Any) -> None:
         self.path = Path(path) if path else None
         self.watch: SceneFileWatch | None = None
         if self.path is not None:
@@ -79,6 +87,7 @@ class Viewer:
         self.highlight: tuple[Node, Node] | None = None  # (scene, subtree) tinted by the "select" debug view
         self._debug_before: Any = None
         self.input = Input(self)
+        self.live = LiveInput(self, live, bindings) if live is not None else None
         self._open_window()
         self.progressive.request(self.scene, self.state.settings, "open")
 
@@ -120,6 +129,12 @@ class Viewer:
         glfw.set_window_refresh_callback(self.window, lambda *_: self.mark())
         self._write_state()  # scripts see the window at once; the render threads may take a while to start
         self.progressive.wait_ready()
+        if self.live is not None:
+            try:
+                self.live.start()
+            except Exception:
+                self.close()
+                raise
 
     def _resize_targets(self) -> None:
         fw, fh = glfw.get_framebuffer_size(self.window)
@@ -335,6 +350,8 @@ class Viewer:
         try:
             while not glfw.window_should_close(self.window):
                 pr.poll()
+                if self.live is not None:
+                    self.live.poll()
                 moving = self.input.moving()
                 if self.dirty or moving != pr.spec_moving:
                     pr.push_spec(moving)
@@ -367,6 +384,8 @@ class Viewer:
         """Stop the render threads and release the window."""
         if getattr(self, "watch", None) is not None:
             self.watch.close()
+        if getattr(self, "live", None) is not None:
+            self.live.close()
         if getattr(self, "window", None) is None:
             return
         if getattr(self, "progressive", None) is not None:
