@@ -26,6 +26,7 @@ GROUPS = [  # (title, module prefixes under sdfgl), in page order
     ("Live parameters and animation", ("params", "functions", "animate")),
     ("Meshes", ("mesh",)),
     ("The viewer, notebooks and HTML", ("web", "viewer")),
+    ("Live control (MIDI and OSC)", ("live",)),
     ("Physically based renders", ("pbr",)),
     ("Scenes as data", ("scene_io",)),
     ("Errors", ("errors",)),

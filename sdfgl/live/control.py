@@ -359,9 +359,13 @@ def live_control(scene: Node | None = None, **options: Any) -> LiveControl:
     """A :class:`LiveControl` for ``scene``: bind its parameters to MIDI CCs and OSC addresses, then
     ``start()`` it (or use it as a context manager).
 
-    Options are those of :class:`LiveControl`: ``osc=PORT``, ``osc_host``, ``midi="port name"``,
-    ``midi_virtual``, ``bindings``, ``deferred``, ``wake``. Needs ``pip install 'sdfgl[live]'``
-    (mido, python-rtmidi, python-osc) for the inputs.
+    Args:
+        scene: the scene whose named live parameters bindings may name (None: bind Param objects).
+        options: those of :class:`LiveControl`: ``osc=PORT`` (0: a free port), ``osc_host``,
+            ``midi="port name"``, ``midi_virtual``, ``params``, ``bindings``, ``deferred``, ``wake``.
+
+    Opening the inputs needs ``pip install 'sdfgl[live]'`` (mido, python-rtmidi, python-osc);
+    :meth:`LiveControl.handle_midi` and :meth:`LiveControl.handle_osc` route messages without it.
 
     Example:
         >>> r = sg.param(1.0, name="radius", range=(0.5, 2.0))
