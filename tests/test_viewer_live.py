@@ -6,6 +6,7 @@ import sys
 
 import pytest
 
+from .test_cli_extras import refused, run_without
 from .test_viewer import display  # noqa: F401 - the Xvfb fixture
 from .xserver import Driver
 
@@ -72,3 +73,10 @@ def test_a_bad_bindings_file_stops_the_viewer_before_a_window_opens(tmp_path):
                        capture_output=True, text=True, timeout=120, env={k: v for k, v in os.environ.items() if k != "DISPLAY"})
     assert r.returncode != 0
     assert f"{bad}: bindings[0]: no live parameter named 'size'" in r.stderr, r.stderr
+
+
+def test_view_with_osc_but_without_python_osc_names_the_extra():
+    r, _ = run_without("pythonosc", "view", "--demo", "--osc", "9000")
+    assert refused(r, "pip install 'sdfgl[live]'") and "pythonosc" in r.stderr, r.stderr
+    r, _ = run_without("rtmidi", "view", "--demo", "--midi", "")
+    assert refused(r, "pip install 'sdfgl[live]'") and "rtmidi" in r.stderr, r.stderr
