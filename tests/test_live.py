@@ -54,6 +54,25 @@ def test_osc_message_moves_the_param_and_the_next_render_shows_it_without_a_reco
     assert grew.sum() > 200                # the sphere is bigger on the picture
 
 
+def test_a_burst_of_osc_while_rendering_ends_at_the_last_value_with_one_program():
+    r, scene = radius_scene()
+    cam = sg.OrbitCamera(distance=4, yaw=0, pitch=0)
+    sg.render(scene, camera=cam, size=(32, 32), shadows=False, ao=False)
+    programs = default_renderer().programs
+    compiles = programs.compiles
+    values = [round(0.2 + i / 100, 2) for i in range(101)]
+    with sg.live_control(scene, osc=0) as ctl:
+        ctl.bind_osc("/radius", r)
+        sender = threading.Thread(target=lambda: [send_osc("/radius", v, port=ctl.osc_port) for v in values])
+        sender.start()
+        while sender.is_alive():   # renders read the value while the server thread sets it
+            sg.render(scene, camera=cam, size=(32, 32), shadows=False, ao=False)
+        sender.join()
+        assert wait_until(lambda: r.value == values[-1]), r.value
+        assert ctl.received == len(values) and ctl.last_error == ""
+    assert programs.compiles == compiles
+
+
 def test_osc_server_thread_stops_and_frees_its_port():
     r, scene = radius_scene()
     ctl = LiveControl(scene, osc=0).start()
