@@ -29,8 +29,8 @@ import numpy as np
 from ..errors import ParameterError
 from ..nodes.base import Node
 from ..params import Param
-from .bindings import (Binding, LiveBindingError, cc_value, check_target, load_bindings, osc_value,
-                       save_bindings)
+from .bindings import Binding, cc_value, check_target, load_bindings, osc_value, save_bindings
+from .errors import LiveBindingError
 
 SMOOTH_TICK_S = 1 / 120  # how often smoothed values step
 
