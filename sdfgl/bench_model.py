@@ -60,7 +60,7 @@ def handwritten(name: str) -> Callable[[ShaderSource], ShaderSource]:
 
     def rewrite(src: ShaderSource) -> ShaderSource:
         start = src.text.index("float map(vec3 p) {")
-        end = src.text.index(shaderlib.read("refine").split("\n")[0])
+        end = src.text.index(shaderlib.read("stages/refine").split("\n")[0])
         text = src.text[:start] + code + "\n" + src.text[end:]
         return ShaderSource(text, ("(hand-written)",) * (text.count("\n") + 1), src.params, src.live_bounds,
                             src.data)

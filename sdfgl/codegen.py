@@ -777,7 +777,7 @@ def _generate_once(scene: Node, settings: Settings, org: np.ndarray, target: str
         b.add("\n".join(f"uniform vec3 uOrg{i};" for i in range(len(origins.entries))) +
               ("\nuniform vec4 uAnalytic;" if settings.analytic and analytic_shape(scene) is not None else ""),
               "(moving origin)")
-    b.add_file("common")
+    b.add_file("stages/common")
     for name in libs:
         b.add_file(f"lib/{lang.lib(name)}")
     start = len(b.lines)
@@ -795,12 +795,12 @@ def _generate_once(scene: Node, settings: Settings, org: np.ndarray, target: str
     _function(b, "float map(vec3 p)", dist, dist_result, "{}")
     if target == "evaluate":
         size = b.size_since(start)
-        b.add_file("evaluate_main")
+        b.add_file("mains/evaluate_main")
         return _sized(b.build(params, live, data), size, grids, origins)
     if target in ("mesh_grid", "mesh_gradient", "mesh_project"):
         size = b.size_since(start)
-        b.add_file("mesh_clip")
-        b.add_file(f"{target}_main")
+        b.add_file("stages/mesh_clip")
+        b.add_file(f"mains/{target}_main")
         return _sized(b.build(params, live, data), size, grids, origins)
     if color is None:
         b.add(f"vec3 mapColor(vec3 p) {{\n    return {_vec3_literal(DEFAULT_COLOR)};  // no material node: one colour\n}}",
@@ -814,38 +814,38 @@ def _generate_once(scene: Node, settings: Settings, org: np.ndarray, target: str
     if target in EVALUATE_CHANNELS:
         b.add(f"#define EVAL_CHANNEL {EVALUATE_CHANNELS[target]}", "(codegen)")
         size = b.size_since(start)
-        b.add_file("evaluate_channel_main")
+        b.add_file("mains/evaluate_channel_main")
         return _sized(b.build(params, live, data), size, grids, origins)
     if detail is not None:
         _helpers(b, detail, done)
         _function(b, "float mapDetail(vec3 p)", detail, detail_result, "{}")
         b.add("#define DETAIL_NORMALS", "(codegen)")
     size = b.size_since(start)
-    b.add_file("refine")
+    b.add_file("stages/refine")
     marched = not (settings.analytic and analytic_shape(scene) is not None)
     if marched and settings.method in ("newton", "forward_newton"):
-        b.add_file("ray_derivative")
+        b.add_file("stages/ray_derivative")
     if settings.analytic and analytic_shape(scene) is not None:
-        b.add_file("march_analytic")
+        b.add_file("stages/march_analytic")
     else:
-        b.add_file(f"march_{MARCH_FILES.get(settings.method, settings.method)}")
-    b.add_file("normal")
+        b.add_file(f"stages/march_{MARCH_FILES.get(settings.method, settings.method)}")
+    b.add_file("stages/normal")
     implicit = scene.exactness == IMPLICIT
     for code, owner in shadow_code(shadow_kinds(rig, settings.shadows, implicit)):
         b.add(code, owner)
     if settings.ao:
-        b.add_file("ao")
-    b.add_file("shade")
+        b.add_file("stages/ao")
+    b.add_file("stages/shade")
     b.add(_surface_function(channels), "(codegen: material)")
     b.add(*background_code(settings.background, glsl_float))
     b.add(shade_function(settings.lights, settings.ambient, settings.shadows, implicit, glsl_float,
                          metals="surface" in channels, positions=lights_at), "(look: lights)")
     if settings.ground:
-        b.add_file("ground")
-    b.add_file("render_main_head")
+        b.add_file("stages/ground")
+    b.add_file("mains/render_main_head")
     if settings.debug:
-        b.add_file("debug")
-    b.add_file("render_main")
+        b.add_file("stages/debug")
+    b.add_file("mains/render_main")
     return _sized(b.build(params, live, data), size, grids, origins)
 
 

@@ -13,7 +13,7 @@ _HERE = Path(__file__).resolve().parent
 def shader_dir() -> Path:
     """Directory holding the GLSL sources: the installed copy, else the source tree's."""
     for d in (_HERE / "shaders", _HERE.parent / "shaders"):
-        if (d / "fullscreen.vert.glsl").is_file():
+        if (d / "mains" / "fullscreen.vert.glsl").is_file():
             return d
     raise SdfglError(f"sdfgl's GLSL files are missing: looked in {_HERE / 'shaders'} and {_HERE.parent / 'shaders'}")
 

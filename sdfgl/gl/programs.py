@@ -92,7 +92,7 @@ class ProgramCache:
             return entry
         t0 = time.perf_counter()
         try:
-            vertex = of_source(source.text).convert(shaderlib.read("fullscreen.vert"))
+            vertex = of_source(source.text).convert(shaderlib.read("mains/fullscreen.vert"))
             prog = ctx.program(vertex_shader=vertex, fragment_shader=source.text)
         except moderngl.Error as exc:
             raise ShaderCompileError(explain_compile_error(source, str(exc))) from None

@@ -83,21 +83,21 @@ def shade_function(lights: tuple[Light, ...] | None, ambient: Any, setting: Any,
 
 def shadow_code(kinds: list[str]) -> list[tuple[str, str]]:
     """(code, owner) of the shadow functions and their light-visibility wrappers."""
-    files = {"hard": "shadow_hard", "soft": "shadow_soft", "march": "shadow_march"}
+    files = {"hard": "stages/shadow_hard", "soft": "stages/shadow_soft", "march": "stages/shadow_march"}
     out = []
     for k in kinds:
         fn = SHADOW_FUNCTIONS[k]
         out.append((f"#define shadow {fn}", "(look)"))
         out.append((shaderlib.read(files[k]), f"shaders/{files[k]}.glsl"))
         out.append(("#undef shadow", "(look)"))
-        out.append((shaderlib.read("light_visibility").replace("SHADOWFN", fn), "shaders/light_visibility.glsl"))
+        out.append((shaderlib.read("templates/light_visibility").replace("SHADOWFN", fn), "shaders/templates/light_visibility.glsl"))
     return out
 
 
 def background_code(bg: Background, f: Fmt) -> tuple[str, str]:
     """(code, owner) of ``vec3 background(vec3 rd)``."""
     if bg.kind == "sky":
-        return shaderlib.read("background_sky"), "shaders/background_sky.glsl"
+        return shaderlib.read("stages/background_sky"), "shaders/stages/background_sky.glsl"
     if bg.kind == "color":
         return f"vec3 background(vec3 rd) {{\n    return {_vec3(bg.colors[0], f)};\n}}", "(look: background)"
     top, bottom = (_vec3(c, f) for c in bg.colors)

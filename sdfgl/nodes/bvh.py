@@ -121,7 +121,7 @@ class Bvh:
                 f"#define {gid}_ROOT_LO vec3({', '.join(em.num(x) for x in g._los.min(axis=0) - g.centre)})\n"
                 f"#define {gid}_ROOT_HI vec3({', '.join(em.num(x) for x in g._his.max(axis=0) - g.centre)})\n"
                 f"#define {gid}_TRUNCATE {em.num(TRUNCATE * g.cell)}")
-        em.helper(f"{gid}_bvh", defs + "\n" + shaderlib.read("bvh_union").replace("GRIDID", gid))
+        em.helper(f"{gid}_bvh", defs + "\n" + shaderlib.read("templates/bvh_union").replace("GRIDID", gid))
         w = ".w" if color else ""
         rtype = "vec4" if color else "float"
         init = f"vec4(0.0, 0.0, 0.0, {gid}Truncate(p))" if color else f"{gid}Truncate(p)"

@@ -375,7 +375,7 @@ class Grid:
         tex = self.textures(em.grids[id(self)][2])
         em.require("data_table")
         cells, lists = em.data.add(tex["Cells"]), em.data.add(tex["List"])
-        head = shaderlib.read("grid_union").replace("GRIDID", gid)
+        head = shaderlib.read("templates/grid_union").replace("GRIDID", gid)
         defs = (f"#define {gid}_LO vec3({', '.join(em.num(x) for x in self.lo - self.centre)})\n"
                 f"#define {gid}_CELL {em.num(self.cell)}\n"
                 f"#define {gid}_MARGIN {em.num(self.margin)}\n"
@@ -384,7 +384,7 @@ class Grid:
                 f"#define {gid}_CELLS {cells}\n#define {gid}_LIST {lists}")
         ray = self._ray_free(em, color)
         if ray:
-            head += "\n" + shaderlib.read("grid_ray").replace("GRIDID", gid)
+            head += "\n" + shaderlib.read("templates/grid_ray").replace("GRIDID", gid)
         em.helper(f"{gid}_grid", defs + "\n" + head)
         rtype = "vec4" if color else "float"
         best = "vec4(0.0, 0.0, 0.0, cap)" if color else "cap"

@@ -186,7 +186,7 @@ class Polygon(Shape2D):
         if n >= em.data_min:  # vertices as data: a loop over a texture, not an unrolled array
             em.require("sd_polygon_data")
             return f"sdPolygonData({q}, {em.table(self.v)}, {n})"
-        em.helper(f"sdPolygon{n}", shaderlib.read("lib/sd_polygon").replace("POLYN", str(n)))
+        em.helper(f"sdPolygon{n}", shaderlib.read("templates/sd_polygon").replace("POLYN", str(n)))
         verts = ", ".join(em.vec(p) for p in self.v)
         return f"sdPolygon{n}({q}, vec2[{n}]({verts}))"
 

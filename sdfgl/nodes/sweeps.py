@@ -39,7 +39,7 @@ class Tube(Primitive):
         from .. import shaderlib
         n = len(self.v)
         em.require("sd_segment")
-        em.helper(f"sdTube{n}", shaderlib.read("lib/sd_tube").replace("TUBEN", str(n)))
+        em.helper(f"sdTube{n}", shaderlib.read("templates/sd_tube").replace("TUBEN", str(n)))
         return f"sdTube{n}({p}, vec3[{n}]({', '.join(em.vec(q) for q in self.v)}), {em.num(self.r)})"
 
     def _distance(self, p: np.ndarray) -> np.ndarray:

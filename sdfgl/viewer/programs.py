@@ -102,7 +102,7 @@ def make_source(job: Job) -> ShaderSource:
 def link(gl: rawgl.GL, source: ShaderSource, ctx: moderngl.Context) -> RawProgram:
     """Link ``source`` in the current context (the calling thread's); SdfglError with the driver's log."""
     try:
-        vertex = of_source(source.text).convert(shaderlib.read("fullscreen.vert"))
+        vertex = of_source(source.text).convert(shaderlib.read("mains/fullscreen.vert"))
         glo = gl.link(vertex, source.text)
     except rawgl.GLError as exc:
         raise SdfglError(explain_compile_error(source, str(exc))) from None

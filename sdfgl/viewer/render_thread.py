@@ -223,8 +223,8 @@ class Lane:
         self.ctx = moderngl.create_context()
         self.vao = self.gl.vertex_array()
         self.data = DataTextures(default_budget)
-        self.resolve = self.ctx.program(vertex_shader=shaderlib.read("fullscreen.vert"),
-                                        fragment_shader=shaderlib.read("viewer_resolve.frag"))
+        self.resolve = self.ctx.program(vertex_shader=shaderlib.read("mains/fullscreen.vert"),
+                                        fragment_shader=shaderlib.read("mains/viewer_resolve.frag"))
         self._warm_targets = (_Target(self.ctx, (1, 1), "f4"), _Target(self.ctx, (1, 1), "f1"))
         buf = DisplayBuffer(self.ctx, (1, 1))  # the resolve program's own first draw, here and now
         self._resolve(self._warm_targets[0].color, 1.0, buf)

@@ -111,8 +111,8 @@ class Viewer:
         glfw.make_context_current(self.window)
         glfw.swap_interval(0)
         self.ctx = moderngl.create_context()
-        self.present = self.ctx.program(vertex_shader=shaderlib.read("fullscreen.vert"),
-                                        fragment_shader=shaderlib.read("present.frag"))
+        self.present = self.ctx.program(vertex_shader=shaderlib.read("mains/fullscreen.vert"),
+                                        fragment_shader=shaderlib.read("mains/present.frag"))
         self.present_vao = self.ctx.vertex_array(self.present, [])
         self.gl = rawgl.GL()
         self.progressive = Progressive(self, self.window)

@@ -240,7 +240,7 @@ def build(scene: Node, camera: Camera | None = None, size: tuple[int, int] = (64
         "version": 1,
         "title": scene.label()[:120],
         "size": [w, h],
-        "vertex": WEBGL2.convert(shaderlib.read("fullscreen.vert")),
+        "vertex": WEBGL2.convert(shaderlib.read("mains/fullscreen.vert")),
         "uniforms": list(VIEWER_UNIFORMS),
         "blocks": blocks,
         "variants": variants,
