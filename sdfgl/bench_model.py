@@ -13,12 +13,12 @@ import numpy as np
 from . import shaderlib
 from .bench import FrameTimer, Progress, Variant, time_interleaved
 from .camera import Camera, OrbitCamera
-from .codegen import ShaderSource
+from .compiler import ShaderSource
 from .gl.cache import CacheBudget
 from .demo import demo_camera, demo_scene
 from .nodes import box, cylinder, plane, rounded_box, sphere, torus, union
 from .nodes.base import Node
-from .nodes.grid import build
+from .compiler.data.instances import build
 from .params import param
 from .render import Renderer
 

@@ -4,7 +4,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .codegen import EVALUATE_CHANNELS, ShaderSource, generate, material_channels
+from .compiler import ShaderSource, generate
+from .compiler.analysis import material_channels
+from .compiler.targets import EVALUATE_CHANNELS
 from .errors import ParameterError
 from .nodes.base import Node, as_points
 from .render import Renderer, default_renderer, scene_uniforms
@@ -47,7 +49,7 @@ def evaluate_channel(scene: Node, points: object, channel: str = "color", origin
     mapSurface(), (specular, shininess, metallic) where nodes set them; "emission":
     mapEmission(). Away from the surface a channel is that of the nearest part of the
     scene, as the generated function picks it. A scene without the surface or emission
-    channel (no node sets it) has no such function: ask ``codegen.material_channels``.
+    channel (no node sets it) has no such function: ask ``sdfgl.compiler.analysis.material_channels``.
     """
     target = f"evaluate_{channel}"
     if target not in EVALUATE_CHANNELS:

@@ -25,7 +25,7 @@ from .errors import ParameterError
 from .values.live import LiveValue
 
 if TYPE_CHECKING:  # pragma: no cover
-    from .codegen import Emitter
+    from .compiler.emitter import Emitter
 
 Number = (int, float, np.integer, np.floating)
 

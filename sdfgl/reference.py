@@ -23,7 +23,7 @@ from dataclasses import asdict, dataclass
 import numpy as np
 
 from .camera import Camera
-from .codegen import scene_frame
+from .compiler.analysis import scene_frame
 from .nodes.base import Node
 from .render import RenderResult
 

@@ -14,8 +14,10 @@ import moderngl
 import numpy as np
 
 from .camera import Camera, OrbitCamera
-from .codegen import (BOUNDS_PAD, GLSL_FAR, ShaderSource, analytic_relative, analytic_shape, generate, moving_origin,
-                      origin_values, scene_frame)
+from .compiler import ShaderSource, generate
+from .compiler.analysis import (BOUNDS_PAD, GLSL_FAR, analytic_relative, analytic_shape, moving_origin,
+                                scene_frame)
+from .compiler.tables import origin_values
 from .errors import ParameterError, SdfglError
 from .gl.cache import CacheBudget, default_budget
 from .gl.context import CurrentContext, GLThread, describe, gl_thread
@@ -35,7 +37,7 @@ def shader_origin(scene: Node, eye: np.ndarray) -> np.ndarray:
 
     float32 then only has to resolve the scene relative to that point, the same at any
     offset from the world origin. A bounded scene without live parameters has the point
-    folded into its constants (it never moves); elsewhere (:func:`sdfgl.codegen.moving_origin`)
+    folded into its constants (it never moves); elsewhere (:func:`sdfgl.compiler.analysis.moving_origin`)
     the shader reads it through uniforms summed in float64 at every draw
     (:func:`origin_uniforms`), so a moving camera or parameter never changes the source.
     """

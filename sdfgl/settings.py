@@ -16,7 +16,7 @@ HIT_MODES = ("cone", "relative", "absolute")
 DEBUG_VIEWS = (None, "steps", "normal", "depth", "select")
 # Settings become float32 literals and uniforms: magnitudes must stay inside what float32
 # holds (3.4e38) with room for the shader's arithmetic, and below its stand-in for infinity
-# (codegen.GLSL_FAR, 1e30); positive ones must not round to zero (float32's smallest normal is 1.2e-38).
+# (sdfgl.compiler.analysis.GLSL_FAR, 1e30); positive ones must not round to zero (float32's smallest normal is 1.2e-38).
 F32_SETTING_MAX = 1e29
 F32_SETTING_MIN = 1e-30
 

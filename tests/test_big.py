@@ -11,7 +11,7 @@ import pytest
 import sdfgl as sg
 from .conftest import all_primitives
 from sdfgl import bench_big
-from sdfgl.nodes.grid import GRID_MIN
+from sdfgl.compiler.data.grid import GRID_MIN
 
 DEEP = 3 * sys.getrecursionlimit()  # deeper than any recursive walk could go
 
@@ -73,8 +73,8 @@ def test_a_deep_graph_that_cannot_be_flattened_works_everywhere(renderer):
 
 
 def test_code_past_the_hard_limit_is_refused_with_a_message(monkeypatch):
-    from sdfgl import codegen
-    monkeypatch.setattr(codegen, "MAX_CODE_SIZE", 100)
+    from sdfgl.compiler import generate
+    monkeypatch.setattr(generate, "MAX_CODE_SIZE", 100)
     with pytest.raises(sg.ParameterError, match="over the limit of 100"):
         sg.compile(sg.sphere(1) | sg.box(1))
 
@@ -189,7 +189,7 @@ def test_a_scene_without_material_nodes_has_a_constant_map_color(renderer):
     colored = sg.union(*plain.children[:-1], plain.children[-1].color(0.9, 0.1, 0.1))
     assert "g0Color" in sg.compile(colored, shadows=False, ao=False)
     # the same colour through the colour pass: the same image
-    from sdfgl.codegen import DEFAULT_COLOR
+    from sdfgl.compiler.emitter import DEFAULT_COLOR
     a = renderer.render(plain, cam, (48, 36), shadows=False, ao=False).color
     b = renderer.render(plain.color(*DEFAULT_COLOR), cam, (48, 36), shadows=False, ao=False).color
     assert a.std() > 0 and np.abs(a.astype(int) - b.astype(int)).max() <= 1

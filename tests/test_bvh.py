@@ -5,7 +5,7 @@ import pytest
 
 import sdfgl as sg
 from sdfgl import bench_big
-from sdfgl.nodes import bvh
+from sdfgl.compiler.data import bvh
 
 
 def test_every_instance_is_in_one_leaf_inside_its_boxes():
@@ -18,7 +18,7 @@ def test_every_instance_is_in_one_leaf_inside_its_boxes():
     def box(k):  # the box over a subtree's instances
         if k < 0:
             idx = tree.leaves[-1 - k]
-            return s.grid._los[idx].min(axis=0), s.grid._his[idx].max(axis=0)
+            return s.grid.los[idx].min(axis=0), s.grid.his[idx].max(axis=0)
         a, b = box(tree.nodes[k][2]), box(tree.nodes[k][5])
         return np.minimum(a[0], b[0]), np.maximum(a[1], b[1])
     for lo_a, hi_a, a, lo_b, hi_b, b in tree.nodes:

@@ -2,7 +2,7 @@
 import numpy as np
 
 import sdfgl as sg
-from sdfgl.nodes.grid import GRID_MIN
+from sdfgl.compiler.data.grid import GRID_MIN
 
 
 def scattered(n, seed=0):

@@ -1,10 +1,10 @@
 """Grid union records: the move of each instance stored in as few floats as it needs
-(sdfgl/nodes/grid_record.py), checked against the float64 twin on the real GL path."""
+(sdfgl/compiler/data/grid_record.py), checked against the float64 twin on the real GL path."""
 import numpy as np
 
 import sdfgl as sg
-from sdfgl.nodes import grid_record
-from sdfgl.nodes.grid import GRID_MIN
+from sdfgl.compiler.data import grid_record
+from sdfgl.compiler.data.grid import GRID_MIN
 from sdfgl.nodes.transforms import Rotate
 
 

@@ -1,4 +1,4 @@
-"""The free way along the ray (shaders/grid_ray.glsl): where the scene is one union kept
+"""The free way along the ray (shaders/templates/grid_ray.glsl): where the scene is one union kept
 as data, the marcher steps the way its lists prove empty. Checked against the float64
 reference and against the same shader without it."""
 import numpy as np
@@ -86,7 +86,7 @@ def _held(node: sg.Node, found: list, offset=(0.0, 0.0, 0.0)) -> tuple[int, bool
 
 def test_a_subtree_is_held_by_its_parts_balls_and_boxes():
     from sdfgl.bench_big import twenty_nodes
-    from sdfgl.nodes.ray_entry import MAX_PIECES, pieces
+    from sdfgl.compiler.data.ray_entry import MAX_PIECES, pieces
     found = pieces(twenty_nodes().translate((1, 0, 0)))
     assert [p.kind for p in found] == ["box", "ball", "box", "box", "box"]  # the eyes only remove
     head = found[1]
@@ -161,7 +161,7 @@ def test_the_nearest_subtree_entered_by_its_parts_takes_fewer_steps_to_the_same_
     cam = sg.OrbitCamera(distance=5.5, yaw=80, pitch=30, fov=45)
     refined = sg.Renderer().render(scene, cam, (96, 72), shadows=False, ao=False, outputs=("color", "depth", "steps"))
     assert "max(enterNear, g0Enter0(qNear, gRayInv, gRayDir))" in refined.source.text
-    import sdfgl.nodes.ray_entry as ray_entry
+    import sdfgl.compiler.data.ray_entry as ray_entry
     monkeypatch.setattr(ray_entry, "pieces", lambda node: None)  # the whole box for every instance
     boxed = sg.Renderer().render(sg.union(*scene.children), cam, (96, 72), shadows=False, ao=False,
                                  outputs=("color", "depth", "steps"))

@@ -21,7 +21,7 @@ def add_parser(sub: Any, command: str | None) -> None:
 def run(a: argparse.Namespace) -> int:
     """Run ``sdfgl shader``: the GLSL goes to standard output."""
     from ..camera import OrbitCamera
-    from ..codegen import generate
+    from ..compiler.generate import generate
     from ..render import shader_origin
     from ..settings import Settings
     require_scene(a, "shader")

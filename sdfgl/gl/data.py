@@ -9,7 +9,7 @@ from typing import Callable
 import moderngl
 import numpy as np
 
-from ..codegen import ShaderSource
+from ..compiler.source import ShaderSource
 from .buffer_texture import BufferTexture
 from .cache import LRU, MB, CacheBudget
 from .dialect import DESKTOP, of_source

@@ -8,7 +8,7 @@ from typing import Callable, Union
 import moderngl
 
 from .. import shaderlib
-from ..codegen import ShaderSource
+from ..compiler.source import ShaderSource
 from ..errors import ShaderCompileError
 from .cache import LRU, CacheBudget
 from .context import CurrentContext, GLThread

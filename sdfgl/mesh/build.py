@@ -7,7 +7,7 @@ from typing import Sequence
 
 import numpy as np
 
-from ..codegen import DEFAULT_COLOR
+from ..compiler.emitter import DEFAULT_COLOR
 from ..errors import ParameterError
 from ..nodes.base import Node
 from ..nodes.traverse import fact

@@ -18,7 +18,7 @@ from .record import Recorded
 from .traverse import FACTS, SHALLOW, cached, depth, fact, postorder, run_deep
 
 if TYPE_CHECKING:  # pragma: no cover
-    from ..codegen import Emitter
+    from ..compiler.emitter import Emitter
 
 EXACT = "exact"        # |f| is the Euclidean distance to the surface (outside, at least)
 BOUND = "bound"        # |f| <= distance and the gradient norm is <= lipschitz
@@ -57,16 +57,16 @@ _GRID_MIN = threading.local()  # the fewest instances a union keeps as data, in 
 
 
 def grid_min_now() -> int | None:
-    """The grid_min in force on this thread (None: the default, nodes.grid.GRID_MIN): set by
-    generate() for the scene it compiles and by distance() for the scene it evaluates."""
+    """The grid_min in force on this thread (None: the default, sdfgl.compiler.data.grid.GRID_MIN):
+    set by the compiler for the scene it compiles; distance() evaluates under the default."""
     return getattr(_GRID_MIN, "least", None)
 
 
 @contextlib.contextmanager
 def grid_min_as(least: int | None) -> Iterator[None]:
-    """Evaluate and compile with unions of ``least`` or more instances as data. The choice
-    belongs to the compile (or to the root node whose last compile made it), never to the
-    nodes: a union shared into another scene is not changed by this one's compile."""
+    """Compile with unions of ``least`` or more instances as data. The choice belongs to the
+    compile, never to the nodes: a union shared into another scene is not changed by this
+    one's compile, and the float64 twin does not follow it."""
     old = getattr(_GRID_MIN, "least", None)
     _GRID_MIN.least = least
     try:
@@ -322,13 +322,33 @@ class Node(Recorded, register=False):
     def _emit(self, em: "Emitter", p: str) -> str:
         raise NotImplementedError
 
+    # -- what the compiler asks a node, so that it never tests a node's class ----------------
+    def data_union(self) -> Any:
+        """The instances this node keeps as data (a hard union's grid, see
+        sdfgl.compiler.data), or None: every other node is written as code."""
+        return None
+
+    def distance_keeping(self) -> tuple["Node", np.ndarray | None] | None:
+        """(child, rotation R with world = R @ local, or None for no turn) where this node
+        passes its one child on with distances kept (a translation, a rotation, a colour or
+        material); None for every other node."""
+        return None
+
+    def analytic_plane(self) -> tuple[np.ndarray, np.ndarray] | None:
+        """(unit normal, a point on it) where this node is a plane with constant parameters
+        (a marcher may meet it in closed form); None for every other node."""
+        return None
+
     def distance(self, points: object) -> np.ndarray:
-        """The float64 twin of the generated map(): field values at (..., 3) points."""
+        """The float64 twin of the generated map(): field values at (..., 3) points.
+
+        The answer is a function of the scene alone: unions are kept as data as under the
+        default settings, whatever settings (grid_min, code budget) the scene was compiled
+        with."""
         p = as_points(points)
-        least = self.__dict__.get("_data_min")  # the choice of this scene's last compile (see generate)
 
         def twin() -> np.ndarray:
-            with grid_min_as(least):
+            with grid_min_as(None):
                 return self._distance(p)
         if not self.is_dag:
             return run_deep(self, twin)
@@ -425,7 +445,6 @@ def fluent(*names: str) -> Callable[[FluentT], FluentT]:
 
 
 CACHES = ("_m_", "_key", "_token", "_depth", "_bounds_cache", "_live_cache", "_detail", "_dag", "_grid", "_kids",
-           "_data_min",
            "_seq", "_fields", "_facts")
 
 

@@ -13,11 +13,12 @@ import numpy as np
 from ..errors import ParameterError
 from ..params import Live
 from ..values import validate as v
+from .layouts import layout
 from .base import CACHES, BOUND, EXACT, IMPLICIT, Node, box_of, fluent, grid_min_now
 
 if TYPE_CHECKING:  # pragma: no cover
-    from ..codegen import Emitter
-    from .grid import Grid
+    from ..compiler.emitter import Emitter
+    from ..compiler.data.grid import Grid
 
 K_MIN = 1e-30
 
@@ -165,7 +166,7 @@ class _Boolean(Node):
 
 class Union(_Boolean):
     """Union (min). A hard union of many simple primitives is kept as data with a cell
-    grid (sdfgl.nodes.grid): its field is then min(children, cap), a distance bound that
+    grid (sdfgl.compiler.data.grid): its field is then min(children, cap), a distance bound that
     is exact wherever the min is below the cap (about one grid cell)."""
 
     kind = "union"
@@ -173,14 +174,18 @@ class Union(_Boolean):
     @property
     def grid(self) -> "Grid | None":
         """The grid of this union's instances under the grid_min in force (see
-        base.grid_min_as), or None where it stays code."""
+        base.grid_min_as), or None where it stays code (or no layout is registered)."""
         least = grid_min_now()
         name = "_grid" if least is None else f"_grid@{least}"
         d = self.__dict__
         if name not in d:
-            from .grid import build
-            d[name] = build(list(self.children), least) if self._hard else None
+            build = layout("union")
+            d[name] = build(list(self.children), least) if self._hard and build is not None else None
         return d[name]
+
+    def data_union(self) -> "Grid | None":
+        """This union's grid (see :attr:`grid`): the instances it keeps as data."""
+        return self.grid
 
     def _emit(self, em: "Emitter", p: str) -> str:
         grid = self.grid if em.use_grids else None

@@ -21,7 +21,7 @@ from .base import BOUND, IMPLICIT, Node, Unary, fluent
 from .primitives import Box
 
 if TYPE_CHECKING:  # pragma: no cover
-    from ..codegen import Emitter
+    from ..compiler.emitter import Emitter
 
 PAD = 0.05  # the inside box grows by this fraction of the bounds' size
 

@@ -12,7 +12,7 @@ from ..values import validate as v
 from .base import BOUND, EXACT, IMPLICIT, INF, Node, Unary, fluent
 
 if TYPE_CHECKING:  # pragma: no cover
-    from ..codegen import Emitter
+    from ..compiler.emitter import Emitter
 
 # A child that keeps this share of its cell free on every side is evaluated once per
 # point, with a wall bound; a child nearer its cell walls also in the neighbour cells.

@@ -11,7 +11,7 @@ from ..values import validate as v
 from .base import BOUND, Primitive
 
 if TYPE_CHECKING:  # pragma: no cover
-    from ..codegen import Emitter
+    from ..compiler.emitter import Emitter
 
 
 def _levels(node: str, levels: object, most: int) -> int:

@@ -10,7 +10,7 @@ from ..values import validate as v
 from .base import INF, Primitive
 
 if TYPE_CHECKING:  # pragma: no cover
-    from ..codegen import Emitter
+    from ..compiler.emitter import Emitter
 
 
 class Gyroid(Primitive):

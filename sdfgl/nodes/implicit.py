@@ -21,7 +21,7 @@ from . import xfloat
 from .base import IMPLICIT, Node
 
 if TYPE_CHECKING:  # pragma: no cover
-    from ..codegen import Emitter
+    from ..compiler.emitter import Emitter
 
 MAX_TERMS = 400  # an implicit equation bigger than this is refused as too large
 

@@ -17,7 +17,7 @@ from ..values import validate as v
 from .base import BOUND, IMPLICIT, Node, Primitive, Unary, fluent
 
 if TYPE_CHECKING:  # pragma: no cover
-    from ..codegen import Emitter
+    from ..compiler.emitter import Emitter
 
 
 def _octaves(node: str, name: str, n: object, lo: int = 0) -> int:

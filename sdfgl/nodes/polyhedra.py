@@ -14,7 +14,7 @@ from ..values import validate as v
 from .base import INF, Primitive
 
 if TYPE_CHECKING:  # pragma: no cover
-    from ..codegen import Emitter
+    from ..compiler.emitter import Emitter
 
 PHI = (1 + math.sqrt(5)) / 2
 INV_SQRT3 = 0.57735027

@@ -15,7 +15,7 @@ from ..params import Live
 from .base import INF, Primitive
 
 if TYPE_CHECKING:  # pragma: no cover
-    from ..codegen import Emitter
+    from ..compiler.emitter import Emitter
 
 
 def _len(a: np.ndarray) -> np.ndarray:
@@ -127,6 +127,12 @@ class Plane(Primitive):
 
     def _distance(self, p: np.ndarray) -> np.ndarray:
         return (p - self.o) @ self._unit_normal()
+
+    def analytic_plane(self) -> tuple[np.ndarray, np.ndarray] | None:
+        """(unit normal, point) of this plane, or None where a parameter is live."""
+        if any(isinstance(x, Live) for x in self.params.values()):
+            return None
+        return self._unit_normal(), np.asarray(self.o, dtype=float)
 
     @property
     def _bounds(self) -> tuple[np.ndarray, np.ndarray]:

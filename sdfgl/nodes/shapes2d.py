@@ -8,11 +8,12 @@ import numpy as np
 from ..errors import ParameterError
 from ..values import validate as v
 from .base import BOUND, EXACT, Node
+from .layouts import layout
 from .record import Recorded
 
 if TYPE_CHECKING:  # pragma: no cover
-    from .polygrid import PolygonGrid
-    from ..codegen import Emitter
+    from ..compiler.data.polygrid import PolygonGrid
+    from ..compiler.emitter import Emitter
 
 
 class Shape2D(Recorded, register=False):
@@ -197,10 +198,10 @@ class Polygon(Shape2D):
 
     @property
     def grid(self) -> "PolygonGrid | None":
-        """The edge grid of a polygon with at least GRID_VERTICES vertices, else None."""
-        from .polygrid import GRID_VERTICES, PolygonGrid
+        """The edge grid of a polygon with many vertices (sdfgl.compiler.data.polygrid), else None."""
         if "_grid" not in self.__dict__:
-            self.__dict__["_grid"] = PolygonGrid(self.v) if len(self.v) >= GRID_VERTICES else None
+            build = layout("polygon")
+            self.__dict__["_grid"] = build(self.v) if build is not None else None
         return self.__dict__["_grid"]
 
     def distance2(self, q: np.ndarray) -> np.ndarray:

@@ -16,7 +16,7 @@ from .base import BOUND
 from .shapes2d import Shape2D
 
 if TYPE_CHECKING:  # pragma: no cover
-    from ..codegen import Emitter
+    from ..compiler.emitter import Emitter
 
 DEFAULT_SHARPNESS = 3.0  # a star's sharpness when neither it nor the inner radius is given
 

@@ -17,7 +17,7 @@ from .booleans import BLEND_GLSL, BLEND_REACH, BLENDS, K_MIN, smooth_min
 from .shapes2d import Shape2D
 
 if TYPE_CHECKING:  # pragma: no cover
-    from ..codegen import Emitter
+    from ..compiler.emitter import Emitter
 
 
 class _Boolean2D(Shape2D):

@@ -11,7 +11,7 @@ from ..values import validate as v
 from .base import BOUND, IMPLICIT, Node, Unary, fluent
 
 if TYPE_CHECKING:  # pragma: no cover
-    from ..codegen import Emitter
+    from ..compiler.emitter import Emitter
 
 
 

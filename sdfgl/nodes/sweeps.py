@@ -13,7 +13,7 @@ from ..values import validate as v
 from .base import INF, Primitive
 
 if TYPE_CHECKING:  # pragma: no cover
-    from ..codegen import Emitter
+    from ..compiler.emitter import Emitter
 
 
 class Tube(Primitive):

@@ -13,7 +13,7 @@ from ..params import Live
 from .base import BOUND, IMPLICIT, Node, Unary, box_of, fluent
 
 if TYPE_CHECKING:  # pragma: no cover
-    from ..codegen import Emitter
+    from ..compiler.emitter import Emitter
 
 
 class Translate(Unary):
@@ -25,6 +25,10 @@ class Translate(Unary):
         off = v.vector(self.kind, "offset", offset)
         super().__init__(child, offset=off)
         self.offset = off
+
+    def distance_keeping(self) -> tuple[Node, np.ndarray | None]:
+        """A translation keeps distances and turns nothing."""
+        return self.child, None
 
     def _emit(self, em: "Emitter", p: str) -> str:
         if isinstance(self.offset, Live):
@@ -103,6 +107,10 @@ class Rotate(Unary):
         if c < -1 + 1e-12:
             return cls(child, _axis_angle_matrix(np.array([1.0, 0.0, 0.0]), 180.0))
         return cls(child, _axis_angle_matrix(np.cross(y, a), math.degrees(math.acos(c))))
+
+    def distance_keeping(self) -> tuple[Node, np.ndarray | None]:
+        """A rotation keeps distances and turns its child by :attr:`m`."""
+        return self.child, self.m
 
     def _emit(self, em: "Emitter", p: str) -> str:
         if self.angle is not None:
@@ -231,6 +239,10 @@ class Material(Unary):
         self.rgb = c
         self.fields: dict[str, object] = {"albedo": c}  # the material fields this node sets
         self.surface = False  # sets fields besides colour (see sdfgl.nodes.material)
+
+    def distance_keeping(self) -> tuple[Node, np.ndarray | None]:
+        """A colour or material changes no distance."""
+        return self.child, None
 
     def _emit(self, em: "Emitter", p: str) -> str:
         with em.colored(self.fields):

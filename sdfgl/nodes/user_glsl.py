@@ -19,7 +19,7 @@ from ..values import validate as v
 from .base import BOUND, EXACT, IMPLICIT, INF, Primitive
 
 if TYPE_CHECKING:  # pragma: no cover
-    from ..codegen import Emitter
+    from ..compiler.emitter import Emitter
 
 # "#" anywhere (a comment before a directive would hide it from a line-start check) and "\\"
 # (a line continuation can join lines) are refused outright: GLSL has no other use for them

@@ -18,7 +18,7 @@ import numpy as np
 from ..camera import Camera, OrbitCamera
 from ..errors import ParameterError
 from ..nodes.base import Node
-from ..codegen import material_channels
+from ..compiler.analysis import material_channels
 from ..evaluate import evaluate, evaluate_channel
 from ..render import checked_size
 from .field_grid import (Progress, SampledField, auto_resolution, sample_cells, sample_colors, sample_field,

@@ -14,7 +14,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ..codegen import ShaderSource, generate
+from ..compiler.generate import generate
+from ..compiler.source import ShaderSource
 from ..errors import SdfglError
 from ..nodes.base import Node
 from ..render import shader_origin

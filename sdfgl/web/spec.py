@@ -22,7 +22,8 @@ from typing import Any
 import numpy as np
 
 from ..camera import Camera, OrbitCamera
-from ..codegen import GLSL_FAR, generate
+from ..compiler import generate
+from ..compiler.analysis import GLSL_FAR
 from ..errors import ParameterError
 from ..gl.dialect import WEBGL2
 from ..nodes.base import IMPLICIT, Node

@@ -1,4 +1,4 @@
-"""How a grid union's record stores an instance's move (sdfgl/nodes/grid.py).
+"""How a grid union's record stores an instance's move (sdfgl.compiler.data.grid).
 
 Reading data is what a packed primitive costs on llvmpipe (each texel is a texelFetch;
 on the 5000-primitive benchmark scene the fetches were most of the frame), so a record
@@ -11,7 +11,7 @@ holds as few floats as the move needs:
 - ``"matrix"``: the 3x4 inverse transform (12 floats, three texels), kept for types with
   a reflected member (an orthonormal matrix of determinant -1 has no quaternion).
 
-The uniform scale s, when a type has one, sits after the move (``_Type.layout``).
+The uniform scale s, when a type has one, sits after the move (``InstanceType.layout``).
 """
 from __future__ import annotations
 
@@ -19,13 +19,14 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ...nodes.primitives import Sphere
+
 if TYPE_CHECKING:  # pragma: no cover
-    from .grid import _Type
+    from .instances import InstanceType
 
 
-def kind(t: "_Type", rotations: np.ndarray) -> str:
+def kind(t: "InstanceType", rotations: np.ndarray) -> str:
     """The move layout of type ``t`` given its members' rotations ((n, 3, 3))."""
-    from .primitives import Sphere
     if not t.affine or (isinstance(t.inner, Sphere) and not t.scaled and not np.any(t.inner.c)):
         return "translate"
     return "matrix" if float(np.linalg.det(rotations).min()) < 0 else "quat"

@@ -5,7 +5,7 @@ margin of the cell), so a polygon of 10 000 vertices costs about what one of a f
 dozen does. The sign comes from the cell centre (inside or not, found once in float64)
 and the listed edges the segment from the centre to the point crosses (it stays in the
 cell, so every edge it crosses is listed); outside the grid the point is outside the
-polygon. The magnitude is min(listed edges, cap) with the cap of sdfgl.nodes.grid: a
+polygon. The magnitude is min(listed edges, cap) with the cap of sdfgl.compiler.data.grid: a
 distance bound equal to the exact distance wherever that is below the cap. The float64
 twin computes sign * min(|exact distance|, cap), the same number.
 """
@@ -80,3 +80,8 @@ class PolygonGrid:
         num = em.num  # type: ignore[attr-defined]
         return (f"vec2({num(self.lo[0])}, {num(self.lo[1])}), {num(self.cell)}, "
                 f"ivec2({int(self.dims[0])}, {int(self.dims[1])}), {cells}, {edges}")
+
+
+def build(vertices: np.ndarray) -> PolygonGrid | None:
+    """The edge grid of a polygon with at least GRID_VERTICES vertices, else None."""
+    return PolygonGrid(vertices) if len(vertices) >= GRID_VERTICES else None

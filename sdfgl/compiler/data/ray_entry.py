@@ -1,7 +1,7 @@
 """Pieces that hold a subtree, for where a ray first enters it (the grid's free way).
 
 A translated subtree listed in a grid cell bounds the free way along the ray by where the
-ray enters its bounding box (shaders/grid_ray.glsl). The box of a robot-like subtree is
+ray enters its bounding box (shaders/templates/grid_ray.glsl). The box of a robot-like subtree is
 mostly empty: rays that pass between its parts enter the box and then step by the field's
 value. ``pieces`` splits a subtree into a few balls and boxes whose union holds every
 point where its field is <= 0, so the entry into the nearest of them is a tighter lower
@@ -27,10 +27,13 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .base import Node, box_of
+from ...nodes.base import Node, box_of
+from ...nodes.booleans import Difference, Intersection, Union
+from ...nodes.primitives import Sphere
+from ...nodes.transforms import Material, Rotate, Scale, Translate
 
 if TYPE_CHECKING:  # pragma: no cover
-    from ..codegen import Emitter
+    from ..emitter import Emitter
 
 MAX_PIECES = 6   # entry tests per refined instance at most (each costs about a box entry)
 _DEEPEST = 12    # levels of unions, differences and moves expanded at most
@@ -96,9 +99,6 @@ class _Move:
 
 def _expand(node: Node, move: _Move, depth: int) -> list[Piece] | None:
     """``node``'s pieces in the world of ``move``; None past MAX_PIECES."""
-    from .booleans import Difference, Intersection, Union
-    from .primitives import Sphere
-    from .transforms import Material, Rotate, Scale, Translate
     while isinstance(node, (Material, Translate, Rotate, Scale)):
         if isinstance(node, Translate):
             move = move.then(np.eye(3), node.offset)
@@ -140,7 +140,7 @@ def _cut(found: list[Piece], whole: Piece) -> list[Piece]:
 
 def entry_glsl(em: "Emitter", gid: str, found: list[Piece], q: str, inv: str, direction: str) -> str:
     """GLSL for where the ray (unit ``direction``, 1 / it ``inv``) from ``q`` first enters
-    ``found`` (shaders/grid_ray.glsl's tests; 3e38 where it enters none)."""
+    ``found`` (shaders/templates/grid_ray.glsl's tests; 3e38 where it enters none)."""
     tests = [f"{gid}RayBall({q} - {em.vec(p.centre)}, {direction}, {em.num(p.radius)})" if p.kind == "ball"
              else f"{gid}RayBox({q}, {inv}, {em.vec(p.lo)}, {em.vec(p.hi)})" for p in found]
     while len(tests) > 1:  # a balanced tree of mins

@@ -18,11 +18,12 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..errors import SdfglError
+from ... import shaderlib
+from ...errors import SdfglError
+from .grid import LIST_WIDTH, Grid
 
 if TYPE_CHECKING:  # pragma: no cover
-    from ..codegen import Emitter
-    from .grid import Grid
+    from ..emitter import Emitter
 
 LEAF = 4          # instances per leaf at most
 STACK = 24        # the shader's traversal stack (the tree is balanced: depth ~ log2(n / LEAF))
@@ -32,9 +33,9 @@ TRUNCATE = 1.0    # the field's truncation, in grid cells (see the module docstr
 class Bvh:
     """The tree over ``grid``'s instances: node boxes, leaves and their per-type lists."""
 
-    def __init__(self, grid: "Grid") -> None:
+    def __init__(self, grid: Grid) -> None:
         self.grid = grid
-        los, his = grid._los, grid._his
+        los, his = grid.los, grid.his
         centre = 0.5 * (los + his)
         nodes: list[list] = []    # [lo_a, hi_a, child_a, lo_b, hi_b, child_b]
         leaves: list[np.ndarray] = []
@@ -72,7 +73,6 @@ class Bvh:
         """float32 RGBA arrays: "Nodes" (4 texels a node: (lo_a, child_a), (hi_a, child_b),
         (lo_b, 0), (hi_b, 0), boxes relative to the grid's centre), "Cells" (per leaf and
         type (first, count) pairs, as a grid cell) and "List" (the records, by leaf)."""
-        from .grid import LIST_WIDTH
         key = tuple(default_color)
         if key in self._textures:
             return self._textures[key]
@@ -109,8 +109,7 @@ class Bvh:
 
     def emit_function(self, em: "Emitter", fn: str, color: bool, loops: list[tuple[str, str]], owner: str) -> list[tuple[str, str]]:
         """The GLSL lines of the union function ``fn``: traversal around the per-type
-        ``loops`` (from Grid._loop, reading pairs s0, s1, ... and updating ``best``)."""
-        from .. import shaderlib
+        ``loops`` (from sdfgl.compiler.data.grid_code, reading pairs s0, s1, ... and updating ``best``)."""
         g = self.grid
         gid = em.grid_name(g)
         tex = self.textures(em.grids[id(g)][2])
@@ -118,8 +117,8 @@ class Bvh:
         nodes, cells, lists = (em.data.add(tex[k]) for k in ("Nodes", "Cells", "List"))
         defs = (f"#define {gid}_NODES {nodes}\n#define {gid}_CELLS {cells}\n#define {gid}_LIST {lists}\n"
                 f"#define {gid}_PER_LEAF {-(-len(g.types) // 2)}\n#define {gid}_STACK {STACK}\n"
-                f"#define {gid}_ROOT_LO vec3({', '.join(em.num(x) for x in g._los.min(axis=0) - g.centre)})\n"
-                f"#define {gid}_ROOT_HI vec3({', '.join(em.num(x) for x in g._his.max(axis=0) - g.centre)})\n"
+                f"#define {gid}_ROOT_LO vec3({', '.join(em.num(x) for x in g.los.min(axis=0) - g.centre)})\n"
+                f"#define {gid}_ROOT_HI vec3({', '.join(em.num(x) for x in g.his.max(axis=0) - g.centre)})\n"
                 f"#define {gid}_TRUNCATE {em.num(TRUNCATE * g.cell)}")
         em.helper(f"{gid}_bvh", defs + "\n" + shaderlib.read("templates/bvh_union").replace("GRIDID", gid))
         w = ".w" if color else ""
@@ -168,7 +167,7 @@ def _rows(texels: np.ndarray, width: int) -> np.ndarray:
     return out.reshape(-1, width, 4)
 
 
-def of(grid: "Grid") -> Bvh:
+def of(grid: Grid) -> Bvh:
     """The tree of ``grid``, built once."""
     hit = grid.__dict__.get("_bvh")
     if hit is None:

@@ -1,0 +1,157 @@
+"""Scene analysis: what the compiler learns about a scene before writing code.
+
+Its frame (finite bounds, length scale, step limit), a closed-form shape the marcher may
+intersect directly, a moving shader origin, the union whose free way along the ray the
+marcher may step, the subtrees that occur more than once and the material channels the
+scene sets. What a node is, the compiler asks the node (``data_union``,
+``distance_keeping``, ``analytic_plane``), never its class.
+"""
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from ..nodes.base import Node
+from ..nodes.traverse import FACTS, fact
+from ..params import Live
+from ..settings import Settings
+from .data.instances import pack, unwrap
+from .emitter import CHANNELS
+
+# Stand-in for an infinite bound inside GLSL: finite in float32, so no inf*0 arises.
+GLSL_FAR = 1e30
+BOUNDS_PAD = 1e-3  # the ray clip box grows by this share of the scene size
+# methods that share a loop file, told apart by a #define
+MARCH_FILES = {"sphere": "relaxed", "enhanced": "relaxed", "forward_newton": "newton"}
+
+
+def scene_frame(scene: Node) -> tuple[np.ndarray, np.ndarray, float]:
+    """Finite stand-ins for the scene bounds (inf -> GLSL_FAR) and a length scale."""
+    lo, hi = scene.bounds
+    finite = np.isfinite(lo) & np.isfinite(hi)
+    ext = (hi - lo)[finite]
+    scale = float(ext.max()) if ext.size and ext.max() > 0 else 1.0
+    return np.where(np.isfinite(lo), lo, -GLSL_FAR), np.where(np.isfinite(hi), hi, GLSL_FAR), scale
+
+
+def unbounded(scene: Node) -> bool:
+    """True where the scene box is infinite on some side: only then does max_dist limit a ray."""
+    lo, hi = scene.bounds
+    return not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi)))
+
+
+def analytic_shape(scene: Node) -> tuple[str, np.ndarray] | None:
+    """("sphere", (centre, radius)) or ("plane", (normal, offset)) in world space when the
+    scene is one sphere or plane under rigid transforms, uniform scales and colours."""
+    q = pack(scene)
+    if q is not None and q.type == 0:
+        return "sphere", np.array([*q.t, q.scale * q.size[0]])
+    peeled = unwrap(scene)
+    if peeled is None:
+        return None
+    inner, t, r, s, _ = peeled
+    plane = inner.analytic_plane()
+    if plane is None:
+        return None
+    normal, anchor = plane
+    n = r @ normal
+    point = t + s * (r @ anchor)
+    return "plane", np.array([*n, float(n @ point)])
+
+
+def analytic_relative(kind: str, v: np.ndarray, origin: np.ndarray) -> np.ndarray:
+    """An analytic shape's vec4 relative to the shader origin."""
+    return v - np.array([*origin, 0.0]) if kind == "sphere" else np.array([*v[:3], v[3] - v[:3] @ origin])
+
+
+def max_steps_of(settings: Settings, scale: float, lo: np.ndarray, hi: np.ndarray) -> int:
+    """The loop limit the shader gets: max_steps, or enough fixed steps for "reference"."""
+    if settings.method != "reference":
+        return settings.max_steps
+    ext = hi - lo
+    diag = float(np.linalg.norm(np.where(ext >= GLSL_FAR, settings.max_dist, ext)))
+    return max(settings.max_steps, int(diag / ref_step(settings, scale)) + 2)
+
+
+def ref_step(settings: Settings, scale: float) -> float:
+    """The fixed step of the "reference" method."""
+    return settings.ref_step if settings.ref_step is not None else scale / 512.0
+
+
+def moving_origin(scene: Node, target: str = "render", dialect: str = "desktop") -> bool:
+    """Whether the shader origin of ``scene`` is a uniform (uOrgN offsets, bounds as
+    uniforms): rendering on the desktop an unbounded scene (the origin follows the eye) or
+    one with live parameters (it follows the box's centre). Elsewhere the origin is folded
+    into constants (a bounded scene is anchored at its fixed centre)."""
+    if target != "render" or dialect != "desktop":
+        return False
+    lo, hi = scene.bounds
+    return not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi))) or bool(scene.live_params())
+
+
+def ray_free_grid(scene: Node, settings: Settings) -> tuple[Any, np.ndarray] | None:
+    """The grid whose free way along the ray (shaders/templates/grid_ray.glsl) the marcher
+    may step, and the rotation R (world = R @ local) from the grid's frame to the world's:
+    the scene's own union kept as data under translations, rotations and materials only
+    (they keep distances; the marcher turns its direction by R^T), any child beside the
+    instances bounding the way by its distance, marched by march_relaxed.glsl (sphere
+    tracing and its relaxed variants: the marcher that reads gFree). None elsewhere."""
+    if MARCH_FILES.get(settings.method, settings.method) != "relaxed" or settings.grid is not True \
+            or not settings.free_way:
+        return None
+    node, turn = scene, np.eye(3)
+    while (step := node.distance_keeping()) is not None and not node.live_params():
+        node, rotation = step
+        if rotation is not None:
+            turn = turn @ rotation
+    grid = node.data_union()
+    # children beside the grid (a floor) bound the way by their distance (Union._emit): the
+    # scene is a distance bound wherever a distance marcher runs (an implicit one is refused)
+    return None if grid is None else (grid, turn)
+
+
+def shared_subtrees(scene: Node, use_grids: bool | str = True) -> set:
+    """Keys of composite subtrees that occur more than once (each becomes one GLSL function)."""
+    counts: dict = {}
+    stack = [scene]
+    while stack:
+        n = stack.pop()
+        if n.children and n is not scene:  # the scene itself occurs once
+            counts[n.key] = counts.get(n.key, 0) + 1
+            if counts[n.key] > 1:
+                continue  # its inside is counted once; the function holds it
+        grid = n.data_union() if use_grids else None
+        if grid is not None:  # instances are data: only their types' code and the other children
+            inside = {id(c) for c in grid.children}
+            stack.extend(c for c in n.children if id(c) not in inside)
+            stack.extend(t.inner for t in grid.types if t.slots is None)
+            continue
+        stack.extend(n.children)
+    return {k for k, c in counts.items() if c > 1}
+
+
+def material_channels(scene: Node) -> list[str]:
+    """The colour passes the scene needs besides albedo: "surface" where some node sets
+    specular, shininess or metallic, "emission" where some node sets an emission."""
+    names = fact(scene, "_fields")
+    return [ch for ch in ("surface", "emission") if any(f in names for f in CHANNELS[ch])]
+
+
+def material_fields(n: Node) -> frozenset:
+    """The material fields some Material at or under ``n`` sets (children's cached values);
+    a Material (and only a Material) has a ``fields`` dict."""
+    fields = n.__dict__.get("fields")
+    own = frozenset(fields) if fields else _NONE
+    kids = [f for c in n.children if (f := c.__dict__["_fields"])]
+    return own.union(*kids) if kids else own
+
+
+def one_color(scene: Node, highlight: Node | None) -> bool:
+    """True for a scene without any material node (and no highlight): mapColor() is then one
+    constant, not another copy of the scene's code."""
+    return not fact(scene, "_fields") and highlight is None
+
+
+_NONE: frozenset = frozenset()
+FACTS["_fields"] = material_fields

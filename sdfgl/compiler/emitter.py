@@ -1,0 +1,268 @@
+"""The Emitter: collects the straight-line GLSL of one map()-like function.
+
+map() is straight-line code (loops only inside the library functions of nodes that need
+them) with every parameter baked in as a float32 constant (or a uniform, for sg.param);
+every line remembers which node wrote it, so a compile error can name it.
+"""
+from __future__ import annotations
+
+import contextlib
+from typing import TYPE_CHECKING, Any, Iterator, Sequence
+
+import numpy as np
+
+from .. import shaderlib
+from ..errors import ParameterError
+from ..params import Live, Param
+from .source import glsl_float
+from .tables import DataPool, OriginOffsets
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ..nodes.base import Node
+
+DEFAULT_COLOR = (0.7, 0.68, 0.64)
+# what a surface is made of where no node says otherwise (today's look: sdfgl.look)
+DEFAULT_SURFACE = {"albedo": DEFAULT_COLOR, "specular": 0.25, "shininess": 48.0, "metallic": 0.0,
+                   "emission": (0.0, 0.0, 0.0)}
+# colour-mode passes: the vec3 each carries beside the distance
+CHANNELS = {"albedo": ("albedo",), "surface": ("specular", "shininess", "metallic"), "emission": ("emission",)}
+FLOAT32_MAX = float(np.finfo(np.float32).max)
+# a node with this many constant rows (polygon vertices) keeps them as data, in a texture
+DATA_MIN = 64
+
+
+class Emitter:
+    """Collects the straight-line GLSL of one map()-like function.
+
+    Point variables may carry a pending float64 offset (from translations and from the
+    shader origin); it is folded in float64 and written out once, when a node needs
+    the point itself. This keeps scenes far from the origin exact to float32 rounding.
+    """
+
+    def __init__(self, mode: str, parent: "Emitter | None" = None, params: list[Param] | None = None,
+                 channel: str = "albedo") -> None:
+        if mode not in ("dist", "color") or channel not in CHANNELS:
+            raise ValueError(mode)
+        self.mode = mode
+        # in colour mode, which vec3 of the surface travels with the distance (see CHANNELS)
+        self.channel = parent.channel if parent else channel
+        self.lines: list[tuple[str, str]] = []  # (code, owner path)
+        # library files and helper functions are shared with the emitter of map() itself
+        self.libs: list[str] = parent.libs if parent else []
+        self.functions: dict[tuple, tuple[str, list[tuple[str, str]]]] = parent.functions if parent else {}
+        self.params: list[Param] = parent.params if parent else (params if params is not None else [])
+        self._path: list[str] = list(parent._path) if parent else []
+        # the materials (dicts of the fields they set) of the nodes around the current one
+        self._colors: list[dict[str, Any]] = list(parent._colors) if parent else [DEFAULT_SURFACE]
+        self._count = 0
+        # point name -> (base point, pending float64 offset, live offsets still to subtract)
+        self._shifts: dict[str, tuple[str, np.ndarray, tuple[Live, ...]]] = {}
+        self._materialized: dict[Any, str] = {}
+        # the point that carries a moving shader origin (the root of map() when the origin is a
+        # uniform, see OriginOffsets); None: the origin, if any, is folded into constants
+        self.origin_base: str | None = None
+        self.origins: OriginOffsets | None = parent.origins if parent else None
+        self.shared_keys: set = parent.shared_keys if parent else set()
+        self.helpers: dict[str, str] = parent.helpers if parent else {}
+        self.detail = parent.detail if parent else False  # emitting the normals-only field
+        self.ray_free_grid: int | None = parent.ray_free_grid if parent else None  # see ray_free_grid()
+        self.grids: dict[int, tuple[str, Any, tuple[float, float, float]]] = parent.grids if parent else {}
+        self.use_grids = parent.use_grids if parent else True
+        self.data: DataPool = parent.data if parent else DataPool()  # tables the shader reads
+        self.data_min = parent.data_min if parent else DATA_MIN  # constants in one node above which they are data
+        self._defining: set = set(parent._defining) if parent else set()
+        self.results: dict = {}  # (node id, point, colour) -> (node, result variable), in this function
+        self.highlight: Node | None = parent.highlight if parent else None  # the "select" debug view's subtree
+
+    # -- bookkeeping -------------------------------------------------------------------
+    def enter(self, node: Node) -> None:
+        self._path.append(node.label())
+
+    def leave(self) -> None:
+        self._path.pop()
+
+    @property
+    def owner(self) -> str:
+        return " > ".join(self._path) if self._path else "(scene)"
+
+    def require(self, *libs: str) -> None:
+        """Include ``shaders/lib/<name>.glsl`` (and what it requires) once."""
+        for name in libs:
+            if name in self.libs:
+                continue
+            self.require(*shaderlib.requires(name))
+            self.libs.append(name)
+
+    def assign(self, glsl_type: str, expr: str) -> str:
+        """Emit ``type vN = expr;`` and return ``vN``."""
+        name = f"v{self._count}"
+        self._count += 1
+        self.lines.append((f"    {glsl_type} {name} = {expr};", self.owner))
+        return name
+
+    def function(self, node: Node) -> str:
+        """Name of a GLSL function computing ``node`` at its argument (emitted once per subtree)."""
+        key = (node.key, self.mode, self.channel, self.current(), self.detail)
+        if key not in self.functions:
+            sub = Emitter(self.mode, parent=self)
+            sub._defining.add(node.key)
+            result = node.emit(sub, "p")
+            prefix = "n" if self.detail else ("d" if self.mode == "dist" else self.channel[0])
+            name = f"{prefix}{len(self.functions)}_{node.kind}"
+            rtype = "float" if self.mode == "dist" else "vec4"
+            lines = [(f"{rtype} {name}(vec3 p) {{", self.owner), *sub.lines,
+                     (f"    return {result};", self.owner), ("}", self.owner)]
+            self.functions[key] = (name, lines)
+        return self.functions[key][0]
+
+    def table(self, values: np.ndarray) -> int:
+        """The index of the first texel of ``values`` (rows of up to 4 floats, one texel
+        each) in the shader's one data texture; GLSL reads texel i with dataFetch(i)."""
+        rows = np.asarray(values, dtype=np.float32).reshape(len(values), -1)
+        texels = np.zeros((len(rows), 4), dtype=np.float32)
+        texels[:, :rows.shape[1]] = rows
+        self.require("data_table")
+        return self.data.add(texels)
+
+    def helper(self, name: str, code: str | list[tuple[str, str]]) -> None:
+        """Include a generated helper function (e.g. a polygon of N vertices) once; ``code``
+        may be (line, owner) pairs, so compile errors name the owner of each line."""
+        self.helpers.setdefault(name, code)
+
+    def grid_name(self, grid: Any) -> str:
+        """The GLSL prefix of a union kept as data (its textures are the ShaderSource's data)."""
+        if id(grid) not in self.grids:
+            self.grids[id(grid)] = (f"g{len(self.grids)}", grid, self.field("albedo"))
+        return self.grids[id(grid)][0]
+
+    def narrow_free_way(self, grid: Any, distance: str) -> None:
+        """Beside ``grid``'s union, a child written as code bounds the free way along the ray
+        by its distance (shaders/grid_ray.glsl; map() of the ray-free grid only)."""
+        if id(grid) == self.ray_free_grid and self.mode == "dist" and not self.detail:
+            self.lines.append((f"    gFree = min(gFree, {distance});", self.owner))
+
+    def mark(self, node: Node, result: str) -> str:
+        """Record the distance of the highlighted subtree in the global gSel (map() only); return ``result``."""
+        if node is self.highlight and self.mode == "dist" and not self.detail:
+            self.lines.append((f"    gSel = min(gSel, abs({result}));", self.owner))
+        return result
+
+    def grid_union(self, grid: Any, p: str) -> str:
+        """The union kept as data at point ``p``: its distance, or (vec3, distance) in colour
+        mode (packed primitives carry colours only: other channels are the current ones)."""
+        from .data.grid_code import emit  # the data strategies build on this module
+        self._mark_member(grid.children, p)
+        return emit(grid, self, p)
+
+    def _mark_member(self, members: list[Node], p: str) -> None:
+        """The select view inside a union kept as data: the member that is (or holds) the highlighted
+        node is written out as code too, so that its distance reaches gSel (members are data)."""
+        if self.highlight is None or self.mode != "dist" or self.detail:
+            return
+        for member in members:
+            stack = [member]
+            while stack:
+                n = stack.pop()
+                if n is self.highlight:
+                    member.emit(self, p)
+                    return
+                stack.extend(n.children)
+
+    # -- literals ----------------------------------------------------------------------
+    def num(self, x: float | Live) -> str:
+        """A float: a constant, or the expression of a live value over its uniform."""
+        if isinstance(x, Live):
+            return x.glsl(self)
+        if not abs(float(x)) <= FLOAT32_MAX:
+            raise ParameterError(f"{self.owner}: value {x!r} does not fit in a float32 shader constant")
+        return glsl_float(x)
+
+    def vec(self, v: Sequence[float] | Live) -> str:
+        """A vecN: constants, or a live value (a live scalar is broadcast to vec3)."""
+        if isinstance(v, Live):
+            return f"vec3({v.glsl(self)})" if v.dims == 1 else v.glsl(self)
+        vals = list(v)
+        return f"vec{len(vals)}({', '.join(self.num(x) for x in vals)})"
+
+    def literal(self, x: object) -> str:
+        """A constant inside a live expression: a float or a 3-vector."""
+        return self.vec(np.asarray(x, dtype=np.float64)) if np.ndim(x) else self.num(float(x))  # type: ignore[arg-type]
+
+    def uniform_for(self, p: Param) -> str:
+        """The uniform that carries live parameter ``p`` (declared by generate())."""
+        if p not in self.params:
+            self.params.append(p)
+        return f"uP{self.params.index(p)}"
+
+    # -- points with a pending float64 offset ------------------------------------------
+    def shift(self, p: str, delta: np.ndarray) -> str:
+        """A point name standing for ``p + delta``; nothing is emitted yet."""
+        base, off, lives = self._shifts.get(p, (p, np.zeros(3), ()))
+        name = f"{base}@{len(self._shifts)}"
+        self._shifts[name] = (base, off + np.asarray(delta, dtype=np.float64), lives)
+        return name
+
+    def shift_live(self, p: str, offset: Live) -> str | None:
+        """A point name standing for ``p - offset`` (a live offset) when ``p`` carries the
+        moving shader origin: origin, constant and live parts are then summed in float64 on
+        the CPU each frame into one uniform. None elsewhere (the caller writes the sum)."""
+        base, off, lives = self._shifts.get(p, (p, np.zeros(3), ()))
+        if self.origins is None or base != self.origin_base:
+            return None
+        name = f"{base}@{len(self._shifts)}"
+        self._shifts[name] = (base, off, (*lives, offset))
+        return name
+
+    def point(self, p: str, along: np.ndarray | None = None) -> str:
+        """A GLSL expression for point ``p``, writing out a pending offset once.
+
+        ``along`` (a unit axis): the caller reads only dot(point, along) (a plane), so only the
+        offset's component along it is added; the point stays small however far the plane's
+        anchor and the origin lie apart, and so does its float32 rounding."""
+        if p not in self._shifts:
+            return p
+        key = p if along is None else (p, np.asarray(along, dtype=np.float64).tobytes())
+        if key not in self._materialized:
+            base, off, lives = self._shifts[p]
+            axis = None if along is None else np.asarray(along, dtype=np.float64)
+            if self.origins is not None and base == self.origin_base:
+                code = self.assign("vec3", f"{base} + {self.origins.uniform(off, lives, axis)}")
+            else:
+                off = off if axis is None else (off @ axis) * axis
+                code = base if not off.any() else self.assign("vec3", f"{base} + {self.vec(off)}")
+            self._materialized[key] = code
+        return self._materialized[key]
+
+    # -- colour and material -----------------------------------------------------------
+    @contextlib.contextmanager
+    def colored(self, fields: dict[str, Any]) -> Iterator[None]:
+        """Inside, the material fields in ``fields`` apply where no inner node sets them."""
+        self._colors.append(fields)
+        try:
+            yield
+        finally:
+            self._colors.pop()
+
+    def field(self, name: str) -> Any:
+        """The value of material field ``name`` here (the innermost node that sets it wins)."""
+        for f in reversed(self._colors):
+            if name in f:
+                return f[name]
+        raise KeyError(name)
+
+    def current(self) -> Any:
+        """The vec3 of this pass's channel here: a colour, or (specular, shininess, metallic)."""
+        names = CHANNELS[self.channel]
+        return self.field(names[0]) if len(names) == 1 else tuple(self.field(n) for n in names)
+
+    def with_color(self, d: str) -> str:
+        """In colour mode pair distance ``d`` with the current channel value; else return ``d``."""
+        if self.mode == "dist":
+            return d
+        return self.assign("vec4", f"vec4({self.vec(self.current())}, {d})")
+
+    def scale_distance(self, r: str, factor: str) -> str:
+        """Multiply a result's distance by ``factor`` (keeping its colour)."""
+        if self.mode == "dist":
+            return self.assign("float", f"{r} * {factor}")
+        return self.assign("vec4", f"vec4({r}.rgb, {r}.w * {factor})")

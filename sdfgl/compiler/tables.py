@@ -1,0 +1,82 @@
+"""What a shader reads besides its code: the one data texture and the moving origin's offsets."""
+from __future__ import annotations
+
+import hashlib
+from typing import Sequence
+
+import numpy as np
+
+from ..errors import ParameterError
+from ..params import Live
+from .source import OriginEntry
+
+DATA_WIDTH = 1024  # texels per row of a data table (a power of two)
+
+
+class DataPool:
+    """The float32 texels of every table a shader reads (grid lists, polygon vertices), in
+    one texture: one sampler however many tables (drivers allow only a few samplers)."""
+
+    def __init__(self) -> None:
+        self.chunks: list[np.ndarray] = []
+        self.size = 0
+        self._index: dict[bytes, int] = {}
+
+    def add(self, texels: np.ndarray) -> int:
+        """Append (n, 4) float32 texels (once per content); return the first one's index."""
+        arr = np.ascontiguousarray(texels, dtype=np.float32).reshape(-1, 4)
+        key = hashlib.sha1(arr.tobytes()).digest() + len(arr).to_bytes(8, "little")
+        if key not in self._index:
+            self._index[key] = self.size
+            self.chunks.append(arr)
+            self.size += len(arr)
+        return self._index[key]
+
+    def texture(self) -> tuple[tuple[str, np.ndarray], ...]:
+        """("uData", (rows, DATA_WIDTH, 4)) or nothing."""
+        if not self.chunks:
+            return ()
+        if self.size >= 2 ** 24:
+            raise ParameterError(f"scene: its data tables hold {self.size} texels, over the limit of 2^24 "
+                                 f"(float32 indices); use fewer or smaller instances")
+        flat = np.zeros((-(-self.size // DATA_WIDTH) * DATA_WIDTH, 4), dtype=np.float32)
+        flat[:self.size] = np.concatenate(self.chunks)
+        return (("uData", flat.reshape(-1, DATA_WIDTH, 4)),)
+
+
+class OriginOffsets:
+    """The uniforms uOrg0, uOrg1, ... of a shader whose origin moves (unbounded scenes and
+    scenes with live parameters, see :func:`sdfgl.compiler.analysis.moving_origin`): each is
+    ``origin + offset - sum(live offsets)`` for a point met in map() (the root itself, a
+    translation, a grid's centre), summed in float64 on the CPU at every draw. The float32
+    point a node sees is then one rounding away from exact wherever the origin is, and
+    moving the camera or a parameter (which moves the origin) changes uniforms, never the
+    source."""
+
+    def __init__(self) -> None:
+        self.entries: list[OriginEntry] = []
+        self._index: dict[tuple, int] = {}
+
+    def uniform(self, offset: np.ndarray, lives: tuple[Live, ...], along: np.ndarray | None = None) -> str:
+        """The uniform's name for this offset (one per distinct offset); ``along``: only its
+        component along this unit axis is kept (see Emitter.point)."""
+        key = (np.asarray(offset, dtype=np.float64).tobytes(), tuple(id(x) for x in lives),
+               None if along is None else along.tobytes())
+        if key not in self._index:
+            self._index[key] = len(self.entries)
+            self.entries.append((np.array(offset, dtype=np.float64), lives, along))
+        return f"uOrg{self._index[key]}"
+
+
+def origin_values(entries: Sequence[OriginEntry], origin: np.ndarray) -> dict[str, tuple]:
+    """The uOrgN uniform values for the shader origin ``origin`` (float64), at the current
+    parameter values."""
+    out = {}
+    for i, (off, lives, along) in enumerate(entries):
+        v = np.asarray(origin, dtype=np.float64) + off
+        for live in lives:
+            v = v - np.broadcast_to(np.asarray(live.value, dtype=np.float64), (3,))
+        if along is not None:
+            v = (v @ along) * along
+        out[f"uOrg{i}"] = tuple(float(x) for x in v)
+    return out
