@@ -7,7 +7,7 @@
 import numpy as _np
 
 from .camera import Camera, OrbitCamera
-from .compiler import compile
+from .compiler.generate import compile
 from .errors import (ContextError, ParameterError, SceneDocumentError, SceneFileError, SdfglError,
                      ShaderCompileError)
 from .look import directional_light, point_light

@@ -24,7 +24,8 @@ import numpy as np
 from .errors import SdfglError
 from . import hardcases
 from .camera import Camera
-from .compiler import ShaderSource, generate
+from .compiler.generate import generate
+from .compiler.source import ShaderSource
 from .compiler.analysis import max_steps_of, scene_frame
 from .gl.cache import CacheBudget
 from .gl.context import describe

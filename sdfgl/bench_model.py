@@ -13,7 +13,7 @@ import numpy as np
 from . import shaderlib
 from .bench import FrameTimer, Progress, Variant, time_interleaved
 from .camera import Camera, OrbitCamera
-from .compiler import ShaderSource
+from .compiler.source import ShaderSource
 from .gl.cache import CacheBudget
 from .demo import demo_camera, demo_scene
 from .nodes import box, cylinder, plane, rounded_box, sphere, torus, union

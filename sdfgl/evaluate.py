@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .compiler import ShaderSource, generate
+from .compiler.generate import generate
+from .compiler.source import ShaderSource
 from .compiler.analysis import material_channels
 from .compiler.targets import EVALUATE_CHANNELS
 from .errors import ParameterError

@@ -14,7 +14,8 @@ import moderngl
 import numpy as np
 
 from .camera import Camera, OrbitCamera
-from .compiler import ShaderSource, generate
+from .compiler.generate import generate
+from .compiler.source import ShaderSource
 from .compiler.analysis import (BOUNDS_PAD, GLSL_FAR, analytic_relative, analytic_shape, moving_origin,
                                 scene_frame)
 from .compiler.tables import origin_values

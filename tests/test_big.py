@@ -73,8 +73,8 @@ def test_a_deep_graph_that_cannot_be_flattened_works_everywhere(renderer):
 
 
 def test_code_past_the_hard_limit_is_refused_with_a_message(monkeypatch):
-    from sdfgl.compiler import generate
-    monkeypatch.setattr(generate, "MAX_CODE_SIZE", 100)
+    import sdfgl.compiler.generate as generate_module
+    monkeypatch.setattr(generate_module, "MAX_CODE_SIZE", 100)
     with pytest.raises(sg.ParameterError, match="over the limit of 100"):
         sg.compile(sg.sphere(1) | sg.box(1))
 

@@ -9,7 +9,7 @@ import subprocess
 import pytest
 
 import sdfgl as sg
-from sdfgl.compiler import generate
+from sdfgl.compiler.generate import generate
 from sdfgl.errors import ShaderCompileError
 from sdfgl.nodes.base import Primitive
 from sdfgl.settings import Settings

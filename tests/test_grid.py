@@ -79,3 +79,23 @@ def test_cells_list_instances_by_their_balls_and_every_unlisted_one_lies_beyond_
     for i, m in enumerate(members):
         near = np.flatnonzero(m.distance(p) < g.margin)
         assert all((int(index[k]), i) in listed for k in near), f"member {i} is near an unlisted cell"
+
+
+def test_compiling_never_writes_into_the_scene_nor_moves_its_twin():
+    # 20 instances: code by default, data with grid_min=8 or over a small code budget, whose
+    # cap lowers the field far from the spheres: the twin must not follow either compile
+    rng = np.random.default_rng(7)
+    s = sg.union(*[sg.sphere(0.2).translate(rng.uniform(-2, 2, 3)) for _ in range(20)])
+    pts = rng.uniform(-5, 5, (2000, 3))
+    runs = ({}, {"grid_min": 8}, {"grid_min": 20, "code_budget": 1000}, {"grid_min": 8, "grid": "bvh"})
+    for kw in runs:  # every cache a compile fills is filled once
+        sg.compile(s, **kw)
+    twin = s.distance(pts)
+    state = dict(vars(s))
+    assert s.grid is None  # the scene's own answer: a union of 20 is code
+    np.testing.assert_array_equal(twin, np.min([c.distance(pts) for c in s.children], axis=0))
+    for kw in runs[::-1] + runs:
+        src = sg.compile(s, **kw)
+        assert ("g0Dist(" in src) == bool(kw), kw  # the compiles differ ...
+        np.testing.assert_array_equal(s.distance(pts), twin)  # ... the twin does not
+        assert vars(s).keys() == state.keys() and all(vars(s)[k] is v for k, v in state.items()), kw

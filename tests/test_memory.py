@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 import sdfgl as sg
-from sdfgl.compiler import ShaderSource
+from sdfgl.compiler.source import ShaderSource
 from sdfgl.gl.buffer_texture import BufferTexture
 from sdfgl.gl.cache import LRU
 

@@ -93,4 +93,4 @@ def test_warps_divide_by_their_own_stretch_only():
     # a union with a plain sphere keeps the sphere's code unscaled
     src = sg.compile(tw | sg.sphere(0.3).translate((2, 0, 0)), shadows=False, ao=False)
     body = src.split("float map(vec3 p) {")[1].split("\n}")[0]
-    assert body.count(sg.compiler.glsl_float(1 / tw.stretch)) == 1
+    assert body.count(sg.compiler.source.glsl_float(1 / tw.stretch)) == 1

@@ -19,7 +19,7 @@ SCENES = sorted((ROOT / "examples" / "gallery").glob("*.py")) + [ROOT / "example
 
 def scene_params(path: Path):
     sf = load_scene_file(path)
-    from sdfgl.compiler import generate
+    from sdfgl.compiler.generate import generate
     from sdfgl.settings import Settings
     return sf, list(generate(sf.scene, Settings.build(**sf.settings)).params)
 

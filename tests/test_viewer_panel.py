@@ -8,7 +8,7 @@ from PIL import Image, ImageGrab
 
 import sdfgl as sg
 from sdfgl.camera import OrbitCamera
-from sdfgl.compiler import generate
+from sdfgl.compiler.generate import generate
 from sdfgl.settings import Settings
 
 from .test_viewer import display  # noqa: F401 - the Xvfb fixture

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 import sdfgl as sg
-from sdfgl.compiler import generate
+from sdfgl.compiler.generate import generate
 from sdfgl.gl.targets import Targets
 from sdfgl.render import camera_uniforms, default_renderer, scene_uniforms
 from sdfgl.settings import Settings

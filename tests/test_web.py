@@ -11,7 +11,8 @@ from PIL import Image
 
 import sdfgl as sg
 from sdfgl.cli import main
-from sdfgl.compiler import generate
+from sdfgl.compiler.generate import generate
+from sdfgl.compiler.source import ShaderSource
 from sdfgl.demo import demo_camera, demo_scene
 from sdfgl.gl.dialect import WEBGL2, dialect
 from sdfgl.settings import Settings
@@ -47,7 +48,7 @@ def test_every_toggle_state_compiles_as_glsl_es_300(renderer):
     known = {*spec["uniforms"], "uP0", *spec["frame"]["base"]}
     for key, ids in spec["variants"].items():
         text = "".join(spec["blocks"][i] for i in ids)
-        prog = renderer.programs.get(sg.compiler.ShaderSource(text, ("(test)",) * text.count("\n")))
+        prog = renderer.programs.get(ShaderSource(text, ("(test)",) * text.count("\n")))
         # the page sets every uniform a shader reads (a new one in a .glsl file must be added to the viewer)
         read = {name for name in prog if isinstance(prog[name], moderngl.Uniform)}
         assert read <= known, (key, read - known)
@@ -61,7 +62,7 @@ def test_implicit_fields_and_newton_compile_as_es(renderer):
     assert spec["toggles"]["ao"] == [False] and len(spec["variants"]) == 15
     for ids in spec["variants"].values():
         text = "".join(spec["blocks"][i] for i in ids)
-        renderer.programs.get(sg.compiler.ShaderSource(text, ("(test)",) * text.count("\n")))
+        renderer.programs.get(ShaderSource(text, ("(test)",) * text.count("\n")))
 
 
 def test_unknown_dialect_is_refused():

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..compiler import generate
+from ..compiler.generate import generate
 from ..gl.context import finish
 from ..nodes.base import Node
 from ..render import Renderer, default_renderer, scene_uniforms, shader_origin

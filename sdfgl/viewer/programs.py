@@ -14,7 +14,7 @@ from typing import Any, Callable
 import moderngl
 
 from .. import shaderlib
-from ..compiler import ShaderSource
+from ..compiler.source import ShaderSource
 from ..errors import SdfglError
 from ..gl.dialect import of_source
 from ..gl.programs import explain_compile_error

@@ -33,7 +33,7 @@ import numpy as np
 
 from .. import shaderlib
 from ..camera import Camera, OrbitCamera
-from ..compiler import ShaderSource
+from ..compiler.source import ShaderSource
 from ..errors import SdfglError
 from ..gl.cache import default_budget
 from ..gl.data import DataTextures

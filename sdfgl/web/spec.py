@@ -22,7 +22,7 @@ from typing import Any
 import numpy as np
 
 from ..camera import Camera, OrbitCamera
-from ..compiler import generate
+from ..compiler.generate import generate
 from ..compiler.analysis import GLSL_FAR
 from ..errors import ParameterError
 from ..gl.dialect import WEBGL2
