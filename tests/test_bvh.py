@@ -1,4 +1,4 @@
-"""The bounding volume hierarchy over a big union (setting grid="bvh", sdfgl/nodes/bvh.py):
+"""The bounding volume hierarchy over a big union (setting grid="bvh", sdfgl/compiler/data/bvh.py):
 the measured alternative to the cell grid draws the same scene."""
 import numpy as np
 import pytest

@@ -138,3 +138,14 @@ def test_map_is_called_in_loops_that_cannot_be_unrolled():
         sampling = [f for f, body in bodies.items() if "map(" in body and f not in ("map", "march")]
         assert march.count("map(") == 1, method
         assert not [f for f in sampling if f + "(" in march], method  # no nested loop around another map()
+
+
+def test_every_target_is_a_row_of_the_table_and_others_are_refused():
+    from sdfgl.compiler.targets import TARGETS
+    s = sg.sphere(1).color(1, 0, 0)
+    mains = {name: generate(s, Settings(), target=name).owners[-1] for name in TARGETS}
+    assert mains["render"] == "shaders/mains/render_main.glsl"
+    assert mains["evaluate_color"] == "shaders/mains/evaluate_channel_main.glsl"
+    assert all(mains[m] == f"shaders/mains/{m}_main.glsl" for m in ("mesh_grid", "mesh_gradient", "mesh_project"))
+    with pytest.raises(sg.ParameterError, match="target must be one of render, evaluate, .*got 'renderr'"):
+        generate(s, Settings(), target="renderr")

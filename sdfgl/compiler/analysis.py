@@ -14,7 +14,6 @@ import numpy as np
 
 from ..nodes.base import Node
 from ..nodes.traverse import FACTS, fact
-from ..params import Live
 from ..settings import Settings
 from .data.instances import pack, unwrap
 from .emitter import CHANNELS

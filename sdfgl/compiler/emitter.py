@@ -137,7 +137,7 @@ class Emitter:
 
     def narrow_free_way(self, grid: Any, distance: str) -> None:
         """Beside ``grid``'s union, a child written as code bounds the free way along the ray
-        by its distance (shaders/grid_ray.glsl; map() of the ray-free grid only)."""
+        by its distance (shaders/templates/grid_ray.glsl; map() of the ray-free grid only)."""
         if id(grid) == self.ray_free_grid and self.mode == "dist" and not self.detail:
             self.lines.append((f"    gFree = min(gFree, {distance});", self.owner))
 

@@ -3,7 +3,7 @@
 A crossing closer to an edge of the solid (a box edge, a CSG cut) than the gradient stencil is
 wide gets a gradient that mixes the two sides and is neither face's normal; its plane would
 pull its cells' vertices off the edge or corner by a good part of a cell. The stencil's bend
-(mean of its samples minus the value, shaders/mesh_clip.glsl) tells such crossings. Each is
+(mean of its samples minus the value, shaders/stages/mesh_clip.glsl) tells such crossings. Each is
 given instead the gradients sampled a little way off it on the four stencil directions, those
 whose own stencil is clear of the crease: the faces' normals (or, outside a convex edge, a
 blend of them, whose plane through the crossing still holds the edge line). Their planes pass

@@ -3,7 +3,7 @@
 Four draws, all from the same codegen as render() (targets mesh_grid, mesh_gradient, mesh_project,
 evaluate_color): lattice blocks of field values, value + gradient at points, points moved onto the
 surface, colour at points. The field is
-map() cut by the sampling box (shaders/mesh_clip.glsl), so solids that leave the box close.
+map() cut by the sampling box (shaders/stages/mesh_clip.glsl), so solids that leave the box close.
 """
 from __future__ import annotations
 
@@ -137,7 +137,7 @@ class GPUField:
     def gradient_bend(self, points: np.ndarray, eps: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(value (N,), gradient (N, 3), bend (N,)) of the clipped field at points, differences
         ``eps`` wide (IQ's tetrahedral stencil), and the stencil's bend, the mean of its four
-        samples minus the value (shaders/mesh_clip.glsl); ``|bend|`` of order
+        samples minus the value (shaders/stages/mesh_clip.glsl); ``|bend|`` of order
         ``eps |gradient|`` says the stencil straddles a crease and the gradient mixes its sides."""
         v, b = self._at_points("mesh_gradient", points, 4, 2, uEps=float(eps))
         self.point_samples += 5 * len(v)
@@ -145,7 +145,7 @@ class GPUField:
 
     def project(self, points: np.ndarray, eps: float, tolerance: float, max_move: float,
                 iterations: int) -> tuple[np.ndarray, np.ndarray]:
-        """Newton steps onto the surface, all in one draw (shaders/mesh_project_main.glsl):
+        """Newton steps onto the surface, all in one draw (shaders/mains/mesh_project_main.glsl):
         (move to add to each point (N, 3) float64, unit gradient at the moved point (N, 3)). Each
         step moves a point by -f grad / |grad|^2, at most ``max_move``; a point stops when
         |f| <= ``tolerance`` or after ``iterations`` steps; gradients are differences ``eps`` wide."""

@@ -5,7 +5,7 @@ benchmark's structure table and the closing note of issue 12).
 The instances of a ``Grid`` (its types and records are shared) are split at the median of
 their box centres along the widest axis until at most LEAF remain; each leaf lists its
 instances per type like a grid cell. A node stores both children's boxes, so the shader
-(``shaders/bvh_union.glsl``) visits the nearer child first and pushes the farther one
+(``shaders/templates/bvh_union.glsl``) visits the nearer child first and pushes the farther one
 while it could hold something nearer than the best so far. The field starts from a
 truncation ``T = max(TRUNCATE * cell, distance to the root box)`` and skips every box
 at least the best so far away, so it is min(all instances, T): a distance bound, exact
