@@ -1,6 +1,6 @@
 """A bounding volume hierarchy over a grid union's instances: the structure measured
 against the uniform grid (setting ``grid="bvh"``; the grid stays the default, see the
-benchmark's structure table and the closing note of issue 12).
+benchmark's structure table and docs/design/big-scenes.md).
 
 The instances of a ``Grid`` (its types and records are shared) are split at the median of
 their box centres along the widest axis until at most LEAF remain; each leaf lists its

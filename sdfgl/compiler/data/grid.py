@@ -27,7 +27,7 @@ if TYPE_CHECKING:  # pragma: no cover
 GRID_MIN = 32       # fewer children than this are written out as code (see the benchmark)
 LIST_WIDTH = 1024   # texels per row of the cell and list textures (a power of two)
 MAX_DIMS = 64       # cells per axis at most
-# chosen on the growth scene (1024 spheres; see the closing note of issue 12)
+# chosen on the growth scene (1024 spheres; see the benchmark and docs/design/big-scenes.md)
 CELL_FACTOR = 0.5  # cell edge / (volume per instance)^(1/3)
 MARGIN = 0.5       # in cells: how near an instance's bounds must come to a cell to be listed
 
