@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 
 import sdfgl as sg
-from sdfgl.codegen import generate
+from sdfgl.compiler.generate import generate
 from sdfgl.errors import ParameterError, SceneFileError
 from sdfgl.scenefile_process import SceneFileLoader
 from sdfgl.settings import Settings
