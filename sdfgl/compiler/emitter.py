@@ -14,7 +14,7 @@ import numpy as np
 from .. import shaderlib
 from ..errors import ParameterError
 from ..params import Live, Param
-from .source import glsl_float
+from .source import comment_text, glsl_float
 from .tables import DataPool, OriginOffsets
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -123,6 +123,11 @@ class Emitter:
         texels[:, :rows.shape[1]] = rows
         self.require("data_table")
         return self.data.add(texels)
+
+    @staticmethod
+    def comment(text: object) -> str:
+        """``text`` made safe to write in a ``//`` comment (see :func:`comment_text`)."""
+        return comment_text(text)
 
     def helper(self, name: str, code: str | list[tuple[str, str]]) -> None:
         """Include a generated helper function (e.g. a polygon of N vertices) once; ``code``

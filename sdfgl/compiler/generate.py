@@ -25,7 +25,7 @@ from .builder import SourceBuilder
 from .data.grid import GRID_MIN
 from .defines import free_way_defines, light_positions, settings_defines
 from .emitter import DATA_MIN, Emitter
-from .source import ShaderSource
+from .source import ShaderSource, comment_text
 from .tables import DataPool, OriginOffsets
 from .targets import TARGETS, Job, Target
 
@@ -167,11 +167,11 @@ def _write(scene: Node, settings: Settings, org: np.ndarray, row: Target, lang: 
 
     b = job.b
     b.add(lang.header(), "(codegen)")
-    b.add(f"// sdfgl scene: {scene.label()}  [{scene.exactness}, L={scene.lipschitz:g}]", "(codegen)")
+    b.add(f"// sdfgl scene: {comment_text(scene.label())}  [{scene.exactness}, L={scene.lipschitz:g}]", "(codegen)")
     b.add("\n".join(settings_defines(scene, settings, org, live, projection, moving)
                      + free_way_defines(free_way)), "(settings)")
     for i, prm in enumerate(params):
-        b.add(f"uniform {'vec3' if prm.dims == 3 else 'float'} uP{i};  // param {prm.label}", "(live parameters)")
+        b.add(f"uniform {'vec3' if prm.dims == 3 else 'float'} uP{i};  // param {comment_text(prm.label)}", "(live parameters)")
     if live:
         b.add("uniform vec3 uBoundsLo;\nuniform vec3 uBoundsHi;\nuniform float uGroundY;\nuniform float uSceneScale;",
               "(live parameters)")

@@ -26,6 +26,14 @@ def glsl_float(x: float) -> str:
     return s
 
 
+def comment_text(text: object) -> str:
+    """``text`` made safe for a ``//`` comment of generated GLSL: printable ASCII stays, and
+    every other character (a newline or backslash that would end or continue the comment
+    line, a control or non-ASCII character a driver may refuse) becomes ``?``. Every comment
+    that carries a name or value from a scene goes through here."""
+    return "".join(ch if " " <= ch <= "~" and ch != "\\" else "?" for ch in str(text))
+
+
 @dataclass(frozen=True)
 class ShaderSource:
     """A generated fragment shader plus the owner (node path or file) of every line.

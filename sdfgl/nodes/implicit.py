@@ -153,7 +153,7 @@ class Implicit(Node):
                     f"    vec3 g = vec3({', '.join(self._glsl[1])});\n"
                     f"    return f / max(length(g), 1e-12);\n}}")
             what = "an implicit surface"
-        em.helper(name, f"// f = {self.f}  ({what}, as f / |grad f|)\n{body}")
+        em.helper(name, f"// f = {em.comment(self.f)}  ({what}, as f / |grad f|)\n{body}")
         return em.with_color(em.assign("float", f"{name}({em.point(p)})"))
 
     def _distance(self, p: np.ndarray) -> np.ndarray:
