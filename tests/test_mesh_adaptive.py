@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import sdfgl as sg
-from sdfgl.mesh.adaptive import split_edges
+from sdfgl.mesh.adaptive import closed, split_edges
 from sdfgl.mesh.geometry import distance_to_mesh, volume
 from sdfgl.mesh.topology import edge_use
 
@@ -103,10 +103,19 @@ def test_split_edges_keeps_the_mesh_closed():
     v, f = np.asarray(t.vertices, float), np.asarray(t.faces, np.int64)
     rng = np.random.default_rng(3)
     pick = rng.random(len(f)) < 0.3
-    v2, f2, new = split_edges(v, f, pick)
+    v2, f2, new, unchanged = split_edges(v, f, pick)
     assert closed_manifold(v2, f2)
     assert len(new) == len(v2) - len(v) and len(f2) > len(f)
+    assert not unchanged[pick].any() and np.array_equal(f2[:unchanged.sum()], f[unchanged])
     assert np.allclose(volume(v2, f2), volume(v, f))  # midpoints of straight edges: the same solid
+
+
+def test_closed_tells_open_pinched_and_flipped_meshes():
+    f = np.asarray(trimesh.creation.icosphere(1).faces, np.int64)
+    assert closed(f)
+    assert not closed(f[1:])                                    # a hole
+    assert not closed(np.concatenate([f[:1, ::-1], f[1:]]))     # one face wound the wrong way
+    assert not closed(np.concatenate([f, f[:2]]))               # edges on more than two faces
 
 
 def test_too_small_tolerance_is_refused_before_any_work():

@@ -39,7 +39,7 @@ from .deps import require
 from .lattice import MAX_CELLS, make_lattice
 from .project import project
 from .sample import GPUField
-from .topology import clean, edge_use
+from .topology import clean
 
 STEP_PER_TOLERANCE = 40.0  # the uniform mesh's cell, in tolerances
 QUADRIC_SHARE = 4.0        # collapse threshold: this many tolerances squared of quadric error
@@ -98,27 +98,39 @@ def _collapse(verts: np.ndarray, faces: np.ndarray, cap: float) -> tuple[np.ndar
 
 
 def closed(faces: np.ndarray) -> bool:
-    """Every edge on exactly two faces and no directed edge twice (closed, manifold, wound alike)."""
+    """Every edge on exactly two faces and no directed edge twice (closed, manifold, wound alike):
+    each directed edge then meets its reverse exactly once."""
     if len(faces) == 0:
         return False
-    counts, twice = edge_use(faces)
-    return bool(np.all(counts == 2)) and twice == 0
+    a = faces.ravel()
+    b = np.roll(faces, -1, axis=1).ravel()
+    n = int(faces.max()) + 1
+    directed = np.sort(a * n + b)
+    if np.any(directed[1:] == directed[:-1]):
+        return False
+    reverse = b * n + a
+    at = np.minimum(np.searchsorted(directed, reverse), len(directed) - 1)
+    return bool(np.all(directed[at] == reverse))
 
 
-def errors(field: GPUField, verts: np.ndarray, faces: np.ndarray, step: float) -> tuple[np.ndarray, np.ndarray]:
-    """(|f| at each vertex, distance estimate |f| / |grad f| at each face centre), from the GPU
-    field (gradients 0.02 cell wide; a gradient longer than 1 counts as 1, so the estimate
-    never falls below |f|)."""
-    fv, _, _ = field.gradient_bend(verts, 0.02 * step)
+def vertex_errors(field: GPUField, points: np.ndarray, step: float) -> np.ndarray:
+    """|f| at points, from the GPU field."""
+    return np.abs(field.gradient_bend(points, 0.02 * step)[0])
+
+
+def centre_errors(field: GPUField, verts: np.ndarray, faces: np.ndarray, step: float) -> np.ndarray:
+    """Distance estimate |f| / |grad f| at each face centre, from the GPU field (gradients 0.02
+    cell wide; a gradient longer than 1 counts as 1, so the estimate never falls below |f|)."""
     fc, g, _ = field.gradient_bend(verts[faces].mean(axis=1), 0.02 * step)
-    gn = np.clip(np.linalg.norm(g, axis=1), 1e-6, 1.0)
-    return np.abs(fv), np.abs(fc) / gn
+    return np.abs(fc) / np.clip(np.linalg.norm(g, axis=1), 1e-6, 1.0)
 
 
-def split_edges(verts: np.ndarray, faces: np.ndarray, faces_to_split: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def split_edges(verts: np.ndarray, faces: np.ndarray,
+                faces_to_split: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Split the longest edge of each face in ``faces_to_split`` (a mask) at its midpoint, and
     every face on a split edge with it (one, two or three split edges give two, three or four
-    triangles), so the mesh stays closed. Returns (vertices, faces, indices of the new vertices)."""
+    triangles), so the mesh stays closed. Returns (vertices, faces, indices of the new vertices,
+    mask of the faces left as they were: they come first, in their order, the new ones after)."""
     n = len(verts)
     e = np.stack([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]], axis=1)    # (F, 3, 2)
     key = np.minimum(e[..., 0], e[..., 1]) * n + np.maximum(e[..., 0], e[..., 1])
@@ -146,7 +158,7 @@ def split_edges(verts: np.ndarray, faces: np.ndarray, faces_to_split: np.ndarray
     three = count == 3
     v0, v1, v2, m0, m1, m2 = faces[:, 0], faces[:, 1], faces[:, 2], m[:, 0], m[:, 1], m[:, 2]
     out += [np.stack(t, 1)[three] for t in ((v0, m0, m2), (m0, v1, m1), (m2, m1, v2), (m0, m1, m2))]
-    return verts, np.concatenate(out), n + np.arange(len(ids))
+    return verts, np.concatenate(out), n + np.arange(len(ids)), count == 0
 
 
 def simplify(field: GPUField, verts: np.ndarray, faces: np.ndarray, normals: np.ndarray, tolerance: float,
@@ -163,16 +175,15 @@ def simplify(field: GPUField, verts: np.ndarray, faces: np.ndarray, normals: np.
     else:  # no cap left the mesh closed: keep the uniform mesh
         v, f = verts, faces
     v, n = project(field, v, step)
-    for _ in range(SPLIT_ROUNDS):
-        ev, ec = errors(field, v, f, step)
+    ev, ec = vertex_errors(field, v, step), centre_errors(field, v, f, step)
+    for _ in range(SPLIT_ROUNDS):  # only new vertices and faces are measured again
         over = ec > MARGIN * tolerance
         if not over.any():
             break
-        v, f, new = split_edges(v, f, over)
-        moved, n_new = project(field, v[new], step)
-        v[new] = moved
+        v, f, new, unchanged = split_edges(v, f, over)
+        v[new], n_new = project(field, v[new], step)
         n = np.concatenate([n, n_new])
-    else:
-        ev, ec = errors(field, v, f, step)
+        ev = np.concatenate([ev, vertex_errors(field, v[new], step)])
+        ec = np.concatenate([ec[unchanged], centre_errors(field, v, f[unchanged.sum():], step)])
     v, f, n = clean(v, f, n)
     return v, f, n, float(max(ev.max(initial=0.0), ec.max(initial=0.0)))
