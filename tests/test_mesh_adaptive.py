@@ -148,3 +148,15 @@ def test_save_and_cli_take_a_tolerance(tmp_path):
     r = subprocess.run([sys.executable, "-m", "sdfgl", "mesh", str(scene_file), "-o", str(out), "--tolerance",
                         "1e-9"], capture_output=True, text=True, timeout=300)
     assert r.returncode != 0 and "tolerance" in r.stderr and "Traceback" not in r.stderr
+
+
+def test_missing_simplifier_is_named_before_any_work(monkeypatch, tmp_path):
+    from tests.test_cli_extras import refused, run_without
+    import sdfgl.mesh.sample as sample
+    monkeypatch.setitem(sys.modules, "pyfqmr", None)
+    monkeypatch.setattr(sample.GPUField, "__init__", lambda *a, **k: pytest.fail("sampled before the check"))
+    with pytest.raises(sg.SdfglError, match=r"pyfqmr.*sdfgl\[mesh\]"):
+        sg.mesh(sg.sphere(1), tolerance=1e-3)
+    out = tmp_path / "a.stl"
+    r, _ = run_without("pyfqmr", "mesh", "--demo", "-o", str(out), "--tolerance", "0.01", "--quiet")
+    assert refused(r, "pip install 'sdfgl[mesh]'") and "pyfqmr" in r.stderr and not out.exists(), r.stderr
