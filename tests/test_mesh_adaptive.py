@@ -83,9 +83,9 @@ def test_sharp_box_edges_and_corners_kept():
     assert np.allclose(box.distance(to_world(corners)), 0, atol=1e-9)
     assert distance_to_mesh(to_world(corners), m.vertices, m.faces).max() <= 0.1 * step
     assert distance_to_mesh(to_world(edges), m.vertices, m.faces).max() <= 0.1 * step
-    # measured: 7 440 of the 51 116 triangles of the uniform mesh it starts from (faces oblique to
-    # the lattice keep more than they need: the collapses stall there; an axis-aligned box keeps 36)
-    assert len(m.faces) < 0.2 * len(sg.mesh(box, step=m.step, mode="sharp", colors=False).faces)
+    # a box needs a few triangles a face; measured: 40 (7 440 before the meshoptimizer pass: the
+    # quadric collapses stall on faces oblique to the axes)
+    assert len(m.faces) <= 100
 
 
 def test_curved_scene_holds_the_bound_with_splits():

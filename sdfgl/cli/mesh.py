@@ -60,7 +60,7 @@ def check_extras(a: argparse.Namespace) -> None:
     if a.report:
         require_extra("mesh", "scipy", purpose="the mesh report (--report)")
     if a.tolerance is not None:
-        require_extra("mesh", "pyfqmr", purpose="an adaptive mesh (--tolerance)")
+        require_extra("mesh", "pyfqmr", "meshoptimizer", purpose="an adaptive mesh (--tolerance)")
 
 
 def run(a: argparse.Namespace) -> int:

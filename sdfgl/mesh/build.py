@@ -72,7 +72,7 @@ def mesh(scene: Node, step: float | None = None, resolution: int | None = None, 
     if tolerance is not None:
         from .adaptive import check_tolerance, step_for
         tolerance = check_tolerance(tolerance)
-        require("pyfqmr")  # before any sampling
+        require("pyfqmr"), require("meshoptimizer")  # before any sampling
         if not sized:
             step = step_for(scene, tolerance, bounds)
     lat = make_lattice(scene, step, resolution, samples, bounds)
