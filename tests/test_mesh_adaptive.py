@@ -160,3 +160,19 @@ def test_missing_simplifier_is_named_before_any_work(monkeypatch, tmp_path):
     out = tmp_path / "a.stl"
     r, _ = run_without("pyfqmr", "mesh", "--demo", "-o", str(out), "--tolerance", "0.01", "--quiet")
     assert refused(r, "pip install 'sdfgl[mesh]'") and "pyfqmr" in r.stderr and not out.exists(), r.stderr
+
+
+def test_too_coarse_a_lattice_is_meshed_again_finer(monkeypatch):
+    # at 80 tolerances a cell, the demo scene's small parts stay off by 1.6 tolerances after the
+    # splits: the mesher halves the step and the bound holds
+    import sdfgl.mesh.adaptive as adaptive
+    from sdfgl.demo import demo_scene
+    scene = demo_scene()
+    tol = 0.05 * sg.mesh(scene, samples=2 ** 22, progress=False).step
+    monkeypatch.setattr(adaptive, "STEP_PER_TOLERANCE", 80.0)
+    monkeypatch.setattr(adaptive, "COARSEST", 1 << 16)
+    m = sg.mesh(scene, tolerance=tol, colors=False, progress=False)
+    assert m.step == pytest.approx(40 * tol)
+    fv, fc = twin_errors(scene, m.vertices, m.faces)
+    assert fv <= tol and fc <= tol and m.error <= tol
+    assert closed_manifold(m.vertices, m.faces)

@@ -26,6 +26,10 @@ MODES = ("mc", "sharp")
 VOLUME_TARGET = 0.0025
 REFINE_PASSES = 2
 FINEST = 4
+# An adaptive mesh whose faces the edge splits could not bring within the tolerance (features
+# smaller than the lattice resolves) is made again from a lattice of half the step, at most
+# TOLERANCE_PASSES times.
+TOLERANCE_PASSES = 2
 
 
 def _colors(scene: Node, field: GPUField, verts: np.ndarray) -> np.ndarray:
@@ -55,10 +59,12 @@ def mesh(scene: Node, step: float | None = None, resolution: int | None = None, 
     ``tolerance`` (scene units) makes the mesh adaptive (sdfgl.mesh.adaptive): few triangles
     where the surface is flat, many where it bends, with |f| at every vertex and the distance
     from every face centre to the surface within ``tolerance``, still closed and manifold. It
-    picks the cell of the uniform mesh it starts from (40 tolerances, unless ``step``,
+    picks the cell of the uniform mesh it starts from (60 tolerances, unless ``step``,
     ``resolution`` or ``samples`` is given) and makes ``mode`` default to ``"sharp"``; a
     tolerance too small for the memory limit is refused before any sampling. The result's
-    ``tolerance`` and ``error`` (the largest measured on the GPU) say how it went.
+    ``tolerance`` and ``error`` (the largest measured on the GPU) say how it went: where the
+    splits could not bring every face within it, the uniform mesh is made again at half the
+    step, at most twice.
     """
     from .result import Mesh
     if not isinstance(scene, Node):
@@ -96,9 +102,21 @@ def mesh(scene: Node, step: float | None = None, resolution: int | None = None, 
     error = None
     if tolerance is not None and len(faces):
         from .adaptive import simplify
-        t1 = time.perf_counter()
-        verts, faces, normals, error = simplify(field, verts, faces, normals, tolerance, lat.step)
-        took.append(time.perf_counter() - t1)
+        took.append(0.0)
+        for attempt in range(TOLERANCE_PASSES + 1):
+            t1 = time.perf_counter()
+            got = simplify(field, verts, faces, normals, tolerance, lat.step)
+            took[2] += time.perf_counter() - t1
+            if got[3] <= tolerance or attempt == TOLERANCE_PASSES:
+                break
+            try:  # features the lattice is too coarse for: mesh again at half the step
+                lat = make_lattice(scene, step=lat.step / 2, bounds=bounds)
+            except ParameterError:  # past MAX_CELLS: keep the mesh we have (its error says so)
+                break
+            verts, faces, normals, field, more = _extract(scene, lat, mode, show)
+            took = [a + b for a, b in zip(took, more + [0.0])]
+            taken += field.samples
+        verts, faces, normals, error = got
     rgb = _colors(scene, field, verts) if colors and len(verts) else None
     t2 = time.perf_counter()
     timings = {"extract_s": took[0], "project_s": took[1], "total_s": t2 - t0}
