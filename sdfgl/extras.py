@@ -16,7 +16,7 @@ EXTRAS: dict[str, tuple[str, ...]] = {
     "plots": ("matplotlib",),
     "docs": ("mkdocs", "mkdocstrings"),
     "web": ("anywidget",),
-    "mesh": ("trimesh", "scipy", "lxml", "networkx"),
+    "mesh": ("trimesh", "scipy", "lxml", "networkx", "pyfqmr", "meshoptimizer"),
     "video": ("imageio_ffmpeg",),
     "ray": ("ray",),
     "pbr": ("mitsuba",),

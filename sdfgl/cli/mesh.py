@@ -29,9 +29,14 @@ def add_parser(sub: Any, command: str | None) -> None:
     size.add_argument("--step", type=float, help="cell size in scene units")
     size.add_argument("--resolution", type=int, help="cells along the longest side of the box")
     size.add_argument("--samples", type=int, help="dense sample count (default 2^22, as fogleman/sdf counts)")
+    m.add_argument("--tolerance", type=float,
+                   help="adaptive mesh: max |field| at vertices and distance from face centres to the surface, "
+                        "in scene units (few triangles where flat; implies --sharp unless --mc; needs sdfgl[mesh])")
     m.add_argument("--bounds", type=float, nargs=6, metavar=("X0", "Y0", "Z0", "X1", "Y1", "Z1"),
                    help="box to mesh (default: the scene bounds padded by one cell; needed if unbounded)")
-    m.add_argument("--sharp", action="store_true", help="dual contouring: keep edges and corners sharp")
+    kind = m.add_mutually_exclusive_group()
+    kind.add_argument("--sharp", action="store_true", help="dual contouring: keep edges and corners sharp")
+    kind.add_argument("--mc", action="store_true", help="marching cubes (the default without --tolerance)")
     m.add_argument("--units", help="what one scene unit is in a .3mf file: mm (default), cm, m, inch, ft, um; "
                                    "coordinates are not scaled")
     m.add_argument("--report", action="store_true",
@@ -54,6 +59,8 @@ def check_extras(a: argparse.Namespace) -> None:
         require_extra("mesh", *TRIMESH_FORMATS[suffix], purpose=f"writing '{a.output}'")
     if a.report:
         require_extra("mesh", "scipy", purpose="the mesh report (--report)")
+    if a.tolerance is not None:
+        require_extra("mesh", "pyfqmr", "meshoptimizer", purpose="an adaptive mesh (--tolerance)")
 
 
 def run(a: argparse.Namespace) -> int:
@@ -72,7 +79,8 @@ def run(a: argparse.Namespace) -> int:
     sf = load_scene_args(a)
     bounds = None if a.bounds is None else (a.bounds[:3], a.bounds[3:])
     options = dict(step=a.step, resolution=a.resolution, samples=a.samples, bounds=bounds,
-                   mode="sharp" if a.sharp else "mc", progress=not a.quiet)
+                   mode="sharp" if a.sharp else "mc" if a.mc else None, progress=not a.quiet,
+                   tolerance=a.tolerance)
     if sf.parts is not None:
         return write_parts_file(sf.parts, a, options)
     t0 = time.perf_counter()
@@ -82,6 +90,8 @@ def run(a: argparse.Namespace) -> int:
     path = m.save(a.output, **file_units(a))
     t = time.perf_counter() - t0
     refined = "" if m.default_step is None else f" (refined from {m.default_step:.4g} for thin or small curved parts)"
+    if m.tolerance is not None:
+        refined += f", tolerance {m.tolerance:g} (max error {m.error:.3g} measured)"
     print(f"wrote {path}: {len(m.vertices)} vertices, {len(m.faces)} triangles, cell {m.step:.4g}{refined}, "
           f"{m.timings['total_s']:.2f} s meshing, {t:.2f} s with writing")
     if a.report:

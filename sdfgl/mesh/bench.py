@@ -6,6 +6,9 @@ Tools run interleaved round by round (the machine is shared: medians and ratios,
 times); accuracy is |f| of the float64 twin at each tool's vertices, in units and in its own
 cells. Peers are optional: a missing one is skipped with a note. DistForge needs an OpenGL
 window, so it runs in a subprocess on a private Xvfb display.
+Adaptive rows (``tolerance=``, sdfgl.mesh.adaptive) on the CSG part and the demo scene: the
+uniform meshes at the same sample count and the adaptive one at a tolerance of 0.05 of their
+cell, interleaved too: triangles, the twin's |f| at vertices and face centres, time.
 Run: ``python -m sdfgl.mesh.bench [--samples N] [--rounds R]`` or as part of ``sdfgl bench``.
 """
 from __future__ import annotations
@@ -97,8 +100,8 @@ def _accuracy(scene: Node, corners: np.ndarray) -> dict:
 
 
 def run_mesh(samples: int = 2 ** 22, rounds: int = 3, big: int | None = 1024,
-             progress: Callable[[str], None] | None = None) -> tuple[str, dict]:
-    """Time and accuracy rows; returns (markdown, data)."""
+             progress: Callable[[str], None] | None = None, adaptive: bool = True) -> tuple[str, dict]:
+    """Time and accuracy rows (and, with ``adaptive``, :func:`run_adaptive`'s); returns (markdown, data)."""
     from .build import mesh
     say = progress or (lambda s: None)
     scene = csg()
@@ -183,8 +186,56 @@ def run_mesh(samples: int = 2 ** 22, rounds: int = 3, big: int | None = 1024,
                f"{big_row['time_s']:.1f} s wall, {big_row['cpu_s']:.1f} s CPU, {big_row['sampled']:.3g} samples taken "
                f"({100 * big_row['sampled'] / big_row['lattice_samples']:.1f} %), {big_row['vertices']} vertices, "
                f"peak RSS {big_row['peak_rss_mb']:.0f} MB (process).")
+    if adaptive:
+        adaptive_md, data["adaptive"] = run_adaptive(samples, rounds, say)
+        md += "\n\n" + adaptive_md
     if notes:
         md += "\n\n" + "\n".join(f"- {n}" for n in dict.fromkeys(notes))
+    return md, data
+
+
+ADAPTIVE_SHARE = 0.05  # the adaptive rows' tolerance, in cells of the uniform mesh
+
+
+def run_adaptive(samples: int = 2 ** 22, rounds: int = 3,
+                 progress: Callable[[str], None] | None = None) -> tuple[str, dict]:
+    """Adaptive against uniform meshes on fogleman's CSG part and the demo scene; (markdown, data)."""
+    from ..demo import demo_scene
+    from .build import mesh
+    say = progress or (lambda s: None)
+    lines = ["| scene | mesh | triangles | share of uniform | max abs f at vertices (cells) "
+             "| at face centres (cells) | median wall (s) | time / uniform mc | time / uniform sharp |",
+             "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
+    data: dict = {}
+    for name, scene in (("CSG part", csg()), ("demo scene", demo_scene())):
+        step = mesh(scene, samples=samples, progress=False).step  # also compiles the programs
+        tol = ADAPTIVE_SHARE * step
+        mesh(scene, samples=1 << 12, mode="sharp", progress=False)
+        runs = {"uniform mc": dict(samples=samples, mode="mc"), "uniform sharp": dict(samples=samples, mode="sharp"),
+                f"adaptive, tolerance {ADAPTIVE_SHARE} cell": dict(tolerance=tol)}
+        times: dict[str, list[float]] = {k: [] for k in runs}
+        got = {}
+        for r in range(rounds):
+            for kind, kw in runs.items():
+                say(f"mesh bench adaptive round {r + 1}/{rounds}: {name}, {kind}")
+                t = time.perf_counter()
+                got[kind] = mesh(scene, progress=False, **kw)
+                times[kind].append(time.perf_counter() - t)
+        med = {k: statistics.median(v) for k, v in times.items()}
+        base = len(got["uniform mc"].faces)
+        rows = {}
+        for kind, m in got.items():
+            fv = float(np.abs(scene.distance(m.vertices)).max())
+            fc = float(np.abs(scene.distance(m.vertices[m.faces].mean(axis=1))).max())
+            rows[kind] = {"triangles": len(m.faces), "max_f_vertices": fv, "max_f_face_centres": fc,
+                          "median_s": med[kind], "times_s": times[kind]}
+            lines.append(f"| {name} | {kind} | {len(m.faces)} | {100 * len(m.faces) / base:.1f} % | {fv / step:.4f} | "
+                         f"{fc / step:.4f} | {med[kind]:.3f} | {med[kind] / med['uniform mc']:.2f} | "
+                         f"{med[kind] / med['uniform sharp']:.2f} |")
+        data[name] = {"step": step, "tolerance": tol, "rows": rows}
+    md = (f"Adaptive meshes (tolerance {ADAPTIVE_SHARE} of the uniform cell at {samples} samples; {rounds} "
+          f"interleaved rounds, medians; |f| of the float64 twin, in cells of the uniform mesh):\n\n"
+          + "\n".join(lines))
     return md, data
 
 
@@ -205,9 +256,10 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--samples", type=int, default=2 ** 22)
     p.add_argument("--rounds", type=int, default=3)
     p.add_argument("--big", type=int, default=1024, help="resolution of the large run (0: skip)")
+    p.add_argument("--no-adaptive", action="store_true", help="skip the adaptive rows")
     p.add_argument("--out", type=Path, default=None, help="write mesh_bench.json here")
     a = p.parse_args(argv)
-    md, data = run_mesh(a.samples, a.rounds, a.big or None, lambda s: print(s, file=sys.stderr))
+    md, data = run_mesh(a.samples, a.rounds, a.big or None, lambda s: print(s, file=sys.stderr), not a.no_adaptive)
     print(md)
     if a.out:
         a.out.mkdir(parents=True, exist_ok=True)

@@ -6,7 +6,7 @@ from typing import Any
 
 from ..errors import SdfglError
 
-_PIP = {"trimesh": "trimesh", "scipy": "scipy", "lxml": "lxml"}
+_PIP = {"trimesh": "trimesh", "scipy": "scipy", "lxml": "lxml", "pyfqmr": "pyfqmr", "meshoptimizer": "meshoptimizer"}
 
 
 def require(module: str) -> Any:

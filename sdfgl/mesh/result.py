@@ -28,10 +28,13 @@ class Mesh:
         scene: the node it was meshed from; lattice: the sampling lattice (``step`` is its
             cell size); mode: "mc" (marching cubes) or "sharp" (dual contouring).
         timings: seconds per stage (``extract_s``, ``project_s``: summed over the passes of
-            a refined mesh; ``total_s``: all of it, estimates included).
+            a refined mesh; ``simplify_s``: an adaptive mesh's simplification and splits; ``total_s``: all of it, estimates included).
         samples: field samples the extraction took (every pass).
         default_step: with no size given, the default step the mesher refined from because
             the volume was estimated off by more than 0.25 % there; None otherwise.
+        tolerance: the ``tolerance`` an adaptive mesh was made within (None: uniform);
+        error: for an adaptive mesh, the largest |f| at its vertices and distance from its
+            face centres to the surface, measured on the GPU (float32).
 
     ``save(path)`` writes STL/OBJ/PLY/glTF/3MF by suffix, ``to_trimesh()`` hands it to
     trimesh, ``report()`` measures it against the field.
@@ -54,6 +57,8 @@ class Mesh:
     timings: dict[str, float] = field(default_factory=dict)
     samples: int = 0  # lattice samples it took (the dense lattice has lattice.samples)
     default_step: float | None = None
+    tolerance: float | None = None
+    error: float | None = None
 
     def __repr__(self) -> str:
         return f"Mesh({len(self.vertices)} vertices, {len(self.faces)} triangles, mode={self.mode!r})"
