@@ -9,6 +9,7 @@ What follows map() is the target's row of :data:`sdfgl.compiler.targets.TARGETS`
 from __future__ import annotations
 
 import dataclasses
+import re
 from typing import Sequence
 
 import numpy as np
@@ -32,6 +33,10 @@ from .targets import TARGETS, Job, Target
 BUDGET_DATA_MIN = 8  # a node with this many constant rows keeps them as data when map() is over the code budget
 BUDGET_GRID_MIN = 8  # over the budget, unions of this many instances become data
 MAX_CODE_SIZE = 3_000_000  # characters of scene code refused even as data (the driver would take many minutes)
+# characters of scene code once every call of a reused subtree's function is written out, as
+# the GL driver inlines them: past this its compile takes many seconds (a graph whose levels
+# each reuse the one below twice doubles at every level)
+MAX_EXPANDED_SIZE = 150_000
 
 
 @dataclasses.dataclass
@@ -132,6 +137,36 @@ def _generate(scene: Node, settings: Settings, origin: Sequence[float], target: 
                f"{settings.code_budget}; as data {small.code_size})"))
 
 
+def plain_size(emitters: Sequence[Emitter]) -> int:
+    """Characters of the emitters' code with each subtree function counted once."""
+    functions = {name: lines for em in emitters for name, lines in em.functions.values()}
+    return sum(len(line) + 1 for lines in [*(em.lines for em in emitters), *functions.values()] for line, _ in lines)
+
+
+def expanded_size(emitters: Sequence[Emitter]) -> int:
+    """Characters of the emitters' code (map() and its like) with every call of a subtree
+    function counted as the function's own expanded text, the way a driver inlines it."""
+    functions = {name: lines for em in emitters for name, lines in em.functions.values()}
+    calls = {name: re.compile(rf"\b{name}\(") for name in functions}
+    memo: dict[str, int] = {}
+
+    def text_size(lines: Sequence[tuple[str, str]], own: str = "") -> int:
+        text = "\n".join(line for line, _ in lines)
+        size = len(text)
+        for name, pattern in calls.items():
+            count = 0 if name == own else len(pattern.findall(text))
+            if count:  # calls go only down the scene graph, so this recursion ends
+                size += count * function_size(name)
+        return size
+
+    def function_size(name: str) -> int:
+        if name not in memo:
+            memo[name] = text_size(functions[name], own=name)
+        return memo[name]
+
+    return sum(text_size(em.lines) for em in emitters)
+
+
 def _checked(src: ShaderSource) -> ShaderSource:
     if src.code_size > MAX_CODE_SIZE:
         raise ParameterError(f"scene: its generated code has {src.code_size} characters, over the limit of "
@@ -197,6 +232,14 @@ def _write(scene: Node, settings: Settings, org: np.ndarray, row: Target, lang: 
     for stage in row.scene:
         stage(job)
     size = b.size_since(start)
+    passes_ems = ems + [em for em, _ in job.passes.values()]
+    expanded = expanded_size(passes_ems)
+    if expanded > MAX_EXPANDED_SIZE and expanded > 2 * plain_size(passes_ems):
+        raise ParameterError(
+            f"scene: its code would be {expanded:,} characters once its reused subtrees are written out "
+            f"(the GL driver inlines every call of the {len(dist.functions)} subtree functions), over the limit "
+            f"of {MAX_EXPANDED_SIZE:,} that compiles in reasonable time; a graph whose every level uses the one "
+            f"below more than once grows exponentially: build the copies as one union of instances instead")
     for stage in row.main:
         stage(job)
     return dataclasses.replace(b.build(params, live, data), code_size=size, data_unions=len(passes.grids),
