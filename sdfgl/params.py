@@ -22,6 +22,7 @@ from typing import TYPE_CHECKING, Any, Callable
 import numpy as np
 
 from .errors import ParameterError
+from .values.float32 import FLOAT32_MAX
 from .values.live import LiveValue
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -172,16 +173,17 @@ class Param(Live):
         if isinstance(value, bool):
             raise ParameterError(f"param: value must be a number or 3 numbers, got {value!r}")
         if isinstance(value, Number):
-            v = float(value)
-            if not math.isfinite(v):
-                raise ParameterError(f"param: value must be finite, got {v}")
-            return v
+            if not abs(value) <= FLOAT32_MAX:  # NaN, infinity and an int too big for a float too
+                raise ParameterError(f"param: value must be finite and at most {FLOAT32_MAX:.3g} in magnitude "
+                                     f"(a float32 uniform), got {_shown(value)}")
+            return float(value)
         try:
             arr = np.asarray(value, dtype=np.float64)
-        except (TypeError, ValueError):
-            raise ParameterError(f"param: value must be a number or 3 numbers, got {value!r}") from None
-        if arr.shape != (3,) or not np.all(np.isfinite(arr)):
-            raise ParameterError(f"param: value must be a finite number or 3 finite numbers, got {value!r}")
+        except (TypeError, ValueError, OverflowError):
+            raise ParameterError(f"param: value must be a number or 3 numbers, got {_shown(value)}") from None
+        if arr.shape != (3,) or not np.all(np.abs(arr) <= FLOAT32_MAX):
+            raise ParameterError(f"param: value must be a finite number or 3 finite numbers, each at most "
+                                 f"{FLOAT32_MAX:.3g} in magnitude (a float32 uniform), got {_shown(value)}")
         return arr
 
     @property
@@ -242,6 +244,12 @@ class Param(Live):
 
     def __repr__(self) -> str:
         return f"param({self._value!r}{', name=' + repr(self.name) if self.name else ''})"
+
+
+def _shown(value: Any) -> str:
+    """``repr(value)`` for a message, shortened (a huge integer has thousands of digits)."""
+    text = repr(value)
+    return text if len(text) <= 60 else text[:57] + "..."
 
 
 def param(value: Any, name: str | None = None, range: tuple[float, float] | None = None) -> Param:
