@@ -142,6 +142,8 @@ class Param(Live):
 
     def __init__(self, value: Any, name: str | None = None, range: tuple[float, float] | None = None) -> None:
         super().__init__("param")
+        if name is not None and not isinstance(name, str):
+            raise ParameterError(f"param: 'name' must be a string or None, got {type(name).__name__} {_shown(name)}")
         self.name = name
         # token -> callable returning the check (a weak reference when a node owns the check)
         self._checks: dict[int, Callable[[], Callable[[Any], None] | None]] = {}
@@ -154,7 +156,7 @@ class Param(Live):
         infinite end leaves that side open."""
         try:
             lo, hi = (float(x) for x in rng)
-        except (TypeError, ValueError):
+        except (TypeError, ValueError, OverflowError):
             raise ParameterError(f"param {self.label}: range must be (low, high), got {rng!r}") from None
         if math.isnan(lo) or math.isnan(hi) or not lo < hi:
             raise ParameterError(f"param {self.label}: range must be two numbers low < high (an infinite end leaves "
@@ -369,7 +371,7 @@ def apply(op: str, *args: Any, names: tuple[str, ...] = ()) -> Any:
             continue
         try:  # None and bools are no numbers here (np.asarray would make them nan and 1.0)
             arr = None if x is None or isinstance(x, bool) else np.asarray(x, dtype=np.float64)
-        except (TypeError, ValueError):
+        except (TypeError, ValueError, OverflowError):  # OverflowError: an int too big for a float
             arr = None
         if arr is None or arr.shape not in ((), (3,)):
             label = f"parameter '{names[i]}'" if i < len(names) else f"argument {i + 1}"

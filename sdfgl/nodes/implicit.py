@@ -359,8 +359,9 @@ class DisplaceExpr(Node):
             if lipschitz is None:
                 raise ParameterError(f"{self.kind}: cannot bound the gradient of {g} in closed form; pass "
                                      f"lipschitz= (a bound of |grad g| you vouch for)")
-        elif isinstance(lipschitz, bool) or not isinstance(lipschitz, (int, float)) or not lipschitz >= 0:
-            raise ParameterError(f"{self.kind}: 'lipschitz' must be a number >= 0, got {lipschitz!r}")
+        elif isinstance(lipschitz, bool) or not isinstance(lipschitz, (int, float)) or not 0 <= lipschitz <= FLOAT32_MAX:
+            raise ParameterError(f"{self.kind}: 'lipschitz' must be a number in [0, {FLOAT32_MAX:.3g}], "
+                                 f"got {lipschitz!r}")
         super().__init__((child,), expr=str(g), lipschitz=float(lipschitz))
         if not np.isfinite(float(lipschitz)):
             raise ParameterError(f"{self.kind}: 'lipschitz' must be finite, got {lipschitz!r}")

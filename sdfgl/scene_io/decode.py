@@ -372,6 +372,8 @@ def _light(d: Any, path: str) -> Any:
         raise fail(f"{path}.{extra[0]}", f"unknown key for a {t} light; known: {', '.join(keys)}")
     if keys[0] not in d:
         raise fail(f"{path}.{keys[0]}", "missing")
+    if not isinstance(d[keys[0]], list) or len(d[keys[0]]) != 3:
+        raise fail(f"{path}.{keys[0]}", f"expected 3 numbers, got {_what(d[keys[0]])}")
     kw = {k: (tuple(d[k]) if isinstance(d[k], list) else d[k]) for k in keys if k in d}
     try:
         light = (directional_light if t == "directional" else point_light)(**kw)
