@@ -151,7 +151,7 @@ BASE = {  # a valid call of every public factory that takes numbers: (args, kwar
     "rounded": (("S", 0.1), {}), "shell": (("S", 0.1), {}), "sierpinski": ((), {}), "tree": ((), {}),
     "displace": (("S", 0.1), {}), "noise": ((), {}), "arc": ((1.0, 0.5, 0.1), {}),
     "capsule2": (((0, 0), (1, 0), 0.2), {}), "ellipse": (((1, 0.5),), {}), "regular_polygon": ((6,), {}),
-    "star": ((5, 1.0, 3.0), {}), "triangle": (((0, 0), (1, 0), (0, 1)), {}),
+    "star": ((5, 1.0, 0.5), {}), "triangle": (((0, 0), (1, 0), (0, 1)), {}),
     "bezier_tube": (((0, 0, 0), (1, 1, 0), (2, 0, 0)), {}), "capped_torus": ((1.0, 0.2, 1.0), {}),
     "dodecahedron": ((1.0,), {}), "gyroid": ((), {}), "icosahedron": ((1.0,), {}), "pyramid": ((1.0,), {}),
     "slab": ((), {"x0": 0.0, "x1": 1.0}), "tetrahedron": ((1.0,), {}),
@@ -163,6 +163,7 @@ BASE = {  # a valid call of every public factory that takes numbers: (args, kwar
 }
 NODES = {"S": lambda: sg.sphere(1), "B": lambda: sg.box(1), "C": lambda: sg.circle(0.3),
          "P": lambda: sg.sphere(0.2, center=(2, 0, 0))}
+NOT_NUMBERS = {("param", "name"), ("star", "inner")}  # a label, and a deprecated spelling of star's sharpness
 HUGE = [math.inf, -math.inf, math.nan, 1e39, -1e39, 10 ** 400, -(10 ** 400)]
 
 
@@ -185,7 +186,7 @@ def test_every_factory_refuses_huge_and_undefined_numbers_naming_the_parameter(n
     for pname, val in base.arguments.items():
         if isinstance(val, (list, tuple)) and val and all(type(x) in (int, float) for x in val):
             variants = [type(val)([bad, *val[1:]]) for bad in HUGE]
-        elif (type(val) in (int, float) or val is None) and pname not in ("name",):
+        elif (type(val) in (int, float) or val is None) and (name, pname) not in NOT_NUMBERS:
             variants = HUGE
         else:
             continue
