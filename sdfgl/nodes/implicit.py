@@ -104,8 +104,8 @@ def _check_float32(g: Any, what: str) -> None:
     import sympy as sp
     for atom in g.atoms(sp.Number):
         if not abs(float(atom)) <= FLOAT32_MAX:
-            raise ParameterError(f"{what}: the constant {float(atom):.6g} does not fit in float32 (at most {FLOAT32_MAX:.3g}), "
-                                 f"in which the shader computes")
+            raise ParameterError(f"{what}: the constant {float(atom):.6g} does not fit in float32 "
+                                 f"(at most {FLOAT32_MAX:.3g}), in which the shader computes")
 
 
 def _stable_name(prefix: str, key: tuple) -> str:
@@ -359,7 +359,8 @@ class DisplaceExpr(Node):
             if lipschitz is None:
                 raise ParameterError(f"{self.kind}: cannot bound the gradient of {g} in closed form; pass "
                                      f"lipschitz= (a bound of |grad g| you vouch for)")
-        elif isinstance(lipschitz, bool) or not isinstance(lipschitz, (int, float)) or not 0 <= lipschitz <= FLOAT32_MAX:
+        elif (isinstance(lipschitz, bool) or not isinstance(lipschitz, (int, float))
+              or not 0 <= lipschitz <= FLOAT32_MAX):
             raise ParameterError(f"{self.kind}: 'lipschitz' must be a number in [0, {FLOAT32_MAX:.3g}], "
                                  f"got {lipschitz!r}")
         super().__init__((child,), expr=str(g), lipschitz=float(lipschitz))
