@@ -18,7 +18,9 @@ keywords, strings and lambdas are syntax errors here by construction.
 Limits (each refused with a :class:`~sdfgl.errors.ParameterError` that says which, well
 under 0.1 s): :data:`MAX_LENGTH` characters, :data:`MAX_DEPTH` levels of nesting,
 :data:`MAX_DIGITS` digits in a number, integer exponents up to :data:`MAX_EXPONENT`, constant
-powers up to 10**:data:`MAX_MAGNITUDE`, and :func:`check_expansion` refuses an ``expand()``
+powers and every other constant part up to 10**:data:`MAX_MAGNITUDE` (and real: ``sqrt(-1)`` and
+``log(0)`` are refused), towers of exponentials up to :data:`MAX_TOWER` high, and
+:func:`check_expansion` refuses an ``expand()``
 that would make more than :data:`MAX_TERMS` terms (a 40th power of a sum, say) before
 sympy starts on it.
 
@@ -40,6 +42,8 @@ MAX_EXPONENT = 64     # largest |integer exponent| of a non-constant base
 MAX_MAGNITUDE = 300   # a constant power may reach 10**300
 MAX_TERMS = 2000      # terms an expansion may produce
 MAX_NODES = 5000      # operations in a sympy expression handed in directly
+MAX_GRADIENT = 6000   # operations in one partial derivative of a field (estimated before sympy works)
+MAX_TOWER = 4         # exponentials of a variable stacked at most this high (exp(exp(exp(exp(x)))))
 
 # name in the string -> sympy class name (imported lazily) and the GLSL it prints to
 FUNCTIONS = {
@@ -216,41 +220,129 @@ def _fold(tree: Tree, leaf: Callable[[Tree], Any], combine: Callable[[Tree, list
 
 
 def parse_sympy(text: str, variables: Mapping[str, Any], what: str = "expression") -> Any:
-    """``text`` as a sympy expression over ``variables`` (name -> sympy Symbol)."""
+    """``text`` as a sympy expression over ``variables`` (name -> sympy Symbol).
+
+    Besides the grammar's limits, every constant part is evaluated in floats as it is built
+    (:func:`constant_value`) and the result is held to :func:`check_sympy`'s bounds, so a
+    value that is undefined, complex or past float range, and a tower of exponentials, are
+    refused before sympy prints or differentiates anything."""
     sp = sympy_module(what)
     tree = parse_tree(text, what)
     _check_calls(tree, what, text)
 
-    def leaf(node: Tree) -> Any:
+    def leaf(node: Tree) -> tuple[Any, float | None]:
         if node[0] == "num":
             tok = node[1]
-            return sp.Integer(int(tok)) if tok.isdigit() else sp.Float(tok)
+            value = sp.Integer(int(tok)) if tok.isdigit() else sp.Float(tok)
+            return value, constant_value(node, [], what, text)
         name = node[1]
         if name in variables:
-            return variables[name]
+            return variables[name], None
         if name in CONSTANTS:
-            return getattr(sp, CONSTANTS[name])
+            return getattr(sp, CONSTANTS[name]), constant_value(node, [], what, text)
         if name in FUNCTIONS:
             raise _fail(what, text, f"function {name!r} needs arguments, e.g. {name}(x)")
         raise _fail(what, text, f"unknown symbol(s) {name}; use {', '.join(sorted(variables))} (and pi, E)")
 
-    def combine(node: Tree, a: list) -> Any:
+    def combine(node: Tree, kids: list) -> tuple[Any, float | None]:
         op = node[0]
+        a = [k[0] for k in kids]
+        consts = [k[1] for k in kids]
         if op == "call":
             name = node[1]
             if name not in FUNCTIONS:
                 raise _fail(what, text, f"unknown function {name!r}; allowed: {', '.join(sorted(FUNCTIONS))}")
             if len(a) != 1:
                 raise _fail(what, text, f"{name}() takes one argument, got {len(a)}")
-            return getattr(sp, FUNCTIONS[name])(a[0])
-        if op == "neg":
-            return -a[0]
-        if op == "pow":
-            return _power(a[0], a[1], what, text)
-        x, y = a
-        return {"add": lambda: x + y, "sub": lambda: x - y, "mul": lambda: x * y, "div": lambda: x / y}[op]()
+            value = getattr(sp, FUNCTIONS[name])(a[0])
+        elif op == "neg":
+            value = -a[0]
+        elif op == "pow":
+            value = _power(a[0], a[1], what, text)
+        else:
+            if op == "div" and consts[1] == 0:
+                raise _fail(what, text, "division by zero")
+            x, y = a
+            value = {"add": lambda: x + y, "sub": lambda: x - y, "mul": lambda: x * y, "div": lambda: x / y}[op]()
+        return value, constant_value(node, consts, what, text)
 
-    return _fold(tree, leaf, combine)
+    result = _fold(tree, leaf, combine)[0]
+    check_sympy(result, what)  # what sympy made of it: e.g. (x**60)**60 is x**3600
+    return result
+
+
+_FLOAT_FUNCTIONS: dict[str, Callable[[float], float]] = {
+    "sin": math.sin, "cos": math.cos, "tan": math.tan, "asin": math.asin, "acos": math.acos, "atan": math.atan,
+    "sinh": math.sinh, "cosh": math.cosh, "tanh": math.tanh, "exp": math.exp, "log": math.log,
+    "sqrt": math.sqrt, "abs": abs,
+}
+_FLOAT_OPS: dict[str, Callable[..., float]] = {
+    "neg": lambda a: -a, "add": lambda a, b: a + b, "sub": lambda a, b: a - b, "mul": lambda a, b: a * b,
+    "div": lambda a, b: a / b, "pow": math.pow,
+}
+
+
+def constant_value(node: Tree, kids: list[float | None], what: str, text: str) -> float | None:
+    """The float value of ``node`` when it and its operands ``kids`` (their values, None for
+    a part that depends on a variable) are constant; None otherwise. A constant that is
+    undefined or not real (``sqrt(-1)``, ``log(0)``, ``acos(2)``, ``(-1)**0.5``) or past
+    10**MAX_MAGNITUDE (``E**E**E**E``) is refused, naming it."""
+    if node[0] == "num":
+        value = float(node[1])
+    elif node[0] == "name":
+        value = {"pi": math.pi, "E": math.e}[node[1]]
+    elif any(k is None for k in kids):
+        return None
+    else:
+        fn = _FLOAT_FUNCTIONS[node[1]] if node[0] == "call" else _FLOAT_OPS[node[0]]
+        try:
+            value = fn(*kids)
+        except OverflowError:
+            value = math.inf
+        except (ValueError, ZeroDivisionError):  # math's domain errors: log(0), sqrt(-1), (-1)**0.5
+            raise _fail(what, text, f"the constant {unparse(node)} is undefined or not a real number") from None
+    if not abs(value) <= 10.0 ** MAX_MAGNITUDE:
+        raise _fail(what, text, f"the constant {unparse(node)} is beyond 10**{MAX_MAGNITUDE}")
+    return value
+
+
+_SYMBOL = {"add": "+", "sub": "-", "mul": "*", "div": "/", "pow": "**"}
+
+
+def unparse(tree: Tree) -> str:
+    """``tree`` written back as text (for messages), parenthesised where it is not obvious."""
+    def combine(node: Tree, kids: list[str]) -> str:
+        if node[0] == "call":
+            return f"{node[1]}({', '.join(_unwrap(k) for k in kids)})"
+        if node[0] == "neg":
+            return f"(-{kids[0]})"
+        return f"({kids[0]}{_SYMBOL[node[0]]}{kids[1]})"
+    return _unwrap(_fold(tree, lambda node: node[1], combine))
+
+
+def _unwrap(text: str) -> str:
+    """``text`` without one pair of parentheses around all of it."""
+    if not text.startswith("("):
+        return text
+    depth = 0
+    for i, ch in enumerate(text):
+        depth += {"(": 1, ")": -1}.get(ch, 0)
+        if depth == 0:
+            return text[1:-1] if i == len(text) - 1 else text
+    return text
+
+
+def check_real(expr: Any, what: str) -> None:
+    """Refuse a sympy expression that is complex or undefined (``I``, ``zoo``, ``nan``,
+    ``oo``), which happens where sympy simplifies, e.g. ``sqrt(-x**2)`` to ``I*|x|``."""
+    import sympy as sp
+    bad = {sp.I: "not real-valued", sp.zoo: "undefined (a division by zero?)", sp.nan: "undefined",
+           sp.oo: "infinite", -sp.oo: "infinite"}
+    for atom in expr.atoms():
+        if atom in bad:
+            shown = str(expr)
+            shown = shown if len(shown) <= 80 else shown[:77] + "..."
+            raise ParameterError(f"{what}: the expression is {bad[atom]}: {shown}")
 
 
 def _power(base: Any, exp: Any, what: str, text: str) -> Any:
@@ -314,10 +406,12 @@ def parse_live(text: str, params: Mapping[str, Any], what: str = "expression") -
 
 
 def check_sympy(expr: Any, what: str) -> None:
-    """Refuse a sympy expression given directly that is too big, has a huge integer
-    exponent or uses a function outside :data:`FUNCTIONS` (naming it). Unknown symbols
-    are left to the caller, which knows the names it allows."""
+    """Refuse a sympy expression given directly that is too big, complex or undefined, has
+    a huge integer exponent or constant, a tower of exponentials higher than
+    :data:`MAX_TOWER`, or uses a function outside :data:`FUNCTIONS` (naming it). Unknown
+    symbols are left to the caller, which knows the names it allows."""
     import sympy as sp
+    check_real(expr, what)
     allowed_fns = {getattr(sp, n) for n in FUNCTIONS.values()}
     for n, sub in enumerate(sp.preorder_traversal(expr)):
         if n > MAX_NODES:
@@ -325,11 +419,34 @@ def check_sympy(expr: Any, what: str) -> None:
         if isinstance(sub, (sp.Add, sp.Mul, sp.Pow, sp.Symbol, sp.Number, sp.NumberSymbol)):
             if isinstance(sub, sp.Pow) and sub.exp.is_Integer and abs(int(sub.exp)) > MAX_EXPONENT:
                 raise ParameterError(f"{what}: exponent {sub.exp} is larger than {MAX_EXPONENT}")
+            if isinstance(sub, sp.Number) and not abs(float(sub)) <= 10.0 ** MAX_MAGNITUDE:
+                raise ParameterError(f"{what}: the constant {sub} is beyond 10**{MAX_MAGNITUDE}")
             continue
         if sub.func in allowed_fns:
             continue
         name = getattr(sub.func, "__name__", type(sub).__name__)
         raise ParameterError(f"{what}: function {name!r} is not supported; allowed: {', '.join(sorted(FUNCTIONS))}")
+    height = tower_height(expr)
+    if height > MAX_TOWER:
+        raise ParameterError(f"{what}: a tower of {height} exponentials (exp, sinh, cosh or a power with a "
+                             f"variable exponent; the limit is {MAX_TOWER})")
+
+
+def tower_height(expr: Any) -> int:
+    """How many exponentials of a variable (exp, sinh, cosh, powers with a variable
+    exponent) are stacked in the sympy expression ``expr``, at most."""
+    import sympy as sp
+    heights: dict[Any, int] = {}
+    for sub in sp.postorder_traversal(expr):
+        if sub in heights:
+            continue
+        h = max((heights.get(a, 0) for a in sub.args), default=0)
+        if isinstance(sub, (sp.exp, sp.sinh, sp.cosh)) and sub.free_symbols:
+            h += 1
+        elif isinstance(sub, sp.Pow) and sub.exp.free_symbols:
+            h += 1
+        heights[sub] = h
+    return heights.get(expr, 0)
 
 
 def expansion_terms(expr: Any) -> float:
@@ -352,6 +469,45 @@ def expansion_terms(expr: Any) -> float:
             n = 1.0
         sizes[sub] = float(min(n, 1e30))
     return sizes.get(expr, 1.0)
+
+
+def derivative_size(expr: Any) -> float:
+    """An upper estimate of the operations in the largest partial derivative of ``expr`` as
+    sympy writes it, computed bottom-up without differentiating (the derivative of a
+    product of n factors in x is n products of n factors: it grows with the square)."""
+    import sympy as sp
+    size: dict[Any, float] = {}
+    for sub in sp.postorder_traversal(expr):
+        if sub not in size:
+            size[sub] = 1.0 + sum(size[a] for a in sub.args)
+    worst = 0.0
+    for v in expr.free_symbols:
+        deriv: dict[Any, float] = {}
+        for sub in sp.postorder_traversal(expr):
+            if sub in deriv:
+                continue
+            if v not in sub.free_symbols:
+                deriv[sub] = 0.0
+            elif not sub.args:
+                deriv[sub] = 1.0
+            elif isinstance(sub, sp.Add):
+                deriv[sub] = sum(deriv[a] for a in sub.args)
+            elif isinstance(sub, sp.Mul):  # one product per factor in v: that factor's derivative times the rest
+                total = sum(size[a] for a in sub.args)
+                deriv[sub] = sum(deriv[a] + total - size[a] + 1 for a in sub.args if deriv[a])
+            else:  # a power or a function: the outer derivative times the inner one
+                deriv[sub] = sum(deriv[a] for a in sub.args) + 2 * size[sub] + 2
+        worst = max(worst, deriv[expr])
+    return worst
+
+
+def check_derivative_size(expr: Any, what: str) -> None:
+    """Refuse (quickly) an expression whose gradient would exceed :data:`MAX_GRADIENT`
+    operations, before sympy differentiates and prints it."""
+    n = derivative_size(expr)
+    if n > MAX_GRADIENT:
+        raise ParameterError(f"{what}: the gradient of the expression would have about {n:.3g} operations "
+                             f"(limit {MAX_GRADIENT}); write it in a smaller form")
 
 
 def check_expansion(expr: Any, what: str) -> None:

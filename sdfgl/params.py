@@ -22,6 +22,7 @@ from typing import TYPE_CHECKING, Any, Callable
 import numpy as np
 
 from .errors import ParameterError
+from .values.float32 import FLOAT32_MAX
 from .values.live import LiveValue
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -141,6 +142,8 @@ class Param(Live):
 
     def __init__(self, value: Any, name: str | None = None, range: tuple[float, float] | None = None) -> None:
         super().__init__("param")
+        if name is not None and not isinstance(name, str):
+            raise ParameterError(f"param: 'name' must be a string or None, got {type(name).__name__} {_shown(name)}")
         self.name = name
         # token -> callable returning the check (a weak reference when a node owns the check)
         self._checks: dict[int, Callable[[], Callable[[Any], None] | None]] = {}
@@ -153,7 +156,7 @@ class Param(Live):
         infinite end leaves that side open."""
         try:
             lo, hi = (float(x) for x in rng)
-        except (TypeError, ValueError):
+        except (TypeError, ValueError, OverflowError):
             raise ParameterError(f"param {self.label}: range must be (low, high), got {rng!r}") from None
         if math.isnan(lo) or math.isnan(hi) or not lo < hi:
             raise ParameterError(f"param {self.label}: range must be two numbers low < high (an infinite end leaves "
@@ -172,16 +175,17 @@ class Param(Live):
         if isinstance(value, bool):
             raise ParameterError(f"param: value must be a number or 3 numbers, got {value!r}")
         if isinstance(value, Number):
-            v = float(value)
-            if not math.isfinite(v):
-                raise ParameterError(f"param: value must be finite, got {v}")
-            return v
+            if not abs(value) <= FLOAT32_MAX:  # NaN, infinity and an int too big for a float too
+                raise ParameterError(f"param: value must be finite and at most {FLOAT32_MAX:.3g} in magnitude "
+                                     f"(a float32 uniform), got {_shown(value)}")
+            return float(value)
         try:
             arr = np.asarray(value, dtype=np.float64)
-        except (TypeError, ValueError):
-            raise ParameterError(f"param: value must be a number or 3 numbers, got {value!r}") from None
-        if arr.shape != (3,) or not np.all(np.isfinite(arr)):
-            raise ParameterError(f"param: value must be a finite number or 3 finite numbers, got {value!r}")
+        except (TypeError, ValueError, OverflowError):
+            raise ParameterError(f"param: value must be a number or 3 numbers, got {_shown(value)}") from None
+        if arr.shape != (3,) or not np.all(np.abs(arr) <= FLOAT32_MAX):
+            raise ParameterError(f"param: value must be a finite number or 3 finite numbers, each at most "
+                                 f"{FLOAT32_MAX:.3g} in magnitude (a float32 uniform), got {_shown(value)}")
         return arr
 
     @property
@@ -242,6 +246,12 @@ class Param(Live):
 
     def __repr__(self) -> str:
         return f"param({self._value!r}{', name=' + repr(self.name) if self.name else ''})"
+
+
+def _shown(value: Any) -> str:
+    """``repr(value)`` for a message, shortened (a huge integer has thousands of digits)."""
+    text = repr(value)
+    return text if len(text) <= 60 else text[:57] + "..."
 
 
 def param(value: Any, name: str | None = None, range: tuple[float, float] | None = None) -> Param:
@@ -361,7 +371,7 @@ def apply(op: str, *args: Any, names: tuple[str, ...] = ()) -> Any:
             continue
         try:  # None and bools are no numbers here (np.asarray would make them nan and 1.0)
             arr = None if x is None or isinstance(x, bool) else np.asarray(x, dtype=np.float64)
-        except (TypeError, ValueError):
+        except (TypeError, ValueError, OverflowError):  # OverflowError: an int too big for a float
             arr = None
         if arr is None or arr.shape not in ((), (3,)):
             label = f"parameter '{names[i]}'" if i < len(names) else f"argument {i + 1}"

@@ -68,8 +68,12 @@ def test_bad_settings_raise_clear_errors():
 
 
 def test_huge_constant_is_rejected_naming_the_node():
-    with pytest.raises(sg.ParameterError, match=r"translate\(offset=\(1e\+39.*does not fit in a float32"):
-        sg.compile(sg.sphere(1).translate((1e39, 0, 0)))
+    # a node's own parameter is refused when the node is built
+    with pytest.raises(sg.ParameterError, match=r"translate: parameter 'offset\[0\]' must be at most 3.4e\+38"):
+        sg.sphere(1).translate((1e39, 0, 0))
+    # a constant inside a live expression (whose value is fine) by the code generator
+    with pytest.raises(sg.ParameterError, match=r"sphere\(radius=param-expr.*value 1e\+39 does not fit in a float32"):
+        sg.compile(sg.sphere(sg.param(1e-10) * 1e39))
 
 
 COMBOS = list(itertools.product([1, 2, 3, 4], [False, "hard", "soft"], [False, True]))

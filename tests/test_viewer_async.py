@@ -124,7 +124,7 @@ def test_failed_compile_keeps_the_last_good_program(display, tmp_path):
     try:
         s0 = drv.wait_for(lambda s: s["samples"] >= 1 and not s["compiling"], timeout=60, what="the first image")
         # the scene file loads, but its program cannot be built (the worker's codegen refuses it)
-        (tmp_path / "scene.py").write_text("import sdfgl as sg\nscene = sg.sphere(1e39)\n")
+        (tmp_path / "scene.py").write_text("import sdfgl as sg\nscene = sg.sphere(sg.param(1e-10) * 1e39)\n")
         s1 = drv.wait_for(lambda s: s["error"] != "", timeout=60, what="the compile error")
         assert "does not fit in a float32" in s1["error"] and "sphere" in s1["error"]
         assert s1["scene"] == s0["scene"] and s1["reloads"] == 0 and not s1["compiling"]

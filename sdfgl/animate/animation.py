@@ -6,6 +6,7 @@ and the source does not depend on either, so the first frame compiles and the re
 """
 from __future__ import annotations
 
+import math
 import time as _time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -18,9 +19,10 @@ from ..params import Time
 from ..render import Renderer, checked_size, default_renderer
 from .paths import CameraPath
 from .progress import ProgressBar
-from .writers import FrameWriter, open_writer
+from .writers import VIDEO_SUFFIXES, FrameWriter, open_writer
 
 CameraSpec = Camera | CameraPath | Callable[[float], Camera] | None
+MAX_FRAMES = 216_000  # frames in one clip: an hour at 60 fps (a longer one is refused before any work)
 
 
 @dataclass
@@ -74,6 +76,31 @@ def camera_at(camera: CameraSpec, t: float, duration: float, scene: Node) -> Cam
                          f"function of time, got {type(camera).__name__}")
 
 
+def clip_frames(seconds: Any, fps: float, frames: Any = None) -> int:
+    """The frame count of a clip: ``frames``, or ``seconds * fps`` rounded; at least 1 and at
+    most :data:`MAX_FRAMES`, else ParameterError naming the value."""
+    if frames is None:
+        if isinstance(seconds, bool) or not isinstance(seconds, (int, float)) or not math.isfinite(seconds) \
+                or seconds <= 0:
+            raise ParameterError(f"animate: 'seconds' must be a finite number > 0, got {seconds!r}")
+        count = seconds * fps
+        if count > MAX_FRAMES:
+            raise ParameterError(f"animate: {seconds:g} s at {fps:g} fps is {count:.4g} frames, more than the limit of "
+                                 f"{MAX_FRAMES} (an hour at 60 fps); render a long clip in parts (start=)")
+        n = round(count)
+    else:
+        n = frames
+        if isinstance(n, bool) or not isinstance(n, int):
+            raise ParameterError(f"animate: 'frames' must be a whole number, got {frames!r}")
+        if n > MAX_FRAMES:
+            raise ParameterError(f"animate: {n} frames is more than the limit of {MAX_FRAMES} (an hour at 60 fps); "
+                                 f"render a long clip in parts (start=)")
+    if n < 1:
+        raise ParameterError(f"animate: the clip must have at least one frame (seconds={seconds!r}, fps={fps!r}, "
+                             f"frames={frames!r})")
+    return n
+
+
 def animate(scene: Node, output: str | Path | FrameWriter, seconds: float = 4.0, fps: float = 30.0,
             camera: CameraSpec = None, size: Sequence[int] = (640, 360), start: float = 0.0,
             frames: int | None = None, progress: bool = False, renderer: Renderer | None = None,
@@ -95,10 +122,12 @@ def animate(scene: Node, output: str | Path | FrameWriter, seconds: float = 4.0,
             function of the clip time in seconds returning a Camera, or None (frame the scene).
         size: (width, height) of each frame in pixels.
         start: the clock's time at frame 0, in seconds (camera paths still start at 0).
-        frames: the frame count, overriding ``seconds * fps`` (at least 1).
+        frames: the frame count, overriding ``seconds * fps`` (1 to :data:`MAX_FRAMES`, an
+            hour at 60 fps; render a longer clip in parts with ``start``).
         progress: print a progress bar on stderr.
         renderer: the ``Renderer`` to draw with (default: the shared one).
-        crf: video quality, lower is better (default: x264 18, VP9 32); videos only.
+        crf: video quality, lower is better: 0..51 for MP4 (x264, default 18), 0..63 for
+            WebM (VP9, default 32); videos only.
         settings: render()'s settings (``aa``, ``shadows``, ``ao``, ``ground``, ...).
 
     Returns an :class:`AnimationResult`: the path written, frame count, fps, size, shader
@@ -116,12 +145,14 @@ def animate(scene: Node, output: str | Path | FrameWriter, seconds: float = 4.0,
     if not isinstance(scene, Node):
         raise ParameterError(f"animate: 'scene' must be an sdfgl node, got {type(scene).__name__}")
     wh = checked_size(size)
-    if not (isinstance(fps, (int, float)) and 0 < fps <= 1000):
+    if isinstance(fps, bool) or not (isinstance(fps, (int, float)) and 0 < fps <= 1000):
         raise ParameterError(f"animate: 'fps' must be a number in (0, 1000], got {fps!r}")
-    n = frames if frames is not None else round(float(seconds) * fps)
-    if not isinstance(n, int) or n < 1:
-        raise ParameterError(f"animate: the clip must have at least one frame (seconds={seconds!r}, fps={fps!r}, "
-                             f"frames={frames!r})")
+    n = clip_frames(seconds, fps, frames)
+    if isinstance(start, bool) or not isinstance(start, (int, float)) or not math.isfinite(start):
+        raise ParameterError(f"animate: 'start' must be a finite number of seconds, got {start!r}")
+    if crf is not None and not isinstance(output, FrameWriter) and Path(output).suffix.lower() not in VIDEO_SUFFIXES:
+        raise ParameterError(f"animate: 'crf' sets the quality of a video (.mp4, .webm); '{Path(output).name}' "
+                             f"is not one")
     duration = n / fps
     times = [start + i / fps for i in range(n)]
     scene_clocks = clocks(scene)

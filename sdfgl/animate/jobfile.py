@@ -22,8 +22,10 @@ from ..errors import SdfglError
 CHANNELS = ("depth", "normal", "steps")
 ORBIT_KEYS = {"target", "distance", "yaw", "pitch", "fov"}
 LOOK_KEYS = {"eye", "target", "up", "fov"}
+TOP_KEYS = {"jobs", "defaults", "seed", "version", "allow_outside"}
 JOB_KEYS = {"scene", "camera", "size", "settings", "params", "time", "output", "data", "channels", "count",
             "sweep", "seed"}
+MAX_JOBS = 1_000_000  # jobs one file may expand into (count times the sweep's combinations, over all entries)
 _FIELD = re.compile(r"\{([A-Za-z_][\w.]*)(?::([^{}]*))?\}")
 
 
@@ -176,6 +178,10 @@ def _expand(entry: dict[str, Any], where: str, base: Path, seed: int, position: 
         raise _err(f"{where}.sweep", "must map a key (camera.yaw, params.NAME, time, ...) to a non-empty list")
     if "seed" in entry and (isinstance(entry["seed"], bool) or not isinstance(entry["seed"], int) or entry["seed"] < 0):
         raise _err(f"{where}.seed", f"must be a non-negative integer, got {json.dumps(entry['seed'])}")
+    total = count * math.prod(len(vals) for vals in sweep.values())
+    if first + total > MAX_JOBS:
+        raise _err(where, f"expands into {total} jobs (count {count} x {total // count} sweep combinations); "
+                          f"a file may hold at most {MAX_JOBS}")
     rng = np.random.default_rng([int(entry.get("seed", seed)), position])
     combos = [dict(zip(sweep, c)) for c in itertools.product(*sweep.values())]
     jobs = []
@@ -226,13 +232,19 @@ def _concrete(j: dict[str, Any], where: str, base: Path, rng: np.random.Generato
                output=output, data=datap, channels=tuple(channels))
 
 
-def parse_jobs(doc: Any, base: Path) -> list[Job]:
-    """Concrete jobs from a parsed job document; relative paths are taken from ``base``."""
+def parse_jobs(doc: Any, base: Path, allow_outside: bool = False) -> list[Job]:
+    """Concrete jobs from a parsed job document; relative paths are taken from ``base``.
+
+    An output outside ``base`` (an absolute path, or one through ``..``) is refused unless
+    ``allow_outside`` or the document's ``"allow_outside": true`` permits it."""
     if not isinstance(doc, dict):
         raise _err("(top)", "must be an object with a 'jobs' list")
-    unknown = set(doc) - {"jobs", "defaults", "seed", "version"}
+    unknown = set(doc) - TOP_KEYS
     if unknown:
-        raise _err("(top)", f"unknown key(s) {sorted(unknown)}; the file takes jobs, defaults, seed, version")
+        raise _err("(top)", f"unknown key(s) {sorted(unknown)}; the file takes {', '.join(sorted(TOP_KEYS))}")
+    if not isinstance(doc.get("allow_outside", False), bool):
+        raise _err("allow_outside", f"must be true or false, got {json.dumps(doc['allow_outside'])}")
+    allow_outside = allow_outside or doc.get("allow_outside", False)
     entries = doc.get("jobs")
     if not isinstance(entries, list) or not entries:
         raise _err("jobs", "must be a non-empty list")
@@ -253,11 +265,22 @@ def parse_jobs(doc: Any, base: Path) -> list[Job]:
             if p in seen:
                 raise _err(job.label, f"writes '{p}', which {seen[p]} writes too")
             seen[p] = job.label
+            if not allow_outside:
+                check_inside(p, base, job.label)
     return jobs
 
 
-def load_jobs(path: str | Path) -> list[Job]:
-    """Read and expand the job file at ``path`` (paths inside are relative to its folder)."""
+def check_inside(path: str, base: Path, label: str) -> None:
+    """Refuse an output ``path`` that lies outside the folder ``base`` (links followed)."""
+    folder = Path(base).resolve()
+    if not Path(path).resolve().is_relative_to(folder):
+        raise _err(label, f"writes '{path}', outside the job file's folder '{folder}'; set \"allow_outside\": true "
+                          f"in the file (or pass --allow-outside) to allow it")
+
+
+def load_jobs(path: str | Path, allow_outside: bool = False) -> list[Job]:
+    """Read and expand the job file at ``path`` (paths inside are relative to its folder;
+    outputs outside it only with ``allow_outside`` or the file's ``"allow_outside": true``)."""
     p = Path(path)
     try:
         doc = json.loads(p.read_text(encoding="utf-8"))
@@ -268,6 +291,6 @@ def load_jobs(path: str | Path) -> list[Job]:
     except json.JSONDecodeError as exc:
         raise JobFileError(f"job file '{p}', line {exc.lineno}, column {exc.colno}: {exc.msg}") from None
     try:
-        return parse_jobs(doc, p.resolve().parent)
+        return parse_jobs(doc, p.resolve().parent, allow_outside)
     except JobFileError as exc:
         raise JobFileError(str(exc).replace("job file:", f"job file '{p}':", 1)) from None

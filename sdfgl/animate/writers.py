@@ -25,6 +25,7 @@ if TYPE_CHECKING:  # pragma: no cover - Pillow is imported where frames are writ
     from PIL import Image
 
 VIDEO_SUFFIXES = {".mp4": "libx264", ".m4v": "libx264", ".mov": "libx264", ".webm": "libvpx-vp9"}
+CRF_RANGE = {"libx264": (0, 51), "libvpx-vp9": (0, 63)}  # the quality scale each encoder accepts
 FRAME_PATTERN = re.compile(r"%0?\d*d")
 
 
@@ -165,11 +166,15 @@ class VideoWriter(FrameWriter):
 
     def __init__(self, path: str | Path, size: tuple[int, int], fps: float, crf: int | None = None) -> None:
         super().__init__(path, size, fps)
+        codec = VIDEO_SUFFIXES[self.path.suffix.lower()]
+        lo, hi = CRF_RANGE[codec]
+        if crf is not None and (isinstance(crf, bool) or not isinstance(crf, int) or not lo <= crf <= hi):
+            raise ParameterError(f"video '{self.path.name}': 'crf' must be a whole number in {lo}..{hi} for "
+                                 f"{codec}, got {crf!r}")
         try:
             import imageio_ffmpeg
         except ImportError:
             raise SdfglError(f"writing '{self.path.name}' needs imageio-ffmpeg: pip install 'sdfgl[video]'") from None
-        codec = VIDEO_SUFFIXES[self.path.suffix.lower()]
         if codec == "libx264":
             out = ["-crf", str(18 if crf is None else crf), "-preset", "veryfast", "-movflags", "+faststart"]
         else:  # VP9 in constant-quality mode

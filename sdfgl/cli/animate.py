@@ -24,12 +24,14 @@ def add_parser(sub: Any, command: str | None) -> None:
     p.add_argument("-o", "--output", default="animation.mp4", help="output file or frame pattern (animation.mp4)")
     p.add_argument("--seconds", type=float, default=4.0, help="clip length in seconds (default 4)")
     p.add_argument("--fps", type=float, default=30.0, help="frames per second (default 30)")
-    p.add_argument("--frames", type=int, help="number of frames (overrides --seconds)")
+    p.add_argument("--frames", type=int, help="number of frames (overrides --seconds); a clip holds at most "
+                                              "an hour at 60 fps")
     p.add_argument("--start", type=float, default=0.0, help="time of the first frame in seconds (default 0)")
     p.add_argument("--size", type=image_size, default=(640, 360), help="WIDTHxHEIGHT (default 640x360)")
     p.add_argument("--turntable", action="store_true", help="orbit the camera once around the target over the clip")
     p.add_argument("--turns", type=float, default=1.0, help="with --turntable: turns over the clip (default 1)")
-    p.add_argument("--crf", type=int, help="video quality, lower is better (x264 default 18, VP9 32)")
+    p.add_argument("--crf", type=int, help="video quality, lower is better: .mp4 (x264) 0..51, default 18; "
+                                           ".webm (VP9) 0..63, default 32")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
     add_camera_arguments(p)
     add_settings_arguments(p)

@@ -21,6 +21,8 @@ def add_parser(sub: Any, command: str | None) -> None:
     p.add_argument("--timeout", type=float, default=600.0,
                    help="seconds one attempt at a job may take, 0 for no limit (default 600)")
     p.add_argument("--force", action="store_true", help="render finished jobs again")
+    p.add_argument("--allow-outside", action="store_true",
+                   help="let jobs write outside the job file's folder (absolute or ../ output paths)")
     p.add_argument("--report", help="also write the summary as JSON to this file")
     p.add_argument("--list", action="store_true", help="print the expanded jobs and exit")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
@@ -31,7 +33,7 @@ def run(a: argparse.Namespace) -> int:
     """Run ``sdfgl batch``; exit status 1 if any job failed."""
     from ..animate.batch import run_batch, write_report
     from ..animate.jobfile import load_jobs
-    jobs = load_jobs(a.jobfile)
+    jobs = load_jobs(a.jobfile, allow_outside=a.allow_outside)
     if a.list:
         for j in jobs:
             cam = j.camera if j.camera is not None else "(scene's camera)"

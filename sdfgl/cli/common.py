@@ -51,11 +51,13 @@ def vector3(text: str) -> tuple[float, float, float]:
 
 
 def image_size(text: str) -> tuple[int, int]:
-    """argparse type: ``WIDTHxHEIGHT`` such as ``800x600``."""
+    """argparse type: ``WIDTHxHEIGHT`` such as ``800x600``, each in 1..16384."""
     try:
         w, h = (int(x) for x in text.lower().split("x"))
     except ValueError:
         raise argparse.ArgumentTypeError(f"size must look like 800x600, got {text!r}") from None
+    if not (1 <= w <= 16384 and 1 <= h <= 16384):
+        raise argparse.ArgumentTypeError(f"size must be two whole numbers in 1..16384 like 800x600, got {text!r}")
     return w, h
 
 

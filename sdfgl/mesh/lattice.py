@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import math
+import sys
 from dataclasses import dataclass
 from typing import Sequence
 
@@ -57,7 +58,7 @@ def _vec3(name: str, v: object) -> np.ndarray:
 
 def _positive(name: str, v: object) -> float:
     if isinstance(v, bool) or not isinstance(v, (int, float, np.floating, np.integer)) or not (
-            math.isfinite(float(v)) and float(v) > 0):
+            0 < v <= sys.float_info.max):  # NaN and an int too big for a float compare without raising
         raise ParameterError(f"mesh: '{name}' must be a positive number, got {v!r}")
     return float(v)
 
@@ -96,7 +97,8 @@ def make_lattice(scene: Node, step: float | None = None, resolution: int | None 
     if step is not None:
         h = _positive("step", step)
     elif resolution is not None:
-        if isinstance(resolution, bool) or int(resolution) != resolution or not 8 <= int(resolution) <= MAX_CELLS:
+        if (isinstance(resolution, bool) or not isinstance(resolution, (int, float, np.integer, np.floating))
+                or not 8 <= resolution <= MAX_CELLS or int(resolution) != resolution):  # NaN fails the range
             raise ParameterError(f"mesh: 'resolution' must be an integer in 8..{MAX_CELLS}, got {resolution!r}")
         h = ext / (int(resolution) - 2 * pad_cells)
     else:

@@ -17,6 +17,7 @@ import numpy as np
 
 from .. import expr as ex
 from ..errors import ParameterError
+from ..values.float32 import FLOAT32_MAX
 from . import xfloat
 from .base import IMPLICIT, Node
 
@@ -54,6 +55,8 @@ def _printer_class() -> type:
                 return val if exp > 0 else f"(1.0 / {val})"
             if exp == sp.Rational(1, 2):
                 return f"sqrt({self._print(base)})"
+            if not exp.is_number:  # a variable exponent (GLSL's pow, meant for a base > 0)
+                return f"pow({self._print(base)}, {self._print(exp)})"
             return f"pow({self._print(base)}, {self._print(sp.Float(exp))})"
 
         def _print_Integer(self, expr: Any) -> str:  # noqa: N802
@@ -88,6 +91,23 @@ def glsl(expr: Any, what: str) -> str:
                              f"{', '.join(sorted(ex.FUNCTIONS))} and + - * / **") from None
 
 
+def _extended_glsl(exprs: list) -> list[str]:
+    """The extended-range GLSL of f and its gradient, or ParameterError naming what cannot be written."""
+    try:
+        return [xfloat.glsl(e) for e in exprs]
+    except ValueError as exc:
+        raise ParameterError(f"implicit: {exc}; use only {', '.join(sorted(ex.FUNCTIONS))} and + - * / **") from None
+
+
+def _check_float32(g: Any, what: str) -> None:
+    """Refuse a constant of ``g`` that float32 (the shader's arithmetic) cannot hold."""
+    import sympy as sp
+    for atom in g.atoms(sp.Number):
+        if not abs(float(atom)) <= FLOAT32_MAX:
+            raise ParameterError(f"{what}: the constant {float(atom):.6g} does not fit in float32 "
+                                 f"(at most {FLOAT32_MAX:.3g}), in which the shader computes")
+
+
 def _stable_name(prefix: str, key: tuple) -> str:
     """A helper-function name that is the same in every process (hash() is salted)."""
     return f"{prefix}{zlib.crc32(repr(key).encode()) % 10**8}"
@@ -107,6 +127,7 @@ def _parse(expr: Any, what: str = "implicit") -> Any:
     extra = sorted(s.name for s in e.free_symbols if s not in (X, Y, Z))
     if extra:
         raise ParameterError(f"{what}: unknown symbol(s) {', '.join(extra)} in {expr!r}; use x, y and z")
+    ex.check_derivative_size(e, what)
     return e
 
 
@@ -129,6 +150,7 @@ class Implicit(Node):
         self._np = sp.lambdify((X, Y, Z), [f, *grad], "numpy")
         # written with extended-range floats where f or grad f may overflow float32
         self.extended = xfloat.needs_extended(f, grad)
+        self._xglsl = _extended_glsl([f, *grad]) if self.extended else None
 
     @property
     def exactness(self) -> str:
@@ -142,7 +164,7 @@ class Implicit(Node):
         name = _stable_name("implicit", self.key)
         if self.extended:
             em.require("xfloat")
-            f, gx, gy, gz = (xfloat.glsl(e) for e in (self.f, *self.grad))
+            f, gx, gy, gz = self._xglsl
             body = (f"float {name}(vec3 p) {{\n    vec2 X = xfNorm(p.x, 0.0);\n    vec2 Y = xfNorm(p.y, 0.0);\n"
                     f"    vec2 Z = xfNorm(p.z, 0.0);\n    return xfRatio({f},\n        {gx},\n        {gy},\n"
                     f"        {gz});\n}}")
@@ -330,14 +352,17 @@ class DisplaceExpr(Node):
         if isinstance(expr, bool):
             raise ParameterError(f"{self.kind}: expected an expression string, got {expr!r}")
         g = _parse(expr, self.kind) if not isinstance(expr, (int, float)) else sp.Float(expr)
+        _check_float32(g, self.kind)
         grad = [sp.diff(g, s) for s in (X, Y, Z)]
         if lipschitz is None:
             lipschitz = _gradient_bound(grad)
             if lipschitz is None:
                 raise ParameterError(f"{self.kind}: cannot bound the gradient of {g} in closed form; pass "
                                      f"lipschitz= (a bound of |grad g| you vouch for)")
-        elif isinstance(lipschitz, bool) or not isinstance(lipschitz, (int, float)) or not lipschitz >= 0:
-            raise ParameterError(f"{self.kind}: 'lipschitz' must be a number >= 0, got {lipschitz!r}")
+        elif (isinstance(lipschitz, bool) or not isinstance(lipschitz, (int, float))
+              or not 0 <= lipschitz <= FLOAT32_MAX):
+            raise ParameterError(f"{self.kind}: 'lipschitz' must be a number in [0, {FLOAT32_MAX:.3g}], "
+                                 f"got {lipschitz!r}")
         super().__init__((child,), expr=str(g), lipschitz=float(lipschitz))
         if not np.isfinite(float(lipschitz)):
             raise ParameterError(f"{self.kind}: 'lipschitz' must be finite, got {lipschitz!r}")

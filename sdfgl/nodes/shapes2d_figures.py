@@ -269,7 +269,7 @@ def regular_polygon(sides: int, radius: float = 1.0, rounding: float = 0.0) -> S
     """A regular polygon with corners ``radius`` from the centre (one at +Y). Exact.
 
     Args:
-        sides: the number of sides, >= 3.
+        sides: the number of sides, 3..1000.
         radius: distance from the centre to each corner, > 0.
         rounding: radius of the rounded corners (the outer size stays the same), >= 0.
 
@@ -279,8 +279,8 @@ def regular_polygon(sides: int, radius: float = 1.0, rounding: float = 0.0) -> S
     """
     r = v.scalar("regular_polygon", "radius", radius, positive=True)
     rr = v.scalar("regular_polygon", "rounding", rounding, nonnegative=True)
-    if not isinstance(sides, (int, np.integer)) or isinstance(sides, bool) or sides < 3:
-        raise ParameterError(f"regular_polygon: parameter 'sides' must be an integer >= 3, got {sides!r}")
+    if not isinstance(sides, (int, np.integer)) or isinstance(sides, bool) or not 3 <= sides <= 1000:
+        raise ParameterError(f"regular_polygon: parameter 'sides' must be an integer 3..1000, got {sides!r}")
     # rounding a polygon grows it by rr; shrink it first so the corners stay at the radius
     inner_r = r - rr
     if inner_r <= 0:

@@ -91,6 +91,9 @@ def symmetric(node: Node, axes: str = "x") -> Node:
     return node
 
 
+MAX_POLAR_COUNT = 1_000_000  # copies of a polar repeat (each sector is then 0.00036 degrees wide)
+
+
 class PolarRepeat(Unary):
     """``count`` copies of the child turned about the Y axis; the child sits around +X.
 
@@ -101,8 +104,8 @@ class PolarRepeat(Unary):
 
     def __init__(self, child: Node, count: int) -> None:
         v.fixed(self.kind, "it shapes the code", count=count)
-        if isinstance(count, bool) or not isinstance(count, (int, np.integer)) or count < 2:
-            raise ParameterError(f"{self.kind}: 'count' must be a whole number >= 2, got {count!r}")
+        if isinstance(count, bool) or not isinstance(count, (int, np.integer)) or not 2 <= count <= MAX_POLAR_COUNT:
+            raise ParameterError(f"{self.kind}: 'count' must be a whole number in 2..{MAX_POLAR_COUNT}, got {count!r}")
         lo, hi = child.bounds
         if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi))):
             raise ParameterError(f"{self.kind}: the child {child.label()} is unbounded")
@@ -245,7 +248,7 @@ def repeat_polar(node: Node, count: int) -> Node:
 
     Args:
         node: the copy placed around +X.
-        count: number of copies, a whole number >= 1 (a baked constant).
+        count: number of copies, a whole number in 2..1000000 (a baked constant).
 
     Example:
         >>> s = sg.repeat_polar(sg.sphere(0.2, (1, 0, 0)), 4)

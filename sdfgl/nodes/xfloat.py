@@ -102,6 +102,8 @@ def glsl(expr: Any) -> str:
                     chunks = [32] * (n // 32) + ([n % 32] if n % 32 else [])
                     v = _fold("xfMul", [f"xfPowi({base}, {float(k)!r})" for k in chunks])
                 return v if int(x) > 0 else f"xfDiv(vec2(1.0, 0.0), {v})"
+            if not x.is_number:  # b**x = exp(x log b), meant for b > 0 (as GLSL's pow)
+                return f"xfExp(xfMul({emit(x)}, xfLog({emit(b)})))"
             return f"xfPow({emit(b)}, {float(x)!r})"
         name = type(e).__name__
         if name in _FUNCTIONS:
@@ -112,6 +114,8 @@ def glsl(expr: Any) -> str:
             return f"xfLog({emit(e.args[0])})"
         if isinstance(e, sp.Abs):
             return f"xfAbs({emit(e.args[0])})"
+        if isinstance(e, sp.sign):  # the derivative of an abs(): the sign of the mantissa
+            return f"xfNorm(sign({emit(e.args[0])}.x), 0.0)"
         if isinstance(e, (sp.sinh, sp.cosh)):
             a = emit(e.args[0])
             other = f"xfExp(xfNeg({a}))"

@@ -17,6 +17,7 @@ from typing import Any
 from ..errors import ParameterError, SceneDocumentError, SdfglError
 from ..nodes.record import Recorded, registry
 from ..params import Live, Param
+from ..values.float32 import FLOAT32_MAX
 from .encode import signature
 from .limits import FORMAT, MAX_ARRAY, MAX_NODES, MAX_PARAMS, VERSION
 
@@ -272,7 +273,7 @@ class Decoder:
         kinds = {"orbit": (OrbitCamera, ("target", "distance", "yaw", "pitch", "fov", "projection", "ortho_height")),
                  "look_at": (Camera, ("eye", "target", "up", "fov", "projection", "ortho_height"))}
         t = c.get("type")
-        if t not in kinds:
+        if not isinstance(t, str) or t not in kinds:
             raise fail("camera.type", f"expected \"orbit\" or \"look_at\", got {_what(t)}")
         cls, keys = kinds[t]
         extra = sorted(set(c) - set(keys) - {"type"})
@@ -315,8 +316,9 @@ class Decoder:
     def _number(v: Any, path: str) -> float:
         if isinstance(v, bool) or not isinstance(v, (int, float)):
             raise fail(path, f"expected a number, got {_what(v)}")
-        if not math.isfinite(v):
-            raise fail(path, "expected a finite number")
+        if not abs(v) <= FLOAT32_MAX:  # NaN, infinity and an integer too big for a float too
+            raise fail(path, f"expected a finite number of at most {FLOAT32_MAX:.3g} in magnitude (the shader "
+                             f"computes in float32), got {_number_text(v)}")
         return float(v)
 
     def _vector(self, v: Any, path: str) -> list[float]:
@@ -326,6 +328,12 @@ class Decoder:
 
     def _number_or_vector(self, v: Any, path: str) -> Any:
         return self._vector(v, path) if isinstance(v, list) else self._number(v, path)
+
+
+def _number_text(v: float) -> str:
+    """A number for a message (an integer of hundreds of digits is shown by its length)."""
+    text = repr(v)
+    return text if len(text) <= 24 else f"an integer of {len(text.lstrip('-'))} digits"
 
 
 def _refs(value: Any) -> list[str]:
@@ -356,7 +364,7 @@ def _light(d: Any, path: str) -> Any:
     if not isinstance(d, dict):
         raise fail(path, f"expected a light object, got {_what(d)}")
     t = d.get("type")
-    if t not in LIGHT_KEYS:
+    if not isinstance(t, str) or t not in LIGHT_KEYS:
         raise fail(f"{path}.type", f"expected \"directional\" or \"point\", got {_what(t)}")
     keys = LIGHT_KEYS[t]
     extra = sorted(set(d) - set(keys) - {"type"})
@@ -364,6 +372,8 @@ def _light(d: Any, path: str) -> Any:
         raise fail(f"{path}.{extra[0]}", f"unknown key for a {t} light; known: {', '.join(keys)}")
     if keys[0] not in d:
         raise fail(f"{path}.{keys[0]}", "missing")
+    if not isinstance(d[keys[0]], list) or len(d[keys[0]]) != 3:
+        raise fail(f"{path}.{keys[0]}", f"expected 3 numbers, got {_what(d[keys[0]])}")
     kw = {k: (tuple(d[k]) if isinstance(d[k], list) else d[k]) for k in keys if k in d}
     try:
         light = (directional_light if t == "directional" else point_light)(**kw)

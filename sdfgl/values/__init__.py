@@ -9,4 +9,5 @@ the parameter at fault.
 - :mod:`.colors`: colours as names, hex strings, 0..255 integers or 0..1 floats
 - :mod:`.axes`: axes as ``"x"``, ``sg.X`` or any vector
 - :mod:`.live`: the base type of values that change after a node is built
+- :mod:`.float32`: the range of the shader's numbers
 """

@@ -12,6 +12,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import ParameterError
+from .float32 import FLOAT32_MAX
 from .live import LiveValue
 
 
@@ -49,7 +50,7 @@ def parse(node: str, name: str, value: Any) -> tuple[float, float, float]:
     if len(items) != 3:
         raise ParameterError(f"{node}: parameter '{name}' must have 3 components, got {len(items)}")
     for i, x in enumerate(items):
-        if isinstance(x, bool) or not isinstance(x, (Real, np.floating, np.integer)) or not np.isfinite(float(x)):
+        if isinstance(x, bool) or not isinstance(x, (Real, np.floating, np.integer)) or not abs(x) <= FLOAT32_MAX:
             raise ParameterError(f"{node}: parameter '{name}[{i}]' must be a finite number, got {x!r}")
     ints = all(isinstance(x, (Integral, np.integer)) for x in items)
     if ints and any(int(x) > 1 for x in items):

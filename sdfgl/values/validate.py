@@ -13,6 +13,7 @@ import numpy as np
 
 from ..errors import ParameterError
 from .colors import parse
+from .float32 import FLOAT32_MAX
 from .live import LiveValue
 
 
@@ -34,9 +35,27 @@ def watch(check: Callable[[], None], *values: Any) -> None:
         p.add_check(lambda _v: check())
 
 
+def as_float(node: str, name: str, value: Any) -> float:
+    """``float(value)``, or ParameterError naming ``node.name`` for an integer too large for a float."""
+    try:
+        return float(value)
+    except OverflowError:
+        raise ParameterError(f"{node}: parameter '{name}' is too large for a number the shader can hold "
+                             f"(|value| <= {FLOAT32_MAX:.3g}), got an integer of {len(str(abs(int(value))))} digits") \
+            from None
+
+
+def check_float32(node: str, name: str, v: float) -> None:
+    """Refuse a finite ``v`` past float32's range: it would reach the shader as infinity."""
+    if abs(v) > FLOAT32_MAX:
+        raise ParameterError(f"{node}: parameter '{name}' must be at most {FLOAT32_MAX:.3g} in magnitude "
+                             f"(the shader computes in float32), got {v:g}")
+
+
 def _check_scalar(node: str, name: str, v: float, positive: bool, nonnegative: bool) -> float:
     if not math.isfinite(v):
         raise ParameterError(f"{node}: parameter '{name}' must be finite, got {v}")
+    check_float32(node, name, v)
     if positive and v <= 0:
         raise ParameterError(f"{node}: parameter '{name}' must be > 0, got {v}")
     if nonnegative and v < 0:
@@ -54,7 +73,7 @@ def scalar(node: str, name: str, value: object, *, positive: bool = False,
         return value
     if isinstance(value, bool) or not isinstance(value, (Real, np.floating, np.integer)):
         raise ParameterError(f"{node}: parameter '{name}' must be a number, got {type(value).__name__} {value!r}")
-    return _check_scalar(node, name, float(value), positive, nonnegative)
+    return _check_scalar(node, name, as_float(node, name, value), positive, nonnegative)
 
 
 def _check_vector(node: str, name: str, arr: np.ndarray, positive: bool, nonzero: bool) -> None:
@@ -77,11 +96,9 @@ def vector(node: str, name: str, value: object, n: int = 3, *, positive: bool = 
     if n == 3 and type(value) in (tuple, list) and len(value) == 3:
         x, y, z = value  # the most common call: three plain Python numbers
         if type(x) in _PLAIN and type(y) in _PLAIN and type(z) in _PLAIN:
-            try:
-                ok = (math.isfinite(x) and math.isfinite(y) and math.isfinite(z)
-                      and not (positive and min(x, y, z) <= 0) and not (nonzero and not (x or y or z)))
-            except OverflowError:  # an int too big for a float: the checks below name it
-                ok = False
+            # NaN, infinity and an int too big for a float fail here; the checks below name them
+            ok = (abs(x) <= FLOAT32_MAX and abs(y) <= FLOAT32_MAX and abs(z) <= FLOAT32_MAX
+                  and not (positive and min(x, y, z) <= 0) and not (nonzero and not (x or y or z)))
             if ok:
                 return np.array((x, y, z), dtype=np.float64)
     if isinstance(value, (Real, np.floating, np.integer)) and not isinstance(value, bool):
@@ -89,9 +106,10 @@ def vector(node: str, name: str, value: object, n: int = 3, *, positive: bool = 
     if isinstance(value, (tuple, list, np.ndarray)) and len(value) == n:
         try:  # fast path: n plain finite numbers (everything else takes the checks below)
             fast = np.array(value, dtype=np.float64)
-        except (TypeError, ValueError):
+        except (TypeError, ValueError, OverflowError):
             fast = None
-        if (fast is not None and fast.shape == (n,) and np.isfinite(fast).all() and not (positive and fast.min() <= 0)
+        if (fast is not None and fast.shape == (n,) and (np.abs(fast) <= FLOAT32_MAX).all()
+                and not (positive and fast.min() <= 0)
                 and not (nonzero and not fast.any())
                 and all(type(x) in (int, float) or isinstance(x, (np.floating, np.integer)) for x in value)):
             return fast
