@@ -391,3 +391,17 @@ def test_the_limits_are_documented():
     text = (Path(__file__).parent.parent / "docs" / "batch-format.md").read_text()
     assert MAX_JOBS == 1_000_000 and "allow_outside" in text and "at most 1 000 000 jobs" in text
     assert "MAX_FRAMES" in sg.animate.__doc__
+
+
+def test_a_graph_that_doubles_at_every_level_is_refused_before_the_driver_compiles() -> None:
+    s = sg.sphere(0.5)
+    for _ in range(14):  # 2^14 copies once the driver inlines the reused subtrees
+        s = sg.union(s.translate((0.3, 0, 0)), s.translate((0, 0.3, 0)))
+    t0 = time.perf_counter()
+    with pytest.raises(sg.ParameterError, match="reused subtrees"):
+        sg.render(s, size=(16, 12))
+    assert time.perf_counter() - t0 < 5
+    small = sg.sphere(0.5)
+    for _ in range(3):  # a few levels stay well within the bound and render
+        small = sg.union(small.translate((0.3, 0, 0)), small.translate((0, 0.3, 0)))
+    assert sg.render(small, size=(16, 12)).color.std() > 0
