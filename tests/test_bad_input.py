@@ -49,7 +49,8 @@ def _valid(fn_name, p, bad):
 
 
 def _cases(fn):
-    params = list(inspect.signature(fn).parameters.values())
+    # **options are not a parameter to pass by that name (their keys are the function's own)
+    params = [p for p in inspect.signature(fn).parameters.values() if p.kind != p.VAR_KEYWORD]
     base = {p.name: VALID.get(p.name, 1.0) for p in params
             if p.kind != p.VAR_POSITIONAL and p.default is inspect.Parameter.empty}
     varpos = any(p.kind == p.VAR_POSITIONAL for p in params)

@@ -54,6 +54,9 @@ class LiveControl:
                  osc_host: str = "127.0.0.1", midi: str | None = None, midi_virtual: bool = False,
                  bindings: Iterable[Binding] = (), deferred: bool = False,
                  wake: Callable[[], None] | None = None) -> None:
+        if scene is not None and not isinstance(scene, Node):
+            raise ParameterError(f"live_control: 'scene' must be an sdfgl node or None, got {type(scene).__name__} "
+                                 f"{scene!r}")
         self._lock = threading.RLock()
         self.scene = scene  # held: the checks of its nodes live as long as it does
         self._params: dict[str, Param] = {}

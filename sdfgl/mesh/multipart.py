@@ -18,6 +18,7 @@ from pathlib import Path
 from typing import Any, Mapping
 
 from ..errors import SdfglError
+from ..values.validate import file_path
 from .parts import parts_of
 from .writers import write_parts
 
@@ -40,7 +41,7 @@ def save_parts(parts: Mapping[str, Any], path: str | Path, units: str | None = N
         ...              "ball": sg.sphere(0.4).translate((1, 0, 0)).material("red")}, out, resolution=16).name
         'two.3mf'
     """
-    return write_parts(parts_of(parts, **mesh_options), Path(path), units)
+    return write_parts(parts_of(parts, **mesh_options), file_path("save_parts", "path", path), units)
 
 
 def save_3mf(parts: Mapping[str, Any], path: str | Path, units: str | None = None, **mesh_options: Any) -> Path:
@@ -60,6 +61,6 @@ def save_3mf(parts: Mapping[str, Any], path: str | Path, units: str | None = Non
         >>> out.suffix
         '.3mf'
     """
-    if Path(path).suffix.lower() != ".3mf":
+    if file_path("save_3mf", "path", path).suffix.lower() != ".3mf":
         raise SdfglError(f"save_3mf: '{path}' does not end in .3mf (save_parts writes .obj, .glb and .gltf)")
     return save_parts(parts, path, units, **mesh_options)

@@ -6,7 +6,9 @@ later ``p.value = -1`` fails with the same message as ``sphere(-1)``.
 from __future__ import annotations
 
 import math
+import os
 from numbers import Real
+from pathlib import Path
 from typing import Any, Callable, Sequence
 
 import numpy as np
@@ -153,3 +155,10 @@ def at_most_half_edge(node: str, name: str, value: Any, size: Any, edge: str = "
             raise ParameterError(f"{node}: parameter '{name}' ({float(value):g}) must be at most half the smallest "
                                  f"{edge} ({np.min(np.asarray(size, dtype=float)) / 2:g})")
     watch(check, size, value)
+
+
+def file_path(node: str, name: str, value: object) -> Path:
+    """``value`` as a filesystem path (a str or os.PathLike), or an error naming the parameter."""
+    if isinstance(value, (str, os.PathLike)) and str(value):
+        return Path(value)
+    raise ParameterError(f"{node}: '{name}' must be a file path (a string or pathlib.Path), got {value!r}")
