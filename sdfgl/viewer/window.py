@@ -21,6 +21,7 @@ import numpy as np
 from .. import shaderlib
 from ..camera import Camera, OrbitCamera
 from ..errors import ContextError, SdfglError
+from ..gl.memory import limit_malloc_arenas
 from ..nodes.base import Node
 from ..scenefile_process import DEFAULT_TIMEOUT_S
 from ..settings import Settings
@@ -97,6 +98,7 @@ class Viewer:
         return OrbitCamera.of(camera, *scene.bounds, aspect=aspect)
 
     def _open_window(self) -> None:
+        limit_malloc_arenas()  # before the driver's threads start (see sdfgl.gl.memory)
         if not glfw.init():
             raise ContextError("glfw could not initialise: no display? (set DISPLAY, or run under Xvfb)")
         glfw.window_hint(glfw.CONTEXT_VERSION_MAJOR, 3)
