@@ -82,6 +82,7 @@ def test_bounded_scenes_are_not_clipped_by_max_dist():
     assert "#define MAX_DIST 1000.0" in sg.compile(sg.plane((0, 1, 0), (0, 0, 0)) | sg.sphere(1))
 
 
+@pytest.mark.slow
 def test_no_nan_from_overflowing_fields_or_far_cameras():
     with pytest.raises(sg.ParameterError, match="exponent 1000"):  # the expression parser's limit
         sg.implicit("x**1000 + y**1000 + z**1000 - 1")
@@ -93,6 +94,7 @@ def test_no_nan_from_overflowing_fields_or_far_cameras():
         sg.render(sg.sphere(1), sg.Camera.look_at((0, 0, 1e300), (0, 0, 0)), (8, 6))
 
 
+@pytest.mark.slow
 def test_overflowing_implicit_fields_are_drawn_at_the_right_depth():
     # x**64 overflows float32 beyond |x| = 4 (its gradient sooner): such fields are written in
     # extended range (m * 2^e), so f / |grad f| is finite wherever the ray starts

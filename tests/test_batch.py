@@ -95,6 +95,7 @@ def test_unreadable_job_file_names_file_and_line(tmp_path):
         load_jobs(p)
 
 
+@pytest.mark.slow
 def test_data_outputs_params_time_and_a_broken_scene_reported_while_the_rest_finish(folder, renderer):
     (folder / "broken.py").write_text("import sdfgl as sg\nscene = sg.sphere(-1)\n")
     (folder / "hangs.py").write_text("while True:\n    pass\n")
@@ -138,6 +139,7 @@ def test_a_job_that_kills_its_worker_is_found_and_reported_and_no_other_job_is_c
     assert len(list((folder / "ok").glob("*.png"))) == 6
 
 
+@pytest.mark.slow
 def test_a_killed_run_resumes_without_redoing_finished_jobs(folder):
     jf = write(folder, {"defaults": {"scene": "scene.py", "size": [160, 120], "settings": {"aa": 2}},
                         "jobs": [{"count": 40, "camera": {"yaw": {"uniform": [0, 360]}, "distance": 4},
@@ -161,6 +163,7 @@ def test_a_killed_run_resumes_without_redoing_finished_jobs(folder):
     assert not [p.name for p in out.iterdir() if p.name.startswith(".")]  # the killed run's partial files are gone
 
 
+@pytest.mark.slow
 def test_the_same_job_file_on_a_local_ray_cluster_gives_identical_images(folder):
     import ray
     jf = write(folder, {"seed": 3, "defaults": {"scene": "scene.py", "size": [48, 36]},

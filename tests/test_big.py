@@ -59,6 +59,7 @@ def _unfolded(n):
     return s
 
 
+@pytest.mark.slow
 def test_a_deep_graph_that_cannot_be_flattened_works_everywhere(renderer):
     s = sg.sphere(0.5)
     for _ in range(DEEP):

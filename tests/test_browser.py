@@ -71,6 +71,7 @@ def egl_settings(scene: sg.Node, **settings: object) -> dict:
 
 
 @pytest.mark.parametrize("path", GALLERY, ids=[p.stem for p in GALLERY])
+@pytest.mark.slow
 def test_gallery_scene_in_the_browser_matches_egl(browser, tmp_path, path):
     sf = load_scene_file(path)
     cam = OrbitCamera.of(sf.camera, *sf.scene.bounds)
@@ -192,6 +193,7 @@ def test_several_sliders_at_once_match_egl(browser, tmp_path):
     assert differing(canvas(browser), egl) < MAX_FRACTION
 
 
+@pytest.mark.slow
 def test_union_kept_as_data_uploads_its_textures(browser, tmp_path):
     rng = np.random.default_rng(3)
     lamp = sg.box(0.2) | sg.sphere(0.12).translate((0, 0.15, 0))  # a small subtree: its free way is its box (the nearest by its parts)

@@ -53,6 +53,7 @@ def test_bench_without_matplotlib_refuses_at_once(tmp_path):
     assert not (tmp_path / "b").exists()
 
 
+@pytest.mark.slow
 def test_mesh_without_scipy_writes_its_file_and_report_is_opt_in(tmp_path):
     out = tmp_path / "s.stl"
     r, _ = run_without("scipy", "mesh", "--demo", "-o", str(out), "--resolution", "16", "--quiet")

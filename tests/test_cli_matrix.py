@@ -69,6 +69,7 @@ def sdfgl(installed: Path, cwd: Path, *args: str, timeout: float = 120,
     return r
 
 
+@pytest.mark.slow
 def test_the_install_is_the_one_run(installed, tmp_path):
     code = "import sdfgl, sdfgl.cli, pathlib; print(sdfgl.__file__); print(sdfgl.cli.__file__)"
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=tmp_path, timeout=60,
@@ -84,6 +85,7 @@ def test_the_install_is_the_one_run(installed, tmp_path):
 
 
 @pytest.mark.parametrize("kind", KINDS)
+@pytest.mark.slow
 def test_render(installed, scenes, tmp_path, kind):
     r = sdfgl(installed, tmp_path, "render", *scenes[kind], "--size", SIZE, "-o", "out.png", "--outputs", "depth")
     assert f"wrote out.png, out.depth.png ({SIZE}, aa {AA[kind]})" in r.stdout, r.stdout
@@ -118,6 +120,7 @@ def binary_stl_triangles(path: Path) -> int:
 
 
 @pytest.mark.parametrize("kind", KINDS)
+@pytest.mark.slow
 def test_mesh(installed, scenes, tmp_path, kind):
     r = sdfgl(installed, tmp_path, "mesh", *scenes[kind], "-o", "m.stl", "--resolution", "12", "--quiet")
     assert r.stdout.startswith("wrote m.stl: ") and "triangles" in r.stdout and "report:" not in r.stdout
@@ -137,6 +140,7 @@ def test_mesh_glb_and_report(installed, scenes, tmp_path, kind):
 
 
 @pytest.mark.parametrize("kind", KINDS)
+@pytest.mark.slow
 def test_animate(installed, scenes, tmp_path, kind):
     r = sdfgl(installed, tmp_path, "animate", *scenes[kind], "-o", "a.gif", "--frames", "2", "--size", SIZE,
               "--no-progress")
@@ -158,6 +162,7 @@ def test_animate_video(installed, scenes, tmp_path, kind):
     assert imageio_ffmpeg.count_frames_and_secs(str(tmp_path / "a.mp4"))[0] == 3
 
 
+@pytest.mark.slow
 def test_batch(installed, scenes, tmp_path):
     jobs = [{"scene": scenes[k][0], "size": [32, 24], "output": f"out/{k}.png", "data": f"out/{k}.npz"}
             for k in ("plain", "full", "json")]

@@ -17,6 +17,7 @@ def run(*args: str, module: str = "sdfgl") -> subprocess.CompletedProcess:
                           timeout=120)
 
 
+@pytest.mark.slow
 def test_version_and_python_dash_m():
     r = run("--version")
     assert r.returncode == 0 and r.stdout.strip() == f"sdfgl {sg.__version__}"
@@ -24,6 +25,7 @@ def test_version_and_python_dash_m():
     assert r.returncode == 0 and "render" in r.stdout and "view" in r.stdout
 
 
+@pytest.mark.slow
 def test_usage_shows_choices():
     r = run("render", "--help")
     assert "{auto,sphere,relaxed,enhanced,newton,forward_newton,reference}" in r.stdout
@@ -44,6 +46,7 @@ def test_render_without_a_scene_says_so(tmp_path):
     assert not (tmp_path / "x.png").exists()
 
 
+@pytest.mark.slow
 def test_camera_flags_change_the_view_the_same_way_in_render_and_shader(tmp_path):
     a, b = tmp_path / "a.png", tmp_path / "b.png"
     base = ("render", "examples/csg.py", "--size", "64x48", "--shadows", "off", "--no-ao")
@@ -66,6 +69,7 @@ def test_camera_flags_change_the_view_the_same_way_in_render_and_shader(tmp_path
     assert r.returncode == 2 and "parameter 'distance' must be > 0" in r.stderr and "Traceback" not in r.stderr
 
 
+@pytest.mark.slow
 def test_outputs_write_depth_and_normal_images_and_npz(tmp_path):
     out = tmp_path / "o.png"
     r = run("render", "examples/csg.py", "--size", "48x32", "-o", str(out), "--outputs", "depth,normal,steps")
@@ -93,6 +97,7 @@ def test_outputs_write_depth_and_normal_images_and_npz(tmp_path):
     (("render", "examples/csg.py", "--fov", "500"), "'fov' must be in [1e-4, 179]"),
     (("render", "examples/csg.py", "-o", "/nonexistent/dir/x.png"), "cannot write image file"),
 ])
+@pytest.mark.slow
 def test_bad_values_are_one_clear_line(args, message, tmp_path):
     r = run(*args)
     assert r.returncode == 2, r.stdout

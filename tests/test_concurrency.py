@@ -47,6 +47,7 @@ def test_main_thread_first_then_a_worker_renders_cached_and_new_scenes():
     assert image(1) == b0
 
 
+@pytest.mark.slow
 def test_six_threads_render_concurrently_identical_to_serial():
     jobs = [(t, i) for t in range(6) for i in (t + 1, t + 2, 100 + t, 0)]  # shared, cached and new scenes
     got: dict[tuple[int, int], bytes] = {}

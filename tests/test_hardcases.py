@@ -7,6 +7,7 @@ from sdfgl.hardcases import CASES, run_case
 
 @pytest.mark.parametrize("case", [pytest.param(c, marks=pytest.mark.xfail(reason=c.failing, strict=True))
                                   if c.failing else c for c in CASES], ids=[c.name for c in CASES])
+@pytest.mark.slow
 def test_hard_case_within_bounds(case):
     # a case marked failing stays in the suite: it must still fail (strict), so a fix is noticed
     err, res = run_case(case, (64, 48))
@@ -48,6 +49,7 @@ def test_tunnel_pixel_cone_needs_fewer_steps_than_fixed_epsilon():
     assert cone.depth_px_median < 1e-3
 
 
+@pytest.mark.slow
 def test_no_lost_hits_on_a_crease_an_implicit_field_or_many_near_misses_at_128x96():
     # a ray whose f(t) rounds to exactly 0 in float32 (the k = 1e-6 crease, the product
     # field) once looped in the probe's straight-line check until it ran out of steps;
@@ -58,6 +60,7 @@ def test_no_lost_hits_on_a_crease_an_implicit_field_or_many_near_misses_at_128x9
         assert err.lost_hits == 0 and err.false_hits == 0, (name, err)
 
 
+@pytest.mark.slow
 def test_a_scan_that_sees_the_field_rise_goes_on_marching():
     # a probe that jumps a sphere the ray clips and lands in the one behind: its scan samples
     # lie far above the straight line to that far root (the ray passes between spheres), so

@@ -84,6 +84,7 @@ def test_evaluate_batches_large_inputs(renderer, monkeypatch):
     assert np.abs(batched - s.distance(pts)).max() < 1e-5
 
 
+@pytest.mark.slow
 def test_evaluate_more_points_than_one_texture_holds(renderer):
     """17 M points (the texture side limit is 16384 rows of 1024) evaluate instead of failing."""
     n = 1024 * 16384 + 5

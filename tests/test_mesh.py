@@ -250,6 +250,7 @@ def _zoo_modes():
 
 
 @pytest.mark.parametrize("node, mode", _zoo_modes())
+@pytest.mark.slow
 def test_every_bounded_node_kind_meshes_closed(node, mode, request):
     faces, topology, _, _ = _zoo_mesh(node, request.node.callspec.id.split("-", 1)[1], mode)
     assert faces > 0
@@ -277,6 +278,7 @@ def test_volume_error_estimate_follows_the_twin():
         assert actual < -1e-3 and 0.6 * actual > estimate > 1.5 * actual, (actual, estimate)
 
 
+@pytest.mark.slow
 def test_default_step_is_refined_where_the_volume_would_be_off():
     # thin parts at the default 2^22 samples (a tree's twigs 2 cells thick, a Sierpinski
     # tetrahedron's smallest pieces 1 cell, a sliver left by a blend) are meshed again finer,
@@ -327,6 +329,7 @@ def test_vertices_lie_on_the_surface(mode):
     assert f.max() <= 0.05 * m.step
 
 
+@pytest.mark.slow
 def test_smooth_parts_within_half_a_cell_both_ways():
     for s in (sg.sphere(1), sg.torus(0.8, 0.3)):
         r = sg.mesh(s, resolution=48).report(twin_samples=3000, volume_resolution=96)
@@ -477,6 +480,7 @@ def test_live_parameters_and_far_scenes():
 
 # -- command line ------------------------------------------------------------------------------
 
+@pytest.mark.slow
 def test_cli_writes_mesh_and_report(tmp_path):
     scene = tmp_path / "scene.py"
     scene.write_text("import sdfgl as sg\nscene = sg.sphere(1) - sg.box(0.8)\n")

@@ -26,6 +26,7 @@ def test_method_hits_unit_sphere_exactly(renderer, method):
 
 
 @pytest.mark.parametrize("method", ["sphere", "relaxed", "enhanced"])
+@pytest.mark.slow
 def test_distance_methods_never_lose_a_hit(method):
     # the overlap fallback of relaxed/enhanced must catch every surface sphere tracing finds
     for c in CASES:
@@ -100,6 +101,7 @@ def test_bad_method_settings():
         sg.compile(sg.sphere(1), method="newton", omega=0.5)
 
 
+@pytest.mark.slow
 def test_bench_quick_writes_reports(tmp_path):
     r = subprocess.run([sys.executable, "-m", "sdfgl.cli", "bench", "--quick", "--size", "48x36", "--no-progress",
                         "--scenes", "rounded_box", "product_union", "--out", str(tmp_path)],
@@ -123,6 +125,7 @@ def test_bench_quick_writes_reports(tmp_path):
     assert four["frame_ms_median"] > 0
 
 
+@pytest.mark.slow
 def test_capped_newton_keeps_the_roots_of_an_implicit_surface():
     from sdfgl import reference as R
     t = sg.implicit("x**4 - 5*x**2 + y**4 - 5*y**2 + z**4 - 5*z**2 + 11.8",

@@ -4,9 +4,12 @@ import sys
 import zipfile
 from pathlib import Path
 
+import pytest
+
 ROOT = Path(__file__).resolve().parents[1]
 
 
+@pytest.mark.slow
 def test_wheel_contains_all_shaders(tmp_path):
     r = subprocess.run([sys.executable, "-m", "pip", "wheel", "--no-deps", "-q",
                         "-w", str(tmp_path), str(ROOT)], capture_output=True, text=True, timeout=300)
@@ -21,6 +24,7 @@ def test_wheel_contains_all_shaders(tmp_path):
     assert modules and modules <= names, sorted(modules - names)
 
 
+@pytest.mark.slow
 def test_wheel_metadata_license_types_and_one_version(tmp_path):
     import email
 

@@ -29,6 +29,7 @@ def edge_pixels(hit: np.ndarray) -> np.ndarray:
     return nb.any(0) & ~nb.all(0)
 
 
+@pytest.mark.slow
 def test_silhouette_matches_the_egl_render():
     """Coverage against coverage: the path tracer's alpha (share of a pixel's samples that hit)
     and the EGL render's alpha at aa 4 (16 samples a pixel) agree within 0.2 on the edge

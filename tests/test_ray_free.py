@@ -2,6 +2,7 @@
 as data, the marcher steps the way its lists prove empty. Checked against the float64
 reference and against the same shader without it."""
 import numpy as np
+import pytest
 
 import sdfgl as sg
 from sdfgl.reference import trace_rays
@@ -142,6 +143,7 @@ def _against_reference(scene: sg.Node) -> tuple[np.ndarray, np.ndarray, np.ndarr
         np.abs(plain.depth[both] - t[both]) / fp[both]
 
 
+@pytest.mark.slow
 def test_free_way_hits_what_the_reference_hits_in_fewer_steps():
     hit, ref_hit, err, plain_err = _against_reference(_spheres(250, 2))
     assert hit.sum() > 1000
@@ -172,6 +174,7 @@ def test_the_nearest_subtree_entered_by_its_parts_takes_fewer_steps_to_the_same_
     assert np.percentile(np.abs(refined.depth[hit] - boxed.depth[hit]), 99) < 1e-3
 
 
+@pytest.mark.slow
 def test_free_way_into_subtree_boxes_beside_a_floor_turned_hits_what_the_reference_hits():
     scene = (_moved(64, 2) | sg.plane((0, 1, 0), (0, -0.7, 0))).rotate(35, (0.3, 1, 0.2))
     hit, ref_hit, err, plain_err = _against_reference(scene)

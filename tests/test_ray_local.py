@@ -4,9 +4,12 @@ import os
 import subprocess
 import sys
 
+import pytest
+
 SCENE = "import sdfgl as sg\nscene = sg.sphere(1) | sg.box(1.5)\n"
 
 
+@pytest.mark.slow
 def test_local_ray_ignores_a_stale_cluster_address(tmp_path):
     (tmp_path / "scene.py").write_text(SCENE)
     (tmp_path / "jobs.json").write_text(json.dumps(

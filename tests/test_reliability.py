@@ -12,6 +12,7 @@ import sys
 import time
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 import sdfgl as sg
@@ -405,3 +406,13 @@ def test_a_graph_that_doubles_at_every_level_is_refused_before_the_driver_compil
     for _ in range(3):  # a few levels stay well within the bound and render
         small = sg.union(small.translate((0.3, 0, 0)), small.translate((0, 0.3, 0)))
     assert sg.render(small, size=(16, 12)).color.std() > 0
+
+
+def test_equal_children_built_apart_are_written_once() -> None:
+    one = sg.box(0.5).twist(30)
+    many = sg.union(*[sg.box(0.5).twist(30) for _ in range(2000)])
+    t0 = time.perf_counter()
+    image = sg.render(many, size=(32, 24)).color
+    assert time.perf_counter() - t0 < 5
+    assert np.array_equal(image, sg.render(one, size=(32, 24)).color)
+    assert len(sg.compile(many)) < 1.2 * len(sg.compile(one))

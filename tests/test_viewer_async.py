@@ -51,6 +51,7 @@ def pct(values: list[float], q: float) -> float:
     return v[min(len(v) - 1, max(0, round(q / 100 * len(v)) - 1))]
 
 
+@pytest.mark.slow
 def test_window_answers_input_during_a_slow_compile(display, tmp_path):
     """Input-to-redraw latency over a whole 256-primitive compile: codegen, link, llvmpipe's machine-code
     build at the first draw (the render thread's warm-up draw), and the switch to the new program."""

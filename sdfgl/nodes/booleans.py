@@ -145,9 +145,20 @@ class _Boolean(Node):
             return f"-{fn}(-{a}, -{b}, {em.num(self.k)})"
         return f"{fn}({a}, {b}, {em.num(self.k)})"
 
+    def distinct_children(self) -> tuple[Node, ...]:
+        """The children the shader evaluates: a hard union or intersection of equal children
+        is one of them (min(a, a) = a), so copies built apart (same key) are written once;
+        every other operation keeps all of them."""
+        if not (self._hard and self.kind in ("union", "intersection")):
+            return self.children
+        seen: set = set()
+        out = [c for c in self.children if not (c.key in seen or seen.add(c.key))]
+        return self.children if len(out) == len(self.children) else tuple(out)
+
     def _emit(self, em: "Emitter", p: str) -> str:
-        acc = self.children[0].emit(em, p)
-        for c in self.children[1:]:
+        children = self.distinct_children()
+        acc = children[0].emit(em, p)
+        for c in children[1:]:
             acc = self._combine(em, acc, c.emit(em, p))
         return acc
 
@@ -180,7 +191,7 @@ class Union(_Boolean):
         d = self.__dict__
         if name not in d:
             build = layout("union")
-            d[name] = build(list(self.children), least) if self._hard and build is not None else None
+            d[name] = build(list(self.distinct_children()), least) if self._hard and build is not None else None
         return d[name]
 
     def data_union(self) -> "Grid | None":
@@ -193,7 +204,7 @@ class Union(_Boolean):
             return super()._emit(em, p)
         acc = em.grid_union(grid, p)
         inside = {id(g) for g in grid.children}
-        for c in self.children:
+        for c in self.distinct_children():
             if id(c) not in inside:
                 d = c.emit(em, p)
                 em.narrow_free_way(grid, d)
