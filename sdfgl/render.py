@@ -340,14 +340,14 @@ class Renderer:
         vao.render(moderngl.TRIANGLES, vertices=3)
         ctx.finish()
         t3 = time.perf_counter()
-        res = RenderResult(color=np.ascontiguousarray(targets.read("color")[..., :4 if st.alpha else 3]), source=source,
+        res = RenderResult(color=targets.read("color", 4 if st.alpha else 3), source=source,
                            settings=dataclasses.replace(st, grid_min=source.grid_min), camera=cam)
         if "depth" in st.outputs:
-            d = targets.read("depth")[..., 0].copy()
+            d = targets.read("depth")[..., 0]
             d[d < 0] = np.inf
             res.depth = d
         if "normal" in st.outputs:
-            res.normal = np.ascontiguousarray(targets.read("normal")[..., :3])
+            res.normal = targets.read("normal", 3)
         if "steps" in st.outputs:
             res.steps = targets.read("steps")[..., 0].astype(np.int32)
         res.timings = {"compile_s": compile_s, "draw_s": t3 - t2, "read_s": time.perf_counter() - t3}
