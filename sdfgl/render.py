@@ -92,7 +92,7 @@ class RenderResult:
 
     def save(self, path: str | Path, **options: object) -> Path:
         """Write the colour image as PNG (or any format Pillow knows from the suffix);
-        ``options`` go to Pillow (PNG defaults to the fast ``compress_level=1``)."""
+        ``options`` go to Pillow (a PNG without them is written by :func:`sdfgl.png.encode_png`)."""
         from .outputs import write_image
         return write_image(self.color, path, **options)
 
