@@ -2,7 +2,6 @@
 from __future__ import annotations
 
 import dataclasses
-import io
 import threading
 import time
 import weakref
@@ -85,10 +84,8 @@ class RenderResult:
 
     def _repr_png_(self) -> bytes:
         """The colour image as PNG: Jupyter shows a result inline."""
-        from PIL import Image
-        buf = io.BytesIO()
-        Image.fromarray(self.color).save(buf, format="PNG")
-        return buf.getvalue()
+        from .png import encode_png
+        return encode_png(self.color)
 
     def save(self, path: str | Path, **options: object) -> Path:
         """Write the colour image as PNG (or any format Pillow knows from the suffix);
