@@ -22,6 +22,7 @@ EXTRAS: dict[str, tuple[str, ...]] = {
     "pbr": ("mitsuba",),
     "panel": ("imgui_bundle", "OpenGL"),
     "live": ("mido", "rtmidi", "pythonosc"),
+    "fast": ("isal",),
 }
 """Each extra of pyproject.toml and the modules (import names) it installs (``all`` is every
 feature extra together, so it has no entry of its own)."""

@@ -1,7 +1,8 @@
 """Writing a render's images: colour, depth, normal and step-count pictures, or one .npz.
 
-PNGs are written with zlib level 1 (``PNG_OPTIONS``): at 1920x1080 that took 75 ms against
-Pillow's default level 6 at 124 ms, for files 1.4x larger (benchmarks/png_write_times.py).
+PNGs are written by :func:`sdfgl.png.encode_png` (one "Sub" filter, deflate level 1): at
+1920x1080 a third of Pillow's level-1 time, a tenth with the ``fast`` extra, for files no larger
+(benchmarks/png_write_times.py). Options, or other formats, go to Pillow.
 """
 from __future__ import annotations
 
@@ -11,16 +12,21 @@ from typing import Any, Sequence
 import numpy as np
 
 from .errors import SdfglError
-from .files import written_atomically
+from .files import write_bytes_atomically, written_atomically
+from .png import can_encode, encode_png
 
-PNG_OPTIONS = {"compress_level": 1}
+PNG_OPTIONS = {"compress_level": 1}  # Pillow's PNG options where a caller passes its own
 
 
 def write_image(array: np.ndarray, path: str | Path, **options: Any) -> Path:
-    """Write an image array with Pillow (format from the suffix; PNG fast by default)."""
-    from PIL import Image
+    """Write an image array (format from the suffix). A PNG without ``options`` is encoded
+    by :func:`sdfgl.png.encode_png`; anything else goes to Pillow with ``options``."""
     p = Path(path)
-    opts = {**(PNG_OPTIONS if p.suffix.lower() == ".png" else {}), **options}
+    png = p.suffix.lower() == ".png"
+    if png and not options and can_encode(array):
+        return write_bytes_atomically(p, encode_png(array), "image file")
+    from PIL import Image
+    opts = {**(PNG_OPTIONS if png else {}), **options}
     fmt = Image.registered_extensions().get(p.suffix.lower())
     if fmt is None:
         raise SdfglError(f"cannot write image file '{p}': unknown image format {p.suffix or '(no suffix)'!r}")

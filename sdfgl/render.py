@@ -2,7 +2,6 @@
 from __future__ import annotations
 
 import dataclasses
-import io
 import threading
 import time
 import weakref
@@ -85,14 +84,12 @@ class RenderResult:
 
     def _repr_png_(self) -> bytes:
         """The colour image as PNG: Jupyter shows a result inline."""
-        from PIL import Image
-        buf = io.BytesIO()
-        Image.fromarray(self.color).save(buf, format="PNG")
-        return buf.getvalue()
+        from .png import encode_png
+        return encode_png(self.color)
 
     def save(self, path: str | Path, **options: object) -> Path:
         """Write the colour image as PNG (or any format Pillow knows from the suffix);
-        ``options`` go to Pillow (PNG defaults to the fast ``compress_level=1``)."""
+        ``options`` go to Pillow (a PNG without them is written by :func:`sdfgl.png.encode_png`)."""
         from .outputs import write_image
         return write_image(self.color, path, **options)
 
@@ -340,14 +337,14 @@ class Renderer:
         vao.render(moderngl.TRIANGLES, vertices=3)
         ctx.finish()
         t3 = time.perf_counter()
-        res = RenderResult(color=np.ascontiguousarray(targets.read("color")[..., :4 if st.alpha else 3]), source=source,
+        res = RenderResult(color=targets.read("color", 4 if st.alpha else 3), source=source,
                            settings=dataclasses.replace(st, grid_min=source.grid_min), camera=cam)
         if "depth" in st.outputs:
-            d = targets.read("depth")[..., 0].copy()
+            d = targets.read("depth")[..., 0]
             d[d < 0] = np.inf
             res.depth = d
         if "normal" in st.outputs:
-            res.normal = np.ascontiguousarray(targets.read("normal")[..., :3])
+            res.normal = targets.read("normal", 3)
         if "steps" in st.outputs:
             res.steps = targets.read("steps")[..., 0].astype(np.int32)
         res.timings = {"compile_s": compile_s, "draw_s": t3 - t2, "read_s": time.perf_counter() - t3}

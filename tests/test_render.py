@@ -140,3 +140,25 @@ def test_lone_sphere_and_plane_are_intersected_not_marched(renderer):
         no_nan(a)
     assert "march_analytic" not in sg.compile(sg.sphere(1) | sg.box(1))
     assert "closed form" in sg.compile(sg.sphere(1)) and "closed form" not in sg.compile(sg.sphere(1), analytic=False)
+
+
+@pytest.mark.parametrize("alpha", [False, True], ids=["rgb", "rgba"])
+def test_read_back_matches_the_raw_textures_flipped(renderer, alpha):
+    # odd width: RGB rows of 3 * 37 bytes are not 4-byte aligned; an asymmetric scene shows any flip or shift
+    w, h = 37, 23
+    scene = sg.box(1).translate((0.4, 0.3, 0)).color(0.9, 0.2, 0.1) | sg.sphere(0.5).translate((-1, -0.5, 0))
+    res = renderer.render(scene, sg.OrbitCamera(distance=5, yaw=30, pitch=20), (w, h), outputs=ALL, alpha=alpha)
+
+    def raw(name, comps, dtype):
+        tex = renderer.targets.get(renderer.ctx, (w, h), res.settings.outputs).textures[name]
+        return np.frombuffer(tex.read(), dtype=dtype).reshape(h, w, comps)[::-1]
+
+    color, depth, normal, steps = renderer.run(lambda: (raw("color", 4, np.uint8), raw("depth", 1, np.float32),
+                                                        raw("normal", 4, np.float32), raw("steps", 1, np.float32)))
+    assert np.array_equal(res.color, color[..., :4 if alpha else 3])
+    assert np.array_equal(res.depth, np.where(depth[..., 0] < 0, np.inf, depth[..., 0]))
+    assert np.array_equal(res.normal, normal[..., :3])
+    assert np.array_equal(res.steps, steps[..., 0].astype(np.int32))
+    assert np.isfinite(res.depth).any() and not np.isfinite(res.depth).all()
+    for a in (res.color, res.depth, res.normal, res.steps):
+        assert a.flags.c_contiguous

@@ -32,13 +32,12 @@ from __future__ import annotations
 
 import atexit
 import ctypes
-import ctypes.util
 import os
 import queue
 import threading
 import weakref
 from concurrent.futures import Future
-from typing import Any, Callable, TypeVar
+from typing import Any, Callable, Iterator, TypeVar
 
 import moderngl
 
@@ -54,11 +53,19 @@ _MISSING_HINT = (
 )
 
 
+def _egl_names() -> Iterator[str]:
+    """Names to load libEGL by; the library search (ctypes.util spawns ldconfig) only if the usual ones fail."""
+    yield "libEGL.so.1"
+    yield "libEGL.so"
+    import ctypes.util
+    found = ctypes.util.find_library("EGL")
+    if found:
+        yield found
+
+
 def _load_egl() -> Any:
     """libEGL through ctypes (for what glcontext does not expose: releasing and terminating)."""
-    for name in ("libEGL.so.1", "libEGL.so", ctypes.util.find_library("EGL")):
-        if not name:
-            continue
+    for name in _egl_names():
         try:
             lib = ctypes.CDLL(name)
         except OSError:
@@ -70,6 +77,16 @@ def _load_egl() -> Any:
         lib.eglTerminate.argtypes = [ctypes.c_void_p]
         return lib
     return None
+
+
+def _create_egl_context() -> moderngl.Context:
+    """A standalone EGL context, naming the usual sonames first: glcontext would otherwise search
+    for libGL and libEGL (ctypes.util runs ldconfig) on every context; the search only if those fail."""
+    try:
+        return moderngl.create_context(standalone=True, backend="egl", require=330, libgl="libGL.so.1",
+                                       libegl="libEGL.so.1")
+    except Exception:  # moderngl/glcontext raise plain Exceptions
+        return moderngl.create_context(standalone=True, backend="egl", require=330)
 
 
 class GLThread:
@@ -150,7 +167,7 @@ class GLThread:
         if self._ctx is None:
             limit_malloc_arenas()
             try:
-                ctx = moderngl.create_context(standalone=True, backend="egl", require=330)
+                ctx = _create_egl_context()
             except Exception as exc:  # moderngl/glcontext raise plain Exceptions
                 raise ContextError(f"could not create a headless EGL OpenGL context: {exc}\n{_MISSING_HINT}") from exc
             ctx.info  # noqa: B018 - read once here: describe() may then run on any thread

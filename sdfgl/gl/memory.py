@@ -10,7 +10,6 @@ it). A ``MALLOC_ARENA_MAX`` set in the environment is left as it is.
 from __future__ import annotations
 
 import ctypes
-import ctypes.util
 import os
 import sys
 
@@ -28,10 +27,8 @@ def limit_malloc_arenas() -> bool:
         return True
     if not sys.platform.startswith("linux") or "MALLOC_ARENA_MAX" in os.environ:
         return False
-    name = ctypes.util.find_library("c")
     try:
-        libc = ctypes.CDLL(name or "libc.so.6")
-        mallopt = libc.mallopt
+        mallopt = ctypes.CDLL(None).mallopt  # the process's own symbols: libc's, without a library search
     except (OSError, AttributeError):  # not glibc
         return False
     _done = bool(mallopt(M_ARENA_MAX, ARENAS))

@@ -26,12 +26,20 @@ class Targets:
         self.textures = {name: ctx.texture(size, FORMATS[name][0], dtype=FORMATS[name][1]) for name in outputs}
         self.fbo = ctx.framebuffer(color_attachments=[self.textures[n] for n in outputs])
 
-    def read(self, name: str) -> np.ndarray:
-        """Output ``name`` as an (H, W, C) array with row 0 at the top."""
+    def read(self, name: str, components: int | None = None) -> np.ndarray:
+        """Output ``name`` as a C-contiguous (H, W, C) array with row 0 at the top.
+
+        ``components`` (default: all of the texture's) keeps the first C channels: the GL
+        read converts them (RGBA -> RGB), and one row-reversing copy puts the top row first.
+        """
         comps, dtype = FORMATS[name]
+        c = comps if components is None else components
+        if not 1 <= c <= comps:
+            raise ValueError(f"output {name!r} has {comps} components, cannot read {c}")
         w, h = self.size
-        data = np.frombuffer(self.textures[name].read(), dtype=np.uint8 if dtype == "f1" else np.float32)
-        return data.reshape(h, w, comps)[::-1]
+        raw = np.empty((h, w, c), dtype=np.uint8 if dtype == "f1" else np.float32)
+        self.fbo.read_into(raw, components=c, attachment=self.outputs.index(name), alignment=1, dtype=dtype)
+        return raw[::-1].copy()
 
     def release(self) -> None:
         self.fbo.release()

@@ -39,10 +39,9 @@ class Recorded:
 
     def __new__(cls, *args: Any, **kwargs: Any) -> "Recorded":
         self = super().__new__(cls)
-        d = self.__dict__
-        d["_ctor"] = args  # no (args, kwargs) pair: one object less per node for the garbage collector
+        self._ctor = args  # no (args, kwargs) pair: one object less per node for the garbage collector
         if kwargs:
-            d["_ctor_kw"] = kwargs
+            self._ctor_kw = kwargs
         return self
 
     def __init_subclass__(cls, register: bool = True, **kw: Any) -> None:
