@@ -91,7 +91,7 @@ def test_outputs_write_depth_and_normal_images_and_npz(tmp_path):
 
 
 @pytest.mark.parametrize("args, message", [
-    (("render", "examples/csg.py", "--size", "0x10"), "'size' must be two integers in 1..16384"),
+    (("render", "examples/csg.py", "--size", "0x10"), "size must be two whole numbers in 1..16384"),
     (("render", "examples/csg.py", "--max-steps", "0"), "setting 'max_steps' must be an integer 1..100000"),
     (("render", "examples/csg.py", "--pitch", "95"), "'pitch' must lie in [-89.9, 89.9]"),
     (("render", "examples/csg.py", "--fov", "500"), "'fov' must be in [1e-4, 179]"),
