@@ -16,6 +16,9 @@ import numpy as np
 import pytest
 from PIL import Image
 
+# the whole matrix runs from a non-editable install: the full suite's, not the fast tier's
+pytestmark = pytest.mark.slow
+
 ROOT = Path(__file__).resolve().parents[1]
 SIZE = "32x24"
 KINDS = ("plain", "full", "json", "demo")

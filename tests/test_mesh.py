@@ -257,6 +257,7 @@ def test_every_bounded_node_kind_meshes_closed(node, mode, request):
     assert topology == (True, True), "not watertight / winding inconsistent"
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("node, mode", _zoo_modes())
 def test_every_bounded_node_kind_has_the_twins_volume(node, mode, request):
     name = request.node.callspec.id.split("-", 1)[1]
