@@ -19,7 +19,7 @@ from .nodes import (BOUND, EXACT, IMPLICIT, Node, bend, box, box_frame, capsule,
                     displace_expr, implicit, noise, parametric,
                     mirror, polygon, rectangle, repeat_polar, revolve, rounded, shell, sierpinski, symmetric, tree, cone, cylinder, difference, ellipsoid,
                     hex_prism, intersection, octahedron, plane, product, repeat, rounded_box, sphere, torus, twist,
-                    union, Shape2D, arc, capsule2, ellipse, regular_polygon, star, triangle, slice,
+                    union, Shape2D, arc, capsule2, ellipse, regular_polygon, star, triangle, slice, text,
                     bezier_tube, capped_torus, dodecahedron, gyroid, icosahedron, pyramid, slab, tetrahedron, tube,
                     morph, taper, glsl)
 from .evaluate import evaluate
@@ -212,7 +212,7 @@ __all__ = [
     "EXACT", "BOUND", "IMPLICIT", "SdfglError", "ParameterError", "ShaderCompileError", "ContextError",
     "render_pbr", "to_mitsuba",
     "SceneFileError", "SceneDocumentError", "save_scene", "load_scene", "from_dict",
-    "Shape2D", "arc", "capsule2", "ellipse", "regular_polygon", "star", "triangle", "slice",
+    "Shape2D", "arc", "capsule2", "ellipse", "regular_polygon", "star", "triangle", "slice", "text",
     "bezier_tube", "capped_torus", "dodecahedron", "gyroid", "icosahedron", "pyramid", "slab", "tetrahedron", "tube",
     "morph", "taper", "glsl",
     "time", "keyframes", "turntable", "camera_path", "animate", "sin", "cos", "tan", "abs", "sqrt", "exp", "log",

@@ -23,6 +23,7 @@ EXTRAS: dict[str, tuple[str, ...]] = {
     "panel": ("imgui_bundle", "OpenGL"),
     "live": ("mido", "rtmidi", "pythonosc"),
     "fast": ("isal",),
+    "text": ("fontTools",),
 }
 """Each extra of pyproject.toml and the modules (import names) it installs (``all`` is every
 feature extra together, so it has no entry of its own)."""

@@ -10,6 +10,7 @@ from .noise import displace, noise
 from .shapes2d import Shape2D, circle, extrude, polygon, rectangle, revolve
 from .shapes2d_figures import arc, capsule2, ellipse, regular_polygon, star, triangle
 from .shapes2d_ops import slice
+from .text import text
 from .gyroid import gyroid
 from .polyhedra import dodecahedron, icosahedron, pyramid, slab, tetrahedron
 from .sweeps import bezier_tube, capped_torus, tube
@@ -25,6 +26,6 @@ __all__ = ["Node", "Primitive", "EXACT", "BOUND", "IMPLICIT", "sphere", "box", "
            "intersection", "difference", "box_frame", "product", "twist", "bend", "repeat",
            "sierpinski", "tree", "circle", "rectangle", "polygon", "extrude", "revolve", "mirror", "symmetric",
            "repeat_polar", "elongate", "rounded", "shell", "displace", "noise", "implicit", "parametric", "displace_expr",
-           "Shape2D", "arc", "capsule2", "ellipse", "regular_polygon", "star", "triangle", "slice",
+           "Shape2D", "arc", "capsule2", "ellipse", "regular_polygon", "star", "triangle", "slice", "text",
            "bezier_tube", "capped_torus", "dodecahedron", "gyroid", "icosahedron", "pyramid", "slab",
            "tetrahedron", "tube", "morph", "taper", "glsl"]
