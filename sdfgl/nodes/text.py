@@ -136,6 +136,11 @@ class Text(Shape2D):
         self.boxes = np.array(boxes)  # per placed glyph: lo.xy, hi.xy
         self.placed = offsets  # per placed glyph: (distinct glyph, x, y)
 
+    def label(self) -> str:
+        """ASCII on one line (escapes as Python's ascii()): labels go into GLSL comments."""
+        p = self.params
+        return f"text({ascii(p['string'])}, font={ascii(p['font'])}, size={float(p['size']):g}, align={p['align']})"
+
     def expr(self, em: "Emitter", q: str) -> str:
         em.require("sd2_text")
         texels = np.zeros((len(self.pieces), 2, 4))
