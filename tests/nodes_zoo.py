@@ -50,6 +50,7 @@ def all_nodes() -> dict[str, sg.Node]:
         "noise_field": sg.noise(1.5, 3, 1.0, 0.2) & sg.box(2.0),
         "displace_expr": sg.displace_expr(sg.box(0.8), "0.04*sin(9*x)*sin(9*y)*sin(9*z)"),
         # 2D modelling: each 2D shape and operator, made solid
+        "extrude_text": sg.extrude(sg.text("o", size=1.4, align="center").translate((0, -0.35)), 0.3),
         "extrude_boolean2d": sg.extrude(sg.circle(0.8) - sg.rectangle(0.8), 0.4),
         "extrude_union2d_smooth": sg.extrude(sg.union(sg.circle(0.5).translate((-0.3, 0)), sg.rectangle((0.6, 0.4)),
                                                       k=0.3), 0.5),

@@ -20,6 +20,7 @@ def test_wheel_contains_all_shaders(tmp_path):
     assert shipped and shipped <= names, sorted(shipped - names)
     web = {f"sdfgl/web/{p.name}" for p in (ROOT / "sdfgl" / "web").iterdir() if p.suffix in (".js", ".css", ".html")}
     assert {"sdfgl/web/viewer.js", "sdfgl/web/page.html"} <= web and web <= names, sorted(web - names)
+    assert {"sdfgl/fonts/DejaVuSans.ttf", "sdfgl/fonts/DejaVuSans-LICENSE.txt"} <= names  # sg.text's default font
     modules = {f"sdfgl/animate/{p.name}" for p in (ROOT / "sdfgl" / "animate").glob("*.py")}
     assert modules and modules <= names, sorted(modules - names)
 

@@ -30,21 +30,21 @@ CHUNK = 8192  # points per block in the float64 twin
 
 
 def segment_distance2(p: np.ndarray, a: np.ndarray, c: np.ndarray) -> np.ndarray:
-    """Squared distances (M, S) from points p (M, 2) to segments a -> c (S, 2)."""
-    pa, ba = p[:, None, :] - a, c - a
+    """Squared distances from points p to segments a -> c (arrays (..., 2), broadcast)."""
+    pa, ba = p - a, c - a
     h = np.clip(np.sum(pa * ba, axis=-1) / np.sum(ba * ba, axis=-1), 0.0, 1.0)
     e = pa - ba * h[..., None]
     return np.sum(e * e, axis=-1)
 
 
 def quadratic_distance2(pos: np.ndarray, qa: np.ndarray, qb: np.ndarray, qc: np.ndarray) -> np.ndarray:
-    """Squared distances (M, S) from points pos (M, 2) to quadratic Bezier curves (S, 2 each):
+    """Squared distances from points pos to quadratic Bezier curves qa qb qc (arrays (..., 2), broadcast):
     the nearest parameter from Inigo Quilez's closed-form cubic, then two Newton steps,
     the same formula as shaders/lib/sd_bezier.glsl."""
     a = qb - qa
     b = qa - 2.0 * qb + qc
     c = a * 2.0
-    d = qa - pos[:, None, :]
+    d = qa - pos
     kk = 1.0 / np.sum(b * b, axis=-1)
     kx = kk * np.sum(a * b, axis=-1)
     ky = kk * (2.0 * np.sum(a * a, axis=-1) + np.sum(d * b, axis=-1)) / 3.0
@@ -171,19 +171,32 @@ class Text(Shape2D):
             sel = inside | (bd2 < d2)
             if not sel.any():
                 continue
-            start, count = self.spans[i]
-            pc, kd = self.pieces[start:start + count], self.kinds[start:start + count]
-            local = p[sel] - (x, y)
-            best = np.full(len(local), np.inf)
-            quad, line = kd == QUAD, kd == LINE
-            if quad.any():
-                best = np.minimum(best, quadratic_distance2(local, *np.moveaxis(pc[quad], 1, 0)).min(axis=-1))
-            if line.any():
-                best = np.minimum(best, segment_distance2(local, pc[line, 0], pc[line, 2]).min(axis=-1))
+            best = self._nearest2(p[sel] - (x, y), *self._glyph(i))
             d2[sel] = np.minimum(d2[sel], best)
             if inside.any():
-                wind[inside] += crossings(p[inside] - (x, y), pc, kd)
+                wind[inside] += crossings(p[inside] - (x, y), *self._glyph(i))
         return np.where(wind != 0, -1.0, 1.0) * np.sqrt(d2)
+
+    def _glyph(self, i: int) -> tuple[np.ndarray, np.ndarray]:
+        start, count = self.spans[i]
+        return self.pieces[start:start + count], self.kinds[start:start + count]
+
+    @staticmethod
+    def _nearest2(p: np.ndarray, pieces: np.ndarray, kinds: np.ndarray) -> np.ndarray:
+        """Squared distance from each point (M, 2) to the nearest piece: only the pieces whose
+        box comes nearer than the nearest piece end are solved (the same minimum)."""
+        lo, hi = pieces.min(axis=1), pieces.max(axis=1)
+        k = np.maximum(np.maximum(lo - p[:, None], p[:, None] - hi), 0.0)
+        box2 = np.sum(k * k, axis=-1)
+        ends = np.sum((p[:, None] - pieces[:, 0]) ** 2, axis=-1).min(axis=1)
+        pt, pc = np.nonzero(box2 <= ends[:, None])
+        quad = kinds[pc] == QUAD
+        d = np.empty(len(pt))
+        d[quad] = quadratic_distance2(p[pt[quad]], *np.moveaxis(pieces[pc[quad]], 1, 0))
+        d[~quad] = segment_distance2(p[pt[~quad]], pieces[pc[~quad], 0], pieces[pc[~quad], 2])
+        best = ends.copy()
+        np.minimum.at(best, pt, d)
+        return best
 
     @property
     def bounds2(self) -> tuple[np.ndarray, np.ndarray]:
