@@ -166,7 +166,8 @@ def test_cubic_font_twin_matches_a_dense_polyline(tmp_path):
 
 def test_gpu_matches_twin(renderer, tmp_path):
     scenes = [sg.text("sdfgl", size=0.5), sg.text("Hello,\nwörld", size=0.3, align="center").rotate(20),
-              sg.text("oco", font=cubic_font(tmp_path / "c.otf"), size=0.4, align="right")]
+              sg.text("oco", font=cubic_font(tmp_path / "c.otf"), size=0.4, align="right"),
+              sg.text("The quick brown fox\njumps over the lazy dog", size=0.1)]  # several groups of glyphs
     rng = np.random.default_rng(3)
     for shape in scenes:
         node = sg.extrude(shape, 0.1)

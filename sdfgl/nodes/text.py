@@ -4,9 +4,10 @@ The outlines (sdfgl.nodes.text_font: quadratic Bezier pieces and line segments, 
 split into quadratics within 1e-7 em) are data, not code: the shader loops over the
 placed glyphs in one data table and over each glyph's pieces in another, so a long
 string compiles as fast as one letter. A glyph whose bounding box (of its control
-points) is farther than the nearest piece found so far is skipped: a point outside a
-glyph's box has winding number 0 for it, so only the distance could change, and it
-cannot. The distance to a quadratic is Inigo Quilez's closed form (MIT) polished by two
+points) is farther than the nearest piece found so far is skipped, and so is a group of
+16 consecutive glyphs whose joint box is (the distance to one outline point per group
+bounds it first): a point outside a glyph's box has winding number 0 for it, so only the
+distance could change, and it cannot. The twin computes the same minimum over all pieces. The distance to a quadratic is Inigo Quilez's closed form (MIT) polished by two
 Newton steps (shaders/lib/sd_bezier.glsl); the sign is the nonzero winding number of a
 ray towards +x, so counters (o, e, A) are holes.
 """
@@ -27,6 +28,7 @@ if TYPE_CHECKING:  # pragma: no cover
 
 ALIGNS = ("left", "center", "right")
 CHUNK = 8192  # points per block in the float64 twin
+GROUP = 16  # consecutive placed glyphs per group (one box) in the shader
 
 
 def segment_distance2(p: np.ndarray, a: np.ndarray, c: np.ndarray) -> np.ndarray:
@@ -152,7 +154,16 @@ class Text(Shape2D):
         for k, (i, x, y) in enumerate(self.placed):
             start, count = self.spans[i]
             table[k, 1] = (first + 2 * start, count, x, y)
-        return f"sd2Text({q}, {em.table(table.reshape(-1, 4))}, {len(self.placed)})"
+        glyphs = em.table(table.reshape(-1, 4))
+        n = len(self.placed)
+        groups = np.zeros(((n + GROUP - 1) // GROUP, 2, 4))
+        for j, g0 in enumerate(range(0, n, GROUP)):
+            box = self.boxes[g0:g0 + GROUP]
+            i, x, y = self.placed[g0]
+            groups[j, 0] = (*box[:, :2].min(axis=0), *box[:, 2:].max(axis=0))
+            point = self.pieces[self.spans[i][0], 0] + (x, y)  # on an outline: bounds the distance
+            groups[j, 1] = (g0, min(GROUP, n - g0), *point)
+        return f"sd2Text({q}, {em.table(groups.reshape(-1, 4))}, {len(groups)}, {glyphs})"
 
     def distance2(self, q: np.ndarray) -> np.ndarray:
         pts = np.asarray(q, dtype=np.float64).reshape(-1, 2)
