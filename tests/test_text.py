@@ -250,12 +250,23 @@ def test_extruded_text_renders_and_meshes_watertight():
 
 
 def test_booleans_offsets_and_revolve_take_text():
-    label = sg.text("sdfgl", size=0.3)
+    label = sg.text("sdfgl", size=0.3).round(0.01)
     plate = sg.rounded_box((2, 0.6, 0.2), 0.05)
-    part = plate - sg.extrude(label.round(0.01), 0.05).translate((-0.5, -0.1, 0.1))
-    assert np.isfinite(part.distance([(0, 0, 0)])).all()
-    ring = sg.revolve(sg.text("o", size=0.5), 0.2)
+    part = plate - sg.extrude(label, 0.05).translate((-0.5, -0.1, 0.1))
+    xs, ys = np.meshgrid(np.linspace(0, 0.8, 81), np.linspace(-0.05, 0.25, 31))
+    xy = np.stack([xs.ravel(), ys.ravel()], -1)
+    d = label.distance2(xy)
+    ink, bare = xy[d < -0.005], xy[d > 0.05]
+    assert len(ink) and len(bare)
+    just_below_top = np.column_stack([np.concatenate([ink, bare]) + (-0.5, -0.1), np.full(len(ink) + len(bare), 0.09)])
+    inside_part = part.distance(just_below_top) < 0
+    assert not inside_part[:len(ink)].any() and inside_part[len(ink):].all()  # engraved under the ink only
+    o = sg.text("o", size=0.5)
+    ring = sg.revolve(o, 0.2)
+    q = np.random.default_rng(4).uniform(-0.5, 0.5, (200, 2))
     assert ring.exactness == "exact"
+    assert np.allclose(ring.distance(np.column_stack([q[:, 0] + 0.2, q[:, 1], np.zeros(200)])),
+                       o.distance2(np.column_stack([np.abs(q[:, 0] + 0.2) - 0.2, q[:, 1]])))
 
 
 def test_scene_document_round_trip(tmp_path):
