@@ -10,7 +10,7 @@ import sdfgl as sg
 BAD = ["x", float("nan"), float("inf"), None, [1, 2], {"a": 1}, -1, object(), (1, "a", 3), True, [[1, 2, 3]]]
 VALID = {"radius": 0.5, "size": 1.0, "node": sg.sphere(1), "shape": sg.circle(0.3), "expr": "x**2 + y**2 + z**2 - 1",
          "x": "s", "y": "t", "z": "s*t", "points": [(0, 0), (1, 0), (0, 1)], "height": 1.0, "amplitude": 0.1,
-         "rate": 10, "period": 1.0, "count": 3, "thickness": 0.1, "length": 0.2, "levels": 2, "offset": 0.5}
+         "rate": 10, "period": 1.0, "count": 3, "thickness": 0.1, "length": 0.2, "levels": 2, "offset": 0.5, "string": "Sg"}
 SKIP = {"show", "render", "compile", "evaluate", "save_scene", "load_scene", "from_dict", "param"}
 FACTORIES = [n for n in sg.__all__ if inspect.isfunction(getattr(sg, n)) and n not in SKIP]
 METHODS = ["translate", "rotate", "orient", "scale", "twist", "bend", "repeat", "mirror", "symmetric",
@@ -21,8 +21,8 @@ METHODS = ["translate", "rotate", "orient", "scale", "twist", "bend", "repeat", 
 SIGNED = {"center", "normal", "point", "a", "b", "c", "offset", "rate", "taper", "twist", "angle", "start", "yaw",
           "pitch", "turns", "target", "direction", "position", "x0", "x1", "y0", "y1", "z0", "z1"}
 """Parameters where -1 is a value: any sign is meaningful, and a number is broadcast to a vector."""
-STRINGS = {"axis", "axes", "expr", "code"}
-"""Parameters where "x" is a value: an axis name, an expression of x, GLSL source (the driver checks it)."""
+STRINGS = {"axis", "axes", "expr", "code", "string"}
+"""Parameters where "x" is a value: an axis name, an expression of x, GLSL source (the driver checks it), text."""
 PLANE = {("circle", "center"), ("rectangle", "size"), ("ellipse", "radii"), ("capsule2", "a"), ("capsule2", "b"),
          ("tube", "points")}
 """Parameters of 2D shapes, where [1, 2] is a 2-vector (and a tube's points may be numbers, broadcast)."""
