@@ -91,6 +91,7 @@ def test_png_leaves_the_old_file_whole(small_disk: Path) -> None:
     check_refused(small_disk, target, lambda: write_image(noise, target))
 
 
+@pytest.mark.slow
 def test_html_and_scene_documents_leave_the_old_file_whole(small_disk: Path) -> None:
     page = small_disk / "view.html"
     sg.save_html(sg.sphere(1), page, size=(64, 48))
@@ -103,6 +104,7 @@ def test_html_and_scene_documents_leave_the_old_file_whole(small_disk: Path) -> 
 
 
 @pytest.mark.parametrize("name", ["clip.mp4", "clip.webm", "clip.gif"])
+@pytest.mark.slow
 def test_animate_fails_on_a_full_disk_and_keeps_the_old_clip(small_disk: Path, tmp_path: Path, name: str) -> None:
     scene = tmp_path / "scene.py"
     scene.write_text("import sdfgl as sg\nscene = sg.sphere(1).color(0.9, 0.3, 0.2) | sg.box(1.4)\n")

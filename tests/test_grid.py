@@ -1,5 +1,6 @@
 """Big unions kept as data: parity with the twin, the same image as code, flat compile size."""
 import numpy as np
+import pytest
 
 import sdfgl as sg
 from sdfgl.compiler.data.grid import GRID_MIN
@@ -41,6 +42,7 @@ def test_grid_and_code_render_the_same_image(renderer):
     assert np.mean(np.abs(a.color.astype(int) - b.color.astype(int)) > 8) < 0.02
 
 
+@pytest.mark.slow
 def test_shader_size_does_not_grow_with_the_union():
     small, _, _ = scattered(GRID_MIN)
     large, _, _ = scattered(16 * GRID_MIN)

@@ -111,6 +111,7 @@ def test_desktop_tables_are_buffer_textures_and_webgl2_tables_2d_textures():
     assert np.array_equal(got[1500], rows.reshape(-1, 4)[1500])
 
 
+@pytest.mark.slow
 def test_dead_nodes_do_not_check_live_values():
     p = sg.param(0.3)
     o = sg.rounded_box(1, p)  # radius at most half the edge: 0.5

@@ -4,10 +4,13 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 ROOT = Path(__file__).resolve().parents[1]
 WIDGET = "application/vnd.jupyter.widget-view+json"
 
 
+@pytest.mark.slow
 def test_demo_notebook_executes_with_images_and_widgets(tmp_path):
     out = tmp_path / "executed.ipynb"
     r = subprocess.run([sys.executable, "-m", "nbconvert", "--to", "notebook", "--execute",

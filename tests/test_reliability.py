@@ -271,6 +271,7 @@ FUZZ = [10 ** 400, -(10 ** 400), 1e39, 2 ** 63, {"a": 1}, ["x"], "x", True, None
         {"expr": "E**E**E**E"}, {"live": {"a": 1}, "args": [1]}, _deep(300)]
 
 
+@pytest.mark.slow
 def test_every_field_of_a_document_takes_hostile_values_with_a_clear_error():
     """Each field (and the document's every nested position) replaced by a huge, wrong-typed
     or deeply nested value: loading and compiling either works or raises SdfglError, within
@@ -365,6 +366,7 @@ def _jobs(folder, output, **top):
 
 
 @pytest.mark.parametrize("where", ["../outside.png", "sub/../../outside.png", "/tmp/sdfgl-outside.png"])
+@pytest.mark.slow
 def test_batch_outputs_outside_the_job_folder_need_permission(tmp_path, where):
     folder = tmp_path / "job"
     folder.mkdir()

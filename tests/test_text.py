@@ -142,6 +142,7 @@ def near_points(node: sg.Shape2D, rng: np.random.Generator, n: int) -> np.ndarra
 
 
 @pytest.mark.parametrize("string,align", [("sdfgl", "left"), ("AVo\nWe!", "center"), ("ÅÉß€", "right")])
+@pytest.mark.slow
 def test_twin_matches_a_dense_polyline_of_the_same_outlines(string, align):
     node = sg.text(string, size=1.0, align=align)
     pts = near_points(node, np.random.default_rng(1), 3000)
@@ -152,6 +153,7 @@ def test_twin_matches_a_dense_polyline_of_the_same_outlines(string, align):
     assert np.array_equal(np.sign(got[clear]), np.sign(ref[clear]))
 
 
+@pytest.mark.slow
 def test_cubic_font_twin_matches_a_dense_polyline(tmp_path):
     path = cubic_font(tmp_path / "cubic.otf")
     node = sg.text("oc o", font=path, size=2.0)

@@ -42,6 +42,7 @@ def viewer(display, tmp_path):
         proc.wait(10)
 
 
+@pytest.mark.slow
 def test_orbit_pan_zoom_move_the_camera(viewer):
     drv, proc, _, _ = viewer
     s0 = drv.state()
@@ -99,6 +100,7 @@ def test_debug_views_report_finite_steps_per_pixel(viewer):
     assert st["mean_steps"] == pytest.approx(shaded["mean_steps"], rel=0.05)
 
 
+@pytest.mark.slow
 def test_hot_reload_and_errors_keep_last_good_scene(viewer):
     drv, proc, scene, _ = viewer
     s0 = drv.state()
@@ -155,6 +157,7 @@ settings = {'shadows': False, 'ao': False}
 """
 
 
+@pytest.mark.slow
 def test_a_union_kept_as_data_draws_in_the_window_as_headless(viewer):
     """The window's render thread reads the scene's data table (a buffer texture set through
     its own GL calls) like the headless renderer: the same spheres in the same places."""

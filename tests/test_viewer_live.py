@@ -31,6 +31,7 @@ def still(drv, pred, what):
     return drv.wait_for(lambda s: not s["compiling"] and s["samples"] >= 2 and pred(s), timeout=60, what=what)
 
 
+@pytest.mark.slow
 def test_osc_moves_the_displayed_parameter_without_a_new_program_and_learn_binds(display, tmp_path):  # noqa: F811
     (tmp_path / "scene.py").write_text(SCENE)
     (tmp_path / "live.json").write_text(json.dumps(BINDINGS))

@@ -43,6 +43,7 @@ def _answers_a_key(drv: Driver) -> None:
                  what="the key's toggle drawn")
 
 
+@pytest.mark.slow
 def test_an_endless_scene_file_leaves_the_window_answering_and_is_stopped(viewer):
     drv, proc, scene = viewer
     good = drv.state()
@@ -66,6 +67,7 @@ def _window_exists(drv: Driver) -> bool:
     return out.returncode == 0
 
 
+@pytest.mark.slow
 def test_a_close_is_answered_within_a_second_while_a_scene_file_loops(viewer):
     drv, proc, scene = viewer
     _write(scene, "while True:\n    pass\n")
@@ -99,6 +101,7 @@ def test_a_scene_file_that_ends_its_process_does_not_end_the_viewer(viewer):
     drv.wait_for(lambda s: s["reloads"] == good["reloads"] + 1 and s["error"] == "", what="recovery")
 
 
+@pytest.mark.slow
 def test_a_slow_scene_file_loads_when_done_and_input_is_answered_meanwhile(viewer):
     drv, proc, scene = viewer
     good = drv.state()

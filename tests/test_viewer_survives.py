@@ -27,6 +27,7 @@ def _failure_keeps_scene(drv, proc, scene, text: str, expect: str, good: dict) -
     return st
 
 
+@pytest.mark.slow
 def test_reload_failures_of_any_kind_leave_the_window_running(viewer):
     drv, proc, scene, _ = viewer
     good = drv.state()
@@ -48,6 +49,7 @@ def test_reload_failures_of_any_kind_leave_the_window_running(viewer):
     drv.wait_for(lambda s: s["error"] == "" and s["reloads"] == good["reloads"] + 1, what="recovery")
 
 
+@pytest.mark.slow
 def test_reloaded_settings_apply(viewer):
     drv, proc, scene, _ = viewer
     assert drv.state()["settings"]["shadows"] == "soft"
@@ -72,6 +74,7 @@ def test_unwritable_screenshot_dir_is_reported(viewer):
     assert proc.poll() is None and st["screenshots"] == []
 
 
+@pytest.mark.slow
 def test_zoom_is_clamped_to_the_scene_size(viewer):
     drv, proc, _, _ = viewer
     d0 = drv.state()["distance"]
