@@ -11,6 +11,7 @@ import numpy as np
 from ..errors import ParameterError
 from ..values import validate as v
 from .base import INF, Primitive
+from .bezier import quadratic_distance2
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..compiler.emitter import Emitter
@@ -78,45 +79,7 @@ class BezierTube(Primitive):
         return f"(sdBezier({p}, {em.vec(self.a)}, {em.vec(self.b)}, {em.vec(self.c)}) - {em.num(self.r)})"
 
     def _distance(self, pos: np.ndarray) -> np.ndarray:
-        a = self.b - self.a
-        b = self.a - 2.0 * self.b + self.c
-        c = a * 2.0
-        d = self.a - pos
-        kk = 1.0 / (b @ b)
-        kx = kk * (a @ b)
-        ky = kk * (2.0 * (a @ a) + d @ b) / 3.0
-        kz = kk * (d @ a)
-        p = ky - kx * kx
-        q = kx * (2.0 * kx * kx - 3.0 * ky) + kz
-        h = q * q + 4.0 * p ** 3
-
-        def dist2(t: np.ndarray) -> np.ndarray:
-            e = d + (c + b * t[..., None]) * t[..., None]
-            return np.sum(e * e, axis=-1)
-        with np.errstate(invalid="ignore"):
-            hs = np.sqrt(np.maximum(h, 0.0))
-            x1, x2 = (hs - q) / 2.0, (-hs - q) / 2.0
-            t1 = np.clip(np.cbrt(x1) + np.cbrt(x2) - kx, 0.0, 1.0)
-            z = np.sqrt(np.maximum(-p, 0.0))
-            den = np.where(p * z != 0, p * z * 2.0, 1.0)
-            vv = np.arccos(np.clip(q / den, -1.0, 1.0)) / 3.0
-            m, n = np.cos(vv), np.sin(vv) * 1.732050808
-            ta = np.clip((m + m) * z - kx, 0.0, 1.0)
-            tb = np.clip((-n - m) * z - kx, 0.0, 1.0)
-        t1, ta, tb = (self._polish(t, b, c, d) for t in (t1, ta, tb))
-        res = np.where(h >= 0.0, dist2(t1), np.minimum(dist2(ta), dist2(tb)))
-        return np.sqrt(res) - self.r
-
-    @staticmethod
-    def _polish(t: np.ndarray, b: np.ndarray, c: np.ndarray, d: np.ndarray) -> np.ndarray:
-        """Two Newton steps on the nearest-point condition (B(t) - pos) . B'(t) = 0, as in GLSL:
-        the closed-form cubic loses digits to cancellation in float32."""
-        for _ in range(2):
-            tt = t[..., None]
-            e, de = d + (c + b * tt) * tt, c + 2.0 * b * tt
-            g, dg = np.sum(e * de, axis=-1), np.sum(de * de, axis=-1) + 2.0 * np.sum(e * b, axis=-1)
-            t = np.clip(t - g / np.where(dg > 0, dg, 1.0) * (dg > 0), 0.0, 1.0)
-        return t
+        return np.sqrt(quadratic_distance2(pos, self.a, self.b, self.c)) - self.r
 
     @property
     def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
