@@ -1,69 +1,14 @@
-"""Hard cases for numerical stability: each a named scene, camera and expected behaviour.
-
-The tests hold the default renderer to each case's bounds against the float64
-reference; the benchmark reuses the same cases to put speed beside error.
-"""
+"""The first hard cases: grazing rays, far and large worlds, warps, offsets, thin parts."""
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Callable
+from typing import Callable
 
 import numpy as np
 
-from .camera import Camera, OrbitCamera
-from .nodes import box, box_frame, difference, plane, product, rounded_box, sphere, torus, union
-from .nodes.base import Node
-from .reference import ErrorReport
-
-if TYPE_CHECKING:  # pragma: no cover
-    from .render import RenderResult
-
-
-@dataclass(frozen=True)
-class Expect:
-    """Bounds a render must meet against the reference (fractions as named)."""
-
-    false_frac: float = 0.002       # false hits / reference hits (rays that miss every surface)
-    lost_frac: float = 0.001        # reference hits the render missed / pixels
-    outlier_frac: float = 0.01      # depth outliers (> 2 footprints apart: another surface) / pixels
-    depth_px_median: float = 0.02   # |t - t*| in pixel footprints, where both hit the same surface
-    depth_px_p99: float = 0.25
-    surface_px_max: float = 0.5     # every hit within this many footprints of a sign change of the twin
-    normal_deg_median: float = 0.1
-    normal_deg_p99: float = 1.0
-    min_hits: int = 1               # the case must actually show geometry
-    max_hits: int | None = None     # for scenes that must show nothing
-
-    def violations(self, e: ErrorReport) -> list[str]:
-        """Human-readable list of the bounds ``e`` breaks (empty when it passes)."""
-        out = []
-        checks = [("false-hit share", e.false_hits / max(e.hits, 1), self.false_frac),
-                  ("lost-hit share", e.lost_hits / e.pixels, self.lost_frac),
-                  ("depth-outlier share", e.depth_outliers / e.pixels, self.outlier_frac),
-                  ("depth median (px)", e.depth_px_median, self.depth_px_median),
-                  ("depth p99 (px)", e.depth_px_p99, self.depth_px_p99),
-                  ("hit-to-surface max (px)", e.surface_px_max, self.surface_px_max),
-                  ("normal median (deg)", e.normal_deg_median, self.normal_deg_median),
-                  ("normal p99 (deg)", e.normal_deg_p99, self.normal_deg_p99)]
-        out += [f"{name} {val:.4g} > {lim:.4g}" for name, val, lim in checks if val > lim]
-        if e.nan_count:
-            out.append(f"{e.nan_count} NaN/Inf values")
-        if e.hits < self.min_hits:
-            out.append(f"only {e.hits} reference hits (< {self.min_hits})")
-        if self.max_hits is not None and e.false_hits + e.hits > self.max_hits:
-            out.append(f"{e.false_hits + e.hits} hits where at most {self.max_hits} belong")
-        return out
-
-
-@dataclass(frozen=True)
-class HardCase:
-    name: str
-    what: str                       # the difficulty, in a sentence
-    build: Callable[[], tuple[Node, Camera]]
-    settings: dict = field(default_factory=dict)
-    expect: Expect = Expect()
-    max_dist: float = 1000.0
-    failing: str = ""               # a known failure, said plainly: the case stays in the suite
+from ..camera import Camera, OrbitCamera
+from ..nodes import box, box_frame, difference, plane, product, rounded_box, sphere, torus, union
+from ..nodes.base import Node
+from .spec import Expect, HardCase
 
 
 def _grazing_sphere() -> tuple[Node, Camera]:
@@ -241,7 +186,7 @@ def _tilted_ground(r: float) -> Callable[[], tuple[Node, Camera]]:
 
 
 def _live_far() -> tuple[Node, Camera]:
-    from .params import param
+    from ..params import param
     c = 1e6 * np.array([0.8123456789, -0.4567891234, 0.3651234567])
     where = param(tuple(c), "where")
     radius = param(0.45, "radius")
@@ -251,14 +196,14 @@ def _live_far() -> tuple[Node, Camera]:
 
 def _implicit(expr: str) -> Callable[[], tuple[Node, Camera]]:
     def build() -> tuple[Node, Camera]:
-        from .nodes.implicit import implicit
+        from ..nodes.implicit import implicit
         # the rays start where f overflows float32 (|z| = 7); bounds keep the reference's fixed steps few
         scene = implicit(expr, bounds=((-8.0, -8.0, -8.0), (8.0, 8.0, 8.0)))
         return scene, Camera.look_at((4.4, 3.2, 6.8), (0.0, 0.0, 0.0), fov=24)
     return build
 
 
-CASES: tuple[HardCase, ...] = (
+BASE_CASES: tuple[HardCase, ...] = (
     HardCase("grazing_sphere", "rays graze a sphere seen from just above its surface", _grazing_sphere),
     HardCase("horizon_plane", "a ground plane up to the horizon: ever shallower rays", _horizon_plane),
     HardCase("rounded_box", "Monzón González, Exp. 1: silhouette grazing on a rounded box", _rounded_box),
@@ -327,72 +272,3 @@ CASES: tuple[HardCase, ...] = (
     HardCase("implicit_x64", "implicit x^64 + y^64 + z^64 = 1: f overflows float32 beyond |x| = 4",
              _implicit("x**64 + y**64 + z**64 - 1"), settings={"method": "auto"}),  # auto: newton (implicit)
 )
-
-
-def case(name: str) -> HardCase:
-    """The hard case called ``name``."""
-    for c in CASES:
-        if c.name == name:
-            return c
-    raise KeyError(f"no hard case '{name}'; known: {', '.join(c.name for c in CASES)}")
-
-
-def run_case(c: HardCase, size: tuple[int, int] = (64, 48), **settings: object) -> tuple[ErrorReport, "RenderResult"]:
-    """Render ``c`` (shadows and AO off: only primary rays matter) and compare with the reference."""
-    from dataclasses import replace
-
-    from .reference import compare, surface_offsets, trace
-    from .render import render
-    scene, cam = c.build()
-    opts = {"shadows": False, "ao": False, "max_dist": c.max_dist, **c.settings, **settings}
-    res = render(scene, cam, size, outputs=("color", "depth", "normal", "steps"), **opts)
-    err = compare(res, trace(scene, cam, size, max_dist=c.max_dist))
-    off = surface_offsets(scene, cam, res)
-    if off.size:
-        err = replace(err, surface_px_p99=float(np.percentile(off, 99)), surface_px_max=float(off.max()))
-    else:
-        err = replace(err, surface_px_p99=0.0, surface_px_max=0.0)
-    return err, res
-
-
-def table(size: tuple[int, int] = (128, 96), **settings: object) -> str:
-    """A markdown table of every hard case's errors for the given settings."""
-    rows = ["| case | hits | undecided | false / lost | depth outliers | depth med / p99 / max (px) | hit-to-surface max (px) "
-            "| normal med / p99 / max (deg) | NaN | mean steps | bounds met |",
-            "|---|---|---|---|---|---|---|---|---|---|---|"]
-    for c in CASES:
-        e, res = run_case(c, size, **settings)
-        bad = c.expect.violations(e)
-        status = "yes" if not bad else ("FAILING: " if c.failing else "no: ") + "; ".join(bad)
-        rows.append(f"| {c.name} | {e.hits} | {e.undecided} | {e.false_hits} / {e.lost_hits} | {e.depth_outliers} | "
-                    f"{e.depth_px_median:.2g} / {e.depth_px_p99:.2g} / {e.depth_px_max:.2g} | {e.surface_px_max:.2g} | "
-                    f"{e.normal_deg_median:.2g} / {e.normal_deg_p99:.2g} / {e.normal_deg_max:.2g} | {e.nan_count} | "
-                    f"{float(res.steps.mean()):.1f} | {status} |")
-    return "\n".join(rows)
-
-
-def document(size: tuple[int, int] = (128, 96)) -> str:
-    """docs/hardcases.md: what each case tests, its known failure if any, and the table."""
-    lines = ["# The hard cases", "",
-             f"Every case of `sdfgl.hardcases` against the float64 reference at {size[0]}x{size[1]}, default "
-             "settings, shadows and AO off (`python -m sdfgl.hardcases "
-             f"{size[0]}x{size[1]} --doc docs/hardcases.md`). Depth and normal figures are over pixels where "
-             "render and reference hit; a false hit is a render hit where every ray of the reference misses; "
-             "hit-to-surface is the distance along the ray from each render hit to the nearest sign change of "
-             "the twin. Undecided rays (left out of every figure) are rays the reference could not settle, or "
-             "that dip below f = 0 by less than float32 rounding and come out again (see sdfgl.reference). "
-             "The tests run the same cases at 64x48 and hold each to its bounds; a case marked "
-             "failing stays in the suite as an expected failure.", "", "| case | what it tests | known failure |",
-             "|---|---|---|"]
-    lines += [f"| {c.name} | {c.what} | {c.failing or '-'} |" for c in CASES]
-    return "\n".join(lines + ["", table(size), ""])
-
-
-if __name__ == "__main__":  # python -m sdfgl.hardcases [WxH] [--doc FILE]
-    import sys
-    w, h = (int(x) for x in (sys.argv[1] if len(sys.argv) > 1 else "128x96").split("x"))
-    if "--doc" in sys.argv:
-        from pathlib import Path
-        Path(sys.argv[sys.argv.index("--doc") + 1]).write_text(document((w, h)), encoding="utf-8")
-    else:
-        print(table((w, h)))
