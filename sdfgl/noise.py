@@ -4,10 +4,15 @@ from __future__ import annotations
 import numpy as np
 
 OCTAVE_SHIFT = np.array([17.13, 31.71, 47.37])
-# Gradient bound of noise3: the largest gradient norm seen on 2e6 random points was 3.93;
-# 4.5 leaves a 15% margin. It is measured, not derived (a derived bound is several times
-# looser and would multiply the steps); the Lipschitz tests check it on fresh samples.
-NOISE_LIPSCHITZ = 4.5
+# Gradient and value bounds of noise3, derived over every pattern of corner gradients: for a
+# point f of the cell, the largest |grad n| over the 8^8 patterns is max over unit u of
+# sum_c |A_c(f)^T u|_1 (grad n = sum_c A_c(f) g_c is linear in the corner gradients g_c, and
+# each corner picks the sign pattern that best aligns with u). Maximised over f and u, this
+# is 37/8, reached at the cell's centre along an axis (each corner adds 37/64); the value's
+# largest |n| is 3/2, also at the centre (each corner adds |f - o|_1 / 8). Both are attained,
+# so neither can be lowered; tests/test_noise_bounds.py repeats the maximisation.
+NOISE_LIPSCHITZ = 37.0 / 8.0
+NOISE_MAX = 1.5
 
 
 def _pcg3d_x(c: np.ndarray) -> np.ndarray:
@@ -61,3 +66,8 @@ def fbm3(p: np.ndarray, octaves: int) -> np.ndarray:
 def fbm_lipschitz(octaves: int) -> float:
     """Gradient bound of fbm3: each octave adds (2^o)(0.5^o) = 1 times the noise's bound."""
     return NOISE_LIPSCHITZ * max(octaves, 0)
+
+
+def fbm_max(octaves: int) -> float:
+    """Bound of |fbm3|: the octaves' amplitudes 1, 1/2, ... times the noise's bound."""
+    return NOISE_MAX * (2.0 - 2.0 ** (1 - max(octaves, 0)))

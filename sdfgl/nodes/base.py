@@ -395,6 +395,19 @@ class Node(Recorded, register=False):
     def _bounds(self) -> tuple[Any, Any]:
         raise NotImplementedError
 
+    def level_bounds(self, t: float) -> tuple[np.ndarray, np.ndarray]:
+        """A box holding every point where this node's field is below ``t`` (>= 0).
+
+        Offsets and blends, which lower a field, grow their bounds by it. By default the
+        bounds grown by ``t`` times :func:`level_factor`; nodes that know better override it."""
+        lo, hi = box_of(self)
+        grow = t * level_factor(self)
+        return lo - grow, hi + grow
+
+    def level_stretch(self) -> float:
+        """How much this node itself divides its children's distances (see :func:`level_factor`)."""
+        return 1.0
+
     @property
     def has_detail(self) -> bool:
         """True if some node shades with a more detailed field than it marches (see Displace)."""
@@ -444,7 +457,7 @@ def fluent(*names: str) -> Callable[[FluentT], FluentT]:
     return register
 
 
-CACHES = ("_m_", "_key", "_token", "_depth", "_bounds_cache", "_live_cache", "_detail", "_dag", "_grid", "_kids",
+CACHES = ("_m_", "_key", "_token", "_depth", "_bounds_cache", "_live_cache", "_detail", "_dag", "_grid", "_kids", "_level",
            "_seq", "_fields", "_facts")
 
 
@@ -459,6 +472,26 @@ def _detail_below(n: Node) -> bool:
 
 
 FACTS.update({"_live_cache": Node._find_live_params, "_detail": _detail_below})
+
+
+def level_factor(node: Node) -> float:
+    """How slowly ``node``'s field can rise outside its bounds: at a point ``g * t`` or more
+    outside ``node.bounds``, with g this factor, the field is at least ``t``.
+
+    1 for a leaf (an exact field is at least the distance to the solid, so to its box; a
+    bounded leaf's field is taken to rise as fast) and the largest of the children's times
+    :meth:`Node.level_stretch` above them (a non-uniform scale, a warp that divides by its
+    stretch, a displacement divided by its gradient bound). Computed once per node."""
+    hit = node.__dict__.get("_level")
+    if hit is not None:
+        return hit
+    if node.live_params():  # the factor follows the live values: not cached
+        return _level_from(node, [level_factor(c) for c in node.children])
+    return cached(node, "_level", lambda n: _level_from(n, [c.__dict__["_level"] for c in n.children]))
+
+
+def _level_from(node: Node, below: list[float]) -> float:
+    return float(node.level_stretch()) * max(below, default=1.0)
 
 
 def _with_memo(memo: dict, fn: Callable[[], np.ndarray]) -> np.ndarray:

@@ -14,7 +14,8 @@ from ..errors import ParameterError
 from ..params import Live
 from ..values import validate as v
 from .layouts import layout
-from .base import CACHES, BOUND, EXACT, IMPLICIT, Node, box_of, fluent, grid_min_now
+from .base import CACHES, BOUND, EXACT, IMPLICIT, Node, box_of, fluent, grid_min_now, level_factor
+from .blend_reach import blend_growth
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..compiler.emitter import Emitter
@@ -26,6 +27,8 @@ K_MIN = 1e-30
 BLENDS = ("quadratic", "circular", "chamfer")
 # how far each blend can lower min(a, b), as a share of k (grows the bounds)
 BLEND_REACH = {"quadratic": 0.25, "circular": 1.0, "chamfer": 0.5}
+# where each blend acts at all: |a - b| below this share of k
+BLEND_WINDOW = {"quadratic": 1.0, "circular": 1.0 / (1.0 - np.sqrt(0.5)), "chamfer": 1.0}
 BLEND_GLSL = {"circular": ("op_circular", "opCircular"), "chamfer": ("op_chamfer", "opChamfer")}
 
 
@@ -261,10 +264,22 @@ class Union(_Boolean):
 
     @property
     def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
-        boxes = np.array([box_of(c) for c in self.children])
-        lo, hi = boxes[:, 0].min(axis=0), boxes[:, 1].max(axis=0)
-        grow = float(self.k) * BLEND_REACH[self.blend]  # how far the blend lowers the field
-        return lo - grow, hi + grow
+        if self._hard:
+            boxes = np.array([box_of(c) for c in self.children])
+            return boxes[:, 0].min(axis=0), boxes[:, 1].max(axis=0)
+        return self.level_bounds(0.0)
+
+    def level_bounds(self, t: float) -> tuple[np.ndarray, np.ndarray]:
+        if self._hard:  # min(f) < t needs some child below t
+            boxes = np.array([c.level_bounds(t) for c in self.children])
+            return boxes[:, 0].min(axis=0), boxes[:, 1].max(axis=0)
+        kids = self.children
+        boxes = np.array([box_of(c) for c in kids])
+        lo, hi = boxes[:, 0], boxes[:, 1]
+        k = float(self.k)
+        g = max(level_factor(c) for c in kids)
+        grow = blend_growth(lo, hi, t, k * BLEND_REACH[self.blend], k * BLEND_WINDOW[self.blend], g)[:, None]
+        return (lo - grow).min(axis=0), (hi + grow).max(axis=0)
 
 
 class Intersection(_Boolean):

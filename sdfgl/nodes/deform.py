@@ -63,6 +63,9 @@ class _Warp(Unary):
     def exactness(self) -> str:
         return IMPLICIT if self.child.exactness == IMPLICIT else BOUND
 
+    def level_stretch(self) -> float:
+        return self.stretch  # the warped distance is divided by it
+
     @property
     def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
         lo, hi = self.child.bounds

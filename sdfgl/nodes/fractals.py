@@ -33,6 +33,9 @@ class Sierpinski(Primitive):
         super().__init__(levels=n, size=s)
         self.levels, self.size = n, float(s)
 
+    def level_stretch(self) -> float:
+        return 3.0  # like its enclosing tetrahedron's faces: circumradius / inradius
+
     def _expr(self, em: "Emitter", p: str) -> str:
         return f"sdSierpinski({p}, {self.levels}, {em.num(self.size)})"
 

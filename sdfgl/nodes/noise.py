@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..errors import ParameterError
-from ..noise import fbm3, fbm_lipschitz
+from ..noise import fbm3, fbm_lipschitz, fbm_max
 from ..values import validate as v
 from .base import BOUND, IMPLICIT, Node, Primitive, Unary, fluent
 
@@ -73,9 +73,14 @@ class Displace(Unary):
 
     @property
     def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
-        lo, hi = self.child.bounds
-        grow = self.a * 2.0  # |fbm| < 2 (amplitudes 1 + 1/2 + ...)
-        return lo - grow, hi + grow
+        return self.level_bounds(0.0)
+
+    def level_bounds(self, t: float) -> tuple[np.ndarray, np.ndarray]:
+        # (f + a fbm) / factor < t needs f < factor t + a max|fbm|
+        return self.child.level_bounds(self.factor * t + float(self.a) * fbm_max(self.n))
+
+    def level_stretch(self) -> float:
+        return self.factor
 
 
 class NoiseField(Primitive):

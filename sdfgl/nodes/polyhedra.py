@@ -44,6 +44,9 @@ class _FacePlanes(Primitive):
         super().__init__(radius=r)
         self.r = r
 
+    def level_stretch(self) -> float:
+        return float(self.circum)  # the largest face-plane distance is at least distance / (R / r)
+
     def _expr(self, em: "Emitter", p: str) -> str:
         return f"{self.glsl}({p}, {em.num(self.r)})"
 
@@ -142,6 +145,9 @@ class Slab(Primitive):
                                      f"({vals[ax + '1']:g})")
         super().__init__(**vals)
         self.sides = vals
+
+    def level_stretch(self) -> float:
+        return math.sqrt(3.0)  # the largest of three plane distances is at least distance / sqrt(3)
 
     def _terms(self) -> list[tuple[int, float, float]]:
         """(axis, sign, offset): the field is max(sign * (p[axis] - offset))."""

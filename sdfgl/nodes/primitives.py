@@ -273,6 +273,10 @@ class Ellipsoid(Primitive):
         super().__init__(radii=r)
         self.r = r
 
+    def level_stretch(self) -> float:
+        r = np.asarray(self.r, dtype=np.float64)  # f >= (|p / r| - 1) min(r): a box gap D gives D min(r) / max(r)
+        return float(r.max() / r.min())
+
     def _expr(self, em: "Emitter", p: str) -> str:
         return f"sdEllipsoid({p}, {em.vec(self.r)})"
 

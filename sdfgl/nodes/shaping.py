@@ -205,9 +205,11 @@ class _Offset(Unary):
 
     @property
     def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
-        lo, hi = self.child.bounds
-        grow = float(self.amount) * (0.5 if self._is_shell else 1.0)
-        return lo - grow, hi + grow
+        return self.level_bounds(0.0)
+
+    def level_bounds(self, t: float) -> tuple[np.ndarray, np.ndarray]:
+        # f - r < t needs f < t + r; |f| - t' / 2 < t needs f < t + t' / 2
+        return self.child.level_bounds(t + float(self.amount) * (0.5 if self._is_shell else 1.0))
 
 
 class Round(_Offset):

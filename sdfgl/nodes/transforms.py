@@ -43,6 +43,10 @@ class Translate(Unary):
     def _bounds(self) -> np.ndarray:
         return box_of(self.child) + self.offset  # (lo, hi) rows
 
+    def level_bounds(self, t: float) -> tuple[np.ndarray, np.ndarray]:
+        lo, hi = self.child.level_bounds(t)
+        return lo + self.offset, hi + self.offset
+
 
 _EYE = np.eye(3)
 
@@ -128,7 +132,13 @@ class Rotate(Unary):
 
     @property
     def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
-        lo, hi = box_of(self.child)
+        return self._turned(*box_of(self.child))
+
+    def level_bounds(self, t: float) -> tuple[np.ndarray, np.ndarray]:
+        return self._turned(*self.child.level_bounds(t))
+
+    def _turned(self, lo: np.ndarray, hi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The box holding the box (lo, hi) turned by this rotation."""
         finite = np.isfinite(lo) & np.isfinite(hi)
         lo_f, hi_f = np.where(finite, lo, 0.0), np.where(finite, hi, 0.0)
         centre = (lo_f + hi_f) / 2
@@ -163,6 +173,10 @@ class Scale(Unary):
         lo, hi = box_of(self.child)
         return lo * self.s, hi * self.s
 
+    def level_bounds(self, t: float) -> tuple[np.ndarray, np.ndarray]:
+        lo, hi = self.child.level_bounds(t / float(self.s))  # f = d(p / s) s
+        return lo * self.s, hi * self.s
+
 
 class ScaleAxes(Unary):
     """Non-uniform scale: f(p / s) * min(s). A distance bound (1-Lipschitz), never exact."""
@@ -195,6 +209,15 @@ class ScaleAxes(Unary):
     def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
         lo, hi = box_of(self.child)
         return lo * self.s, hi * self.s
+
+    def level_bounds(self, t: float) -> tuple[np.ndarray, np.ndarray]:
+        s = np.asarray(self.s, dtype=np.float64)
+        lo, hi = self.child.level_bounds(t / float(s.min()))  # f = d(p / s) min(s)
+        return lo * s, hi * s
+
+    def level_stretch(self) -> float:
+        s = np.asarray(self.s, dtype=np.float64)
+        return float(s.max() / s.min())  # p / s is at least 1 / max(s) of p's way outside
 
 
 @fluent()
@@ -254,6 +277,9 @@ class Material(Unary):
     @property
     def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
         return box_of(self.child)
+
+    def level_bounds(self, t: float) -> tuple[np.ndarray, np.ndarray]:
+        return self.child.level_bounds(t)
 
 
 def _baked(node: Node) -> bool:

@@ -1,8 +1,9 @@
 // A polygon with many vertices as data (sdfgl/nodes/polygrid.py): the edges near a point
 // are listed in its cell of a 2D grid. Data texels from `cells`, one per cell:
-// (first entry, count, centre inside, -); from `edges`, one per entry: (from.xy, to.xy).
-// The sign is the cell centre's, flipped by each listed edge the segment centre -> p
-// crosses; the magnitude is min(listed edges, cap), a bound exact below the cap.
+// (first entry, count, reference inside, reference candidate); from `edges`, one per entry:
+// (from.xy, to.xy). The sign is the cell's reference point's (its centre, or the candidate
+// fract(1/2 + k * step) of the cell clear of every edge), flipped by each listed edge the
+// segment reference -> p crosses; the magnitude is min(listed edges, cap), a bound exact below the cap.
 // requires: data_table
 float sdPolygonGrid(vec2 p, vec2 lo, float cell, ivec2 dims, int cells, int edges) {
     ivec2 c = clamp(ivec2(floor((p - lo) / cell)), ivec2(0), dims - 1);
@@ -13,7 +14,7 @@ float sdPolygonGrid(vec2 p, vec2 lo, float cell, ivec2 dims, int cells, int edge
     float boxDist = length(max(k, 0.0)) + min(max(k.x, k.y), 0.0);
     float cap = max(cell - length(outside), boxDist);
     vec4 span = dataFetch(cells + c.y * dims.x + c.x);
-    vec2 centre = cellLo + 0.5 * cell;
+    vec2 centre = cellLo + cell * fract(vec2(0.5) + span.w * vec2(0.6180339887, 0.7548776662));
     float s = (boxDist > 0.0 || span.z < 0.5) ? 1.0 : -1.0;
     bool inGrid = boxDist <= 0.0;
     float d = cap * cap;

@@ -2,9 +2,9 @@
 
 A point looks at the edges listed in its cell only (those whose bounds come within one
 margin of the cell), so a polygon of 10 000 vertices costs about what one of a few
-dozen does. The sign comes from the cell centre (inside or not, found once in float64)
-and the listed edges the segment from the centre to the point crosses (it stays in the
-cell, so every edge it crosses is listed); outside the grid the point is outside the
+dozen does. The sign comes from a reference point of the cell (its centre unless that lies
+on or near an edge; inside or not, found once in float64) and the listed edges the segment
+from it to the point crosses (it stays in the cell, so every edge it crosses is listed); outside the grid the point is outside the
 polygon. The magnitude is min(listed edges, cap) with the cap of sdfgl.compiler.data.grid: a
 distance bound equal to the exact distance wherever that is below the cap. The float64
 twin computes sign * min(|exact distance|, cap), the same number.
@@ -17,19 +17,64 @@ GRID_VERTICES = 64  # polygons with at least this many vertices use the grid
 MAX_DIMS = 256
 
 
-def _inside_centres(a: np.ndarray, b: np.ndarray, lo: np.ndarray, cell: float, dims: np.ndarray) -> np.ndarray:
-    """(rows, cols) booleans: is each cell centre inside the polygon (even-odd rule, one
-    scanline per row of cells)."""
-    xs_c = lo[0] + (np.arange(dims[0]) + 0.5) * cell
-    out = np.zeros((dims[1], dims[0]), dtype=bool)
-    for j in range(dims[1]):
-        y = lo[1] + (j + 0.5) * cell
+# Where in its cell the point a cell's sign is taken at may sit: candidate k is the fraction
+# fract(1/2 + k * REFERENCE_STEP) of the cell (k = 0: its centre), stored per cell so the
+# shader computes the same point. A candidate closer than REFERENCE_MARGIN cells to a listed
+# edge is passed over: a reference point on an edge (polygons on round coordinates put cell
+# centres on edges) has no well-defined side, and the shader's crossing test and the
+# scanline that classified it would disagree.
+REFERENCE_STEP = np.array([0.6180339887, 0.7548776662])
+REFERENCE_CANDIDATES = 16
+REFERENCE_MARGIN = 0.02
+
+
+def reference_fractions() -> np.ndarray:
+    """(REFERENCE_CANDIDATES, 2): each candidate reference point as a fraction of its cell."""
+    k = np.arange(REFERENCE_CANDIDATES)[:, None]
+    return np.mod(0.5 + k * REFERENCE_STEP, 1.0)
+
+
+def _segment_distance(q: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    ab, w = b - a, q - a
+    t = np.clip((w * ab).sum(-1) / np.maximum((ab * ab).sum(-1), 1e-300), 0.0, 1.0)
+    return np.hypot(*np.moveaxis(w - ab * t[..., None], -1, 0))
+
+
+def _reference_choice(cells: np.ndarray, edge: np.ndarray, a: np.ndarray, b: np.ndarray, lo: np.ndarray,
+                      cell: float, dims: np.ndarray) -> np.ndarray:
+    """Per cell, the first candidate at least REFERENCE_MARGIN cells from every listed edge
+    (``cells``/``edge``: the sorted (cell, edge) entries); unlisted edges are a cell away."""
+    ncell = int(np.prod(dims))
+    choice = np.full(ncell, -1)
+    cell_lo = lo + np.stack([cells % dims[0], cells // dims[0]], axis=-1) * cell
+    for k, frac in enumerate(reference_fractions()):
+        d = _segment_distance(cell_lo + frac * cell, a[edge], b[edge])
+        near = np.zeros(ncell, dtype=bool)
+        near[cells[d < REFERENCE_MARGIN * cell]] = True
+        choice[(choice < 0) & ~near] = k
+    return np.maximum(choice, 0)  # no candidate clear of every edge: a cell crowded by edges
+
+
+def _inside(a: np.ndarray, b: np.ndarray, lo: np.ndarray, cell: float, dims: np.ndarray,
+            choice: np.ndarray) -> np.ndarray:
+    """Per cell, is its reference point inside the polygon (even-odd rule, one half-open
+    scanline per row of cells and candidate)."""
+    fracs = reference_fractions()
+    out = np.zeros(int(np.prod(dims)), dtype=bool)
+    index = np.arange(out.size)
+    key = (index // dims[0]) * REFERENCE_CANDIDATES + choice
+    order = np.argsort(key, kind="stable")
+    keys, starts = np.unique(key[order], return_index=True)
+    for key_here, sel in zip(keys, np.split(order, starts[1:])):
+        j, k = divmod(int(key_here), REFERENCE_CANDIDATES)
+        y = lo[1] + (j + fracs[k, 1]) * cell
         hit = (a[:, 1] <= y) != (b[:, 1] <= y)
         if not hit.any():
             continue
         pa, pb = a[hit], b[hit]
         x = pa[:, 0] + (y - pa[:, 1]) * (pb[:, 0] - pa[:, 0]) / (pb[:, 1] - pa[:, 1])
-        out[j] = np.searchsorted(np.sort(x), xs_c) % 2 == 1
+        xs = lo[0] + (sel % dims[0] + fracs[k, 0]) * cell
+        out[sel] = np.searchsorted(np.sort(x), xs) % 2 == 1
     return out
 
 
@@ -62,7 +107,9 @@ class PolygonGrid:
         first = np.concatenate([[0], np.cumsum(count)[:-1]])
         self.cells = np.zeros((ncell, 4))
         self.cells[:, 0], self.cells[:, 1] = first, count
-        self.cells[:, 2] = _inside_centres(a, b, lo, cell, self.dims).ravel()
+        choice = _reference_choice(cells, edge, a, b, lo, cell, self.dims)
+        self.cells[:, 2] = _inside(a, b, lo, cell, self.dims, choice)
+        self.cells[:, 3] = choice
         self.edges = np.concatenate([b[edge], a[edge]], axis=1)  # (from, to) per entry
 
     def cap(self, q: np.ndarray) -> np.ndarray:
