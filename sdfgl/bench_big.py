@@ -7,6 +7,7 @@ and drawing took, beside the steps per ray; frame times are medians of interleav
 """
 from __future__ import annotations
 
+import importlib.util
 import math
 import statistics
 import time
@@ -135,6 +136,19 @@ def polygon(n: int) -> tuple[Node, Camera]:
     return shapes2d.extrude(shapes2d.polygon(pts), 0.5), OrbitCamera(distance=4, yaw=30, pitch=40)
 
 
+def text_page(glyphs: int) -> tuple[Node, Camera]:
+    """Extruded text of ``glyphs`` letters and digits (40 a line), seen face on, filling the view."""
+    from .nodes.text import text
+    rng = np.random.default_rng(glyphs)
+    chars = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789"
+    picks = rng.integers(len(chars), size=glyphs)
+    lines = ["".join(chars[i] for i in picks[j:j + 40]) for j in range(0, glyphs, 40)]
+    scene = shapes2d.extrude(text("\n".join(lines), size=0.1, align="center"), 0.02)
+    lo, hi = scene.bounds
+    centre, ext = (lo + hi) / 2, float(np.max(hi - lo))
+    return scene, Camera.look_at(tuple(centre + (0.0, 0.0, 1.2 * ext)), tuple(centre), fov=45)
+
+
 def run_phases(quick: bool, size: tuple[int, int] = (320, 240)) -> str:
     """Where the time of a 10^5-deep chain goes, phase by phase, each in wall and process
     CPU seconds (CPU is what a loaded machine disturbs least): the Python loop that builds
@@ -229,6 +243,9 @@ def run_big(quick: bool, size: tuple[int, int] = (320, 240)) -> str:
              for kind in ("union", "translate", "rotate")])
     measure([("one node as both operands, 30 levels (2^30 paths)", 30, lambda: dag(30))])
     measure([(f"extruded polygon of {n} vertices", n, lambda n=n: polygon(n)) for n in ((500,) if quick else (2000, 10000))])
+    if importlib.util.find_spec("fontTools") is not None:  # the text extra
+        measure([(f"extruded text of {n} glyphs, fitted to the view", n, lambda n=n: text_page(n))
+                 for n in ((1, 200) if quick else (1, 1000))])
     return (f"Size {size[0]}x{size[1]}, shadows and AO off, frames interleaved within each group; 'build' is the Python "
             "that makes the scene, 'link' generating the source plus the driver's compile and link, 'first "
             "frame' adds llvmpipe's code generation; 'ratio' is to the group's first row; 'how' is the "

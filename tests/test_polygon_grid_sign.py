@@ -50,3 +50,12 @@ def test_edge_grid_sign_agrees_with_an_independent_winding_number(shape):
     clear = np.abs(d) > 1e-3 * float((hi - lo).max())  # away from the outline, where float32 cannot tell
     wrong = ((d < 0) != _winding_inside(q, v)) & clear
     assert wrong.sum() == 0, f"{wrong.mean():.2%} of the area has the wrong sign"
+
+
+def test_edge_grid_compiles_as_glsl_es_300(renderer):
+    from sdfgl.compiler.generate import generate
+    from sdfgl.settings import Settings
+    src = generate(sg.extrude(sg.polygon(_comb(63, 64.0, 64.0) / 32.0), 0.2), Settings(), dialect="webgl2")
+    assert "sdPolygonGrid" in src.text
+    renderer.programs.get(src)
+

@@ -320,8 +320,48 @@ def test_without_fonttools_the_error_names_the_extra(monkeypatch):
         Font(font_path(None))
 
 
-def test_long_string_is_data_not_code():
-    short, long = sg.text("a"), sg.text("abcdefghij" * 30)
-    s, l = sg.compile(sg.extrude(short, 0.1)), sg.compile(sg.extrude(long, 0.1))
+@pytest.mark.parametrize("short,long", [("a", "abcdefghij" * 4), ("abcdefghij" * 5, "abcdefghij" * 60)])
+def test_long_string_is_data_not_code(short, long):
+    s, l = sg.compile(sg.extrude(sg.text(short), 0.1)), sg.compile(sg.extrude(sg.text(long), 0.1))
     code = [[line for line in src.splitlines() if not line.lstrip().startswith("//")] for src in (s, l)]
     assert len(code[0]) == len(code[1])  # one loop over data tables, whatever the length
+
+
+def _page(glyphs: int, per_line: int = 30) -> str:
+    rng = np.random.default_rng(glyphs)
+    chars = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789"
+    picks = "".join(chars[i] for i in rng.integers(len(chars), size=glyphs))
+    return "\n".join(picks[j:j + per_line] for j in range(0, glyphs, per_line))
+
+
+def test_a_page_of_glyphs_is_listed_per_cell_with_the_exact_sign_and_distance_below_the_cap(renderer):
+    page = sg.text(_page(400), size=0.1)
+    grid = page.grid
+    assert grid is not None and page.exactness == sg.BOUND
+    assert "sd2TextGrid" in sg.compile(sg.extrude(page, 0.02))
+    assert sg.text("sdfgl").grid is None and sg.text("sdfgl").exactness == sg.EXACT  # short texts: exact
+    rng = np.random.default_rng(4)
+    lo, hi = page.bounds2
+    xy = np.concatenate([rng.uniform(lo - 0.1, hi + 0.1, (20000, 2)), near_points(page, rng, 20000)])
+    exact = page._block(xy)  # every glyph, no cap
+    got = page.distance2(xy)
+    cap = grid.cap(xy)
+    assert np.all(np.abs(got) <= cap + 1e-12)
+    below = np.abs(exact) < cap
+    assert below.mean() > 0.5 and np.array_equal(got[below], exact[below])  # the exact distance where it is below the cap
+    clear = np.abs(exact) > 1e-9
+    assert np.array_equal(np.sign(got[clear]), np.sign(exact[clear]))  # the exact sign everywhere
+    node = sg.extrude(page, 0.05)
+    pts = np.column_stack([xy, rng.uniform(-0.03, 0.03, len(xy))])
+    gpu = sg.evaluate(node, pts, renderer=renderer).astype(np.float64)
+    ref = node.distance(pts)
+    assert np.all(np.abs(gpu - ref) <= 16 * EPS32 * (1 + np.abs(pts).max(axis=-1) + np.abs(ref)))
+
+
+def test_a_page_of_glyphs_compiles_as_glsl_es_300(renderer):
+    from sdfgl.compiler.generate import generate
+    from sdfgl.settings import Settings
+    src = generate(sg.extrude(sg.text(_page(120), size=0.1), 0.02), Settings(), dialect="webgl2")
+    assert "sd2TextGrid" in src.text
+    renderer.programs.get(src)  # Mesa holds "#version 300 es" to ES's rules
+

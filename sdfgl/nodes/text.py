@@ -3,7 +3,9 @@
 The outlines (sdfgl.nodes.text_font: quadratic Bezier pieces and line segments, cubics
 split into quadratics within 1e-7 em) are data, not code: the shader loops over the
 placed glyphs in one data table and over each glyph's pieces in another, so a long
-string compiles as fast as one letter. A glyph whose bounding box (of its control
+string compiles as fast as one letter; a text of many glyphs lists them per cell of a 2D
+grid (sdfgl.compiler.data.textgrid), exact in sign and exact in distance below the grid's
+cap. Otherwise a glyph whose bounding box (of its control
 points) is farther than the nearest piece found so far is skipped, and so is a group of
 16 consecutive glyphs whose joint box is (the distance to one outline point per group
 bounds it first): a point outside a glyph's box has winding number 0 for it, so only the
@@ -19,12 +21,15 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..values import validate as v
+from .base import BOUND, EXACT
 from .bezier import quadratic_distance2
+from .layouts import layout
 from .shapes2d import Shape2D
 from .text_font import DEFAULT_FONT, LINE, QUAD, load_font
 from .text_font import layout as place_glyphs
 
 if TYPE_CHECKING:  # pragma: no cover
+    from ..compiler.data.textgrid import TextGrid
     from ..compiler.emitter import Emitter
 
 ALIGNS = ("left", "center", "right")
@@ -108,7 +113,6 @@ class Text(Shape2D):
         return f"text({ascii(p['string'])}, font={ascii(p['font'])}, size={float(p['size']):g}, align={p['align']})"
 
     def expr(self, em: "Emitter", q: str) -> str:
-        em.require("sd2_text")
         texels = np.zeros((len(self.pieces), 2, 4))
         texels[:, 0, :2], texels[:, 0, 2:] = self.pieces[:, 0], self.pieces[:, 1]
         texels[:, 1, :2], texels[:, 1, 2] = self.pieces[:, 2], self.kinds
@@ -119,6 +123,11 @@ class Text(Shape2D):
             start, count = self.spans[i]
             table[k, 1] = (first + 2 * start, count, x, y)
         glyphs = em.table(table.reshape(-1, 4))
+        grid = self.grid
+        if grid is not None:  # a long text: the glyphs near each cell of a 2D grid
+            em.require("sd2_text_grid")
+            return f"sd2TextGrid({q}, {grid.defines(em, em.table(grid.cells), em.table(grid.entries))}, {glyphs})"
+        em.require("sd2_text")
         n = len(self.placed)
         groups = np.zeros(((n + GROUP - 1) // GROUP, 2, 4))
         for j, g0 in enumerate(range(0, n, GROUP)):
@@ -129,11 +138,27 @@ class Text(Shape2D):
             groups[j, 1] = (g0, min(GROUP, n - g0), *point)
         return f"sd2Text({q}, {em.table(groups.reshape(-1, 4))}, {len(groups)}, {glyphs})"
 
+    @property
+    def exactness(self) -> str:  # type: ignore[override]
+        """Exact, or a bound where a long text's glyph grid caps the distance far from the glyphs."""
+        return BOUND if self.grid is not None else EXACT
+
+    @property
+    def grid(self) -> "TextGrid | None":
+        """The glyph grid of a long text (sdfgl.compiler.data.textgrid), else None."""
+        if "_grid" not in self.__dict__:
+            build = layout("text")
+            self.__dict__["_grid"] = build(self.boxes) if build is not None else None
+        return self.__dict__["_grid"]
+
     def distance2(self, q: np.ndarray) -> np.ndarray:
         pts = np.asarray(q, dtype=np.float64).reshape(-1, 2)
         out = np.empty(len(pts))
         for s in range(0, len(pts), CHUNK):
             out[s:s + CHUNK] = self._block(pts[s:s + CHUNK])
+        grid = self.grid
+        if grid is not None:
+            out = np.sign(out) * np.minimum(np.abs(out), grid.cap(pts))
         return out.reshape(np.shape(q)[:-1])
 
     def _block(self, p: np.ndarray) -> np.ndarray:
@@ -197,7 +222,9 @@ def text(string: str, font: str | None = None, size: float = 1.0, align: str = "
     adjustments). Exact in 2D: the distance to the quadratic outline curves is solved in
     closed form, cubic curves are split into quadratics within 1e-7 em, and the sign is
     the nonzero winding number (where two glyphs' outlines overlap the distance counts
-    the hidden outline too, a bound).
+    the hidden outline too, a bound). A text of 48 or more glyphs lists them per cell of a
+    grid: the distance is then exact below the grid's cap (about half a glyph) and a bound
+    beyond it (``exactness`` is ``"bound"``).
 
     Example:
         >>> sg.extrude(sg.text("sdfgl", size=0.3), 0.05).exactness

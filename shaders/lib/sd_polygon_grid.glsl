@@ -4,15 +4,12 @@
 // (from.xy, to.xy). The sign is the cell's reference point's (its centre, or the candidate
 // fract(1/2 + k * step) of the cell clear of every edge), flipped by each listed edge the
 // segment reference -> p crosses; the magnitude is min(listed edges, cap), a bound exact below the cap.
-// requires: data_table
+// requires: data_table, grid2_cap
 float sdPolygonGrid(vec2 p, vec2 lo, float cell, ivec2 dims, int cells, int edges) {
-    ivec2 c = clamp(ivec2(floor((p - lo) / cell)), ivec2(0), dims - 1);
+    ivec2 c;
+    float boxDist;
+    float cap = grid2Cap(p, lo, cell, dims, cell, c, boxDist);
     vec2 cellLo = lo + vec2(c) * cell;
-    vec2 outside = max(max(cellLo - p, p - (cellLo + cell)), 0.0);
-    vec2 halfExt = 0.5 * vec2(dims) * cell;
-    vec2 k = abs(p - (lo + halfExt)) - halfExt;
-    float boxDist = length(max(k, 0.0)) + min(max(k.x, k.y), 0.0);
-    float cap = max(cell - length(outside), boxDist);
     vec4 span = dataFetch(cells + c.y * dims.x + c.x);
     vec2 centre = cellLo + cell * fract(vec2(0.5) + span.w * vec2(0.6180339887, 0.7548776662));
     float s = (boxDist > 0.0 || span.z < 0.5) ? 1.0 : -1.0;

@@ -13,6 +13,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from .grid2 import cell_cap, list_in_cells
+
 GRID_VERTICES = 64  # polygons with at least this many vertices use the grid
 MAX_DIMS = 256
 
@@ -90,23 +92,7 @@ class PolygonGrid:
         self.lo, self.cell, self.margin = lo, cell, cell
         a, b = v, np.roll(v, 1, axis=0)  # edge i runs from vertex i-1 to vertex i
         elo, ehi = np.minimum(a, b), np.maximum(a, b)
-        c0 = np.clip(np.floor((elo - self.margin - lo) / cell).astype(np.int64), 0, self.dims - 1)
-        c1 = np.clip(np.floor((ehi + self.margin - lo) / cell).astype(np.int64), 0, self.dims - 1)
-        span = c1 - c0 + 1
-        counts = span.prod(axis=1)
-        edge = np.repeat(np.arange(n), counts)
-        start = np.concatenate([[0], np.cumsum(counts)[:-1]])
-        local = np.arange(counts.sum()) - np.repeat(start, counts)
-        x = np.repeat(c0[:, 0], counts) + local % np.repeat(span[:, 0], counts)
-        y = np.repeat(c0[:, 1], counts) + local // np.repeat(span[:, 0], counts)
-        cells = y * self.dims[0] + x
-        order = np.argsort(cells, kind="stable")
-        cells, edge = cells[order], edge[order]
-        ncell = int(np.prod(self.dims))
-        count = np.bincount(cells, minlength=ncell)
-        first = np.concatenate([[0], np.cumsum(count)[:-1]])
-        self.cells = np.zeros((ncell, 4))
-        self.cells[:, 0], self.cells[:, 1] = first, count
+        cells, edge, self.cells = list_in_cells(elo, ehi, lo, cell, self.dims, self.margin)
         choice = _reference_choice(cells, edge, a, b, lo, cell, self.dims)
         self.cells[:, 2] = _inside(a, b, lo, cell, self.dims, choice)
         self.cells[:, 3] = choice
@@ -114,13 +100,7 @@ class PolygonGrid:
 
     def cap(self, q: np.ndarray) -> np.ndarray:
         """Every unlisted edge is at least this far from the (..., 2) points."""
-        rel = np.clip(np.floor((q - self.lo) / self.cell), 0, self.dims - 1)
-        cell_lo = self.lo + rel * self.cell
-        outside = np.maximum(np.maximum(cell_lo - q, q - (cell_lo + self.cell)), 0.0)
-        half = 0.5 * self.dims * self.cell
-        k = np.abs(q - (self.lo + half)) - half
-        box = np.hypot(*np.moveaxis(np.maximum(k, 0.0), -1, 0)) + np.minimum(k.max(axis=-1), 0.0)
-        return np.maximum(self.margin - np.hypot(*np.moveaxis(outside, -1, 0)), box)
+        return cell_cap(q, self.lo, self.cell, self.dims, self.margin)
 
     def defines(self, em: "object", name: str, cells: int, edges: int) -> str:
         """The GLSL constants of this grid (its tables are at data texels cells, edges)."""
