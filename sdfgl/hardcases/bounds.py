@@ -13,25 +13,26 @@ from .spec import Expect, HardCase
 
 
 def _comb_outline(teeth: int, height: float) -> np.ndarray:
-    """A comb on round coordinates (a base strip and teeth half a unit wide), 1/16 scale."""
-    pts = [(0.0, 0.0), (64.0, 0.0), (64.0, 2.0)]
+    """A comb on round coordinates (a base strip 1 high, teeth half a unit wide), 1/4 scale."""
+    width = teeth + 1.0
+    pts = [(0.0, 0.0), (width, 0.0), (width, 1.0)]
     for j in range(teeth, 0, -1):
-        pts += [(j + 0.5, 2.0), (j + 0.5, height), (j, height), (j, 2.0)]
-    return (np.array(pts + [(0.0, 2.0)]) - 32.0) / 16.0
+        pts += [(j + 0.5, 1.0), (j + 0.5, height), (j, height), (j, 1.0)]
+    return (np.array(pts + [(0.0, 1.0)]) - width / 2) / 4.0
 
 
 def _comb(height: float, yaw: float, pitch: float) -> Callable[[], tuple[Node, Camera]]:
     def build() -> tuple[Node, Camera]:
-        # 256 vertices over 64 x 64 units: the edge grid's cells are exactly 4 units, so
-        # their centres lie on the base strip's edge and on teeth's sides
-        return (extrude(polygon(_comb_outline(63, height)), 0.3).rotate(-90, (1, 0, 0)),
+        # 64 vertices over 16 x 16 units: the edge grid's cells are exactly 2 units, so their
+        # centres lie on the teeth's sides at odd x
+        return (extrude(polygon(_comb_outline(15, height)), 0.3).rotate(-90, (1, 0, 0)),
                 OrbitCamera(distance=6.0, yaw=yaw, pitch=pitch))
     return build
 
 
 def _floor_plan() -> tuple[Node, Camera]:
     rng = np.random.default_rng(5)
-    steps = rng.integers(1, 4, size=(40, 2))
+    steps = rng.integers(1, 4, size=(31, 2))
     pts = [(0, 0)]
     for x, y in np.cumsum(steps, axis=0):
         pts += [(int(x), pts[-1][1]), (int(x), int(y))]
@@ -59,11 +60,11 @@ def _rounded_stretch() -> tuple[Node, Camera]:
 
 
 BOUNDS_CASES: tuple[HardCase, ...] = (
-    HardCase("polygon_grid_comb", "a 256-vertex comb whose edge-grid cell centres lie on its edges",
-             _comb(64.0, 10, 70)),
-    HardCase("polygon_grid_comb_low", "the comb, shorter teeth, seen low along its teeth", _comb(40.0, 80, 25),
+    HardCase("polygon_grid_comb", "a 64-vertex comb whose edge-grid cell centres lie on its edges",
+             _comb(16.0, 10, 70)),
+    HardCase("polygon_grid_comb_low", "the comb, shorter teeth, seen low along its teeth", _comb(10.0, 80, 25),
              expect=Expect(normal_deg_p99=30.0)),  # teeth a third of a pixel wide: most hits straddle an edge
-    HardCase("polygon_grid_floor_plan", "a staircase floor plan on the integer grid (164 vertices)", _floor_plan),
+    HardCase("polygon_grid_floor_plan", "a staircase floor plan on the integer grid (66 vertices)", _floor_plan),
     HardCase("metaballs_k1", "three spheres blended with k = 1 (each fold reaches k/4 further)",
              _metaballs(1.0, "quadratic", 3, 0.2)),
     HardCase("metaballs_k2_12", "twelve spheres blended with k = 2", _metaballs(2.0, "quadratic", 12, 0.6)),

@@ -159,6 +159,9 @@ class Rectangle(Shape2D):
         return -self.half, self.half.copy()
 
 
+POLYGON_BLOCK = 1 << 21  # points x edges per block of the polygon's twin
+
+
 class Polygon(Shape2D):
     """A simple (non self-intersecting) polygon through ``points`` in order."""
 
@@ -210,20 +213,25 @@ class Polygon(Shape2D):
         return d if grid is None else np.sign(d) * np.minimum(np.abs(d), grid.cap(q))
 
     def _exact2(self, q: np.ndarray) -> np.ndarray:
-        v = self.v
-        d = np.sum((q - v[0]) ** 2, axis=-1)
-        s = np.ones(q.shape[:-1])
-        n = len(v)
-        for i in range(n):
-            j = (i - 1) % n
-            e, w = v[j] - v[i], q - v[i]
-            b = w - e * np.clip((w @ e) / (e @ e), 0.0, 1.0)[..., None]
-            d = np.minimum(d, np.sum(b * b, axis=-1))
-            c1, c2 = q[..., 1] >= v[i][1], q[..., 1] < v[j][1]
-            c3 = e[0] * w[..., 1] > e[1] * w[..., 0]
-            flip = (c1 & c2 & c3) | (~c1 & ~c2 & ~c3)
-            s = np.where(flip, -s, s)
-        return s * np.sqrt(d)
+        """The exact signed distance at (..., 2) points: every edge at once, in blocks of points."""
+        pts = np.asarray(q, dtype=np.float64).reshape(-1, 2)
+        out = np.empty(len(pts))
+        block = max(1, POLYGON_BLOCK // len(self.v))
+        for s in range(0, len(pts), block):
+            out[s:s + block] = self._exact_block(pts[s:s + block])
+        return out.reshape(np.shape(q)[:-1])
+
+    def _exact_block(self, q: np.ndarray) -> np.ndarray:
+        vi = self.v
+        vj = np.roll(vi, 1, axis=0)  # edge i runs from vertex i - 1 to vertex i
+        e, w = vj - vi, q[:, None, :] - vi[None]
+        t = np.clip((w * e).sum(axis=-1) / (e * e).sum(axis=-1), 0.0, 1.0)
+        b = w - e * t[..., None]
+        d = (b * b).sum(axis=-1).min(axis=1)
+        c1, c2 = q[:, None, 1] >= vi[:, 1], q[:, None, 1] < vj[:, 1]
+        c3 = e[:, 0] * w[..., 1] > e[:, 1] * w[..., 0]
+        flips = ((c1 & c2 & c3) | (~c1 & ~c2 & ~c3)).sum(axis=1)
+        return np.where(flips % 2 == 1, -1.0, 1.0) * np.sqrt(d)
 
     @property
     def bounds2(self) -> tuple[np.ndarray, np.ndarray]:
