@@ -31,6 +31,17 @@ def growth(n: int, seed: int = 0) -> tuple[Node, Camera]:
     return scene, OrbitCamera(target=(0, 0, 0), distance=14, yaw=30, pitch=35, fov=50)
 
 
+def blend_slab(n: int, k: float = 0.1, seed: int = 0) -> tuple[Node, Camera]:
+    """n spheres of radius 0.05-0.12 random in a slab 0.3 n^(1/2) wide and 1 thick, blended
+    with radius ``k`` (0: the hard union of the same spheres)."""
+    rng = np.random.default_rng(seed)
+    half = 0.15 * n ** 0.5
+    pts = rng.uniform((-half, -0.5, -half), (half, 0.5, half), (n, 3))
+    radii = rng.uniform(0.05, 0.12, n)
+    scene = booleans.union(*[primitives.sphere(float(r)).translate(p) for r, p in zip(radii, pts)], k=k)
+    return scene, OrbitCamera(target=(0, 0, 0), distance=1.9 * half, yaw=30, pitch=35, fov=50)
+
+
 def _random_rotation(rng: np.random.Generator) -> tuple[float, tuple[float, float, float]]:
     axis = rng.normal(size=3)
     return float(rng.uniform(0, 360)), tuple(axis / np.linalg.norm(axis))

@@ -105,6 +105,8 @@ def ray_free_grid(scene: Node, settings: Settings) -> tuple[Any, np.ndarray] | N
         if rotation is not None:
             turn = turn @ rotation
     grid = node.data_union()
+    if grid is not None and not grid.free_way:
+        return None
     # children beside the grid (a floor) bound the way by their distance (Union._emit): the
     # scene is a distance bound wherever a distance marcher runs (an implicit one is refused)
     return None if grid is None else (grid, turn)

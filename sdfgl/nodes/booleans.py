@@ -30,6 +30,9 @@ BLEND_REACH = {"quadratic": 0.25, "circular": 1.0, "chamfer": 0.5}
 # where each blend acts at all: |a - b| below this share of k
 BLEND_WINDOW = {"quadratic": 1.0, "circular": 1.0 / (1.0 - np.sqrt(0.5)), "chamfer": 1.0}
 BLEND_GLSL = {"circular": ("op_circular", "opCircular"), "chamfer": ("op_chamfer", "opChamfer")}
+# how far apart a and b may lie for the blend to change min(a, b), as a share of k: beyond
+# it each blend returns min(a, b) exactly (h = 0), in float64 and in float32
+BLEND_SUPPORT = {"quadratic": 1.0, "circular": 1.0 / (1.0 - float(np.sqrt(0.5))), "chamfer": 1.0}
 
 
 def smooth_min(a: np.ndarray, b: np.ndarray, k: float, blend: str = "quadratic") -> np.ndarray:
@@ -47,6 +50,19 @@ def smooth_min(a: np.ndarray, b: np.ndarray, k: float, blend: str = "quadratic")
 def smooth_max(a: np.ndarray, b: np.ndarray, k: float, blend: str = "quadratic") -> np.ndarray:
     """The float64 twin of the smooth maximum: ``-smooth_min(-a, -b)``."""
     return -smooth_min(-a, -b, k, blend)
+
+
+def smooth_glsl(em: "Emitter", a: str, b: str, k: object, blend: str, negate: bool = False) -> str:
+    """GLSL for the blended min of the expressions a and b with radius ``k`` (a number or a
+    live parameter) and kind ``blend`` (or the max, as -min(-a, -b), with ``negate``)."""
+    if blend == "quadratic":
+        em.require("op_smax" if negate else "op_smin")
+        return f"{'opSmax' if negate else 'opSmin'}({a}, {b}, {em.num(k)})"
+    lib, fn = BLEND_GLSL[blend]
+    em.require(lib)
+    if negate:
+        return f"-{fn}(-{a}, -{b}, {em.num(k)})"
+    return f"{fn}({a}, {b}, {em.num(k)})"
 
 
 class _Boolean(Node):
@@ -139,14 +155,7 @@ class _Boolean(Node):
 
     def _smooth(self, em: "Emitter", a: str, b: str, negate: bool = False) -> str:
         """GLSL for the blended min of a and b (or max, as -min(-a, -b))."""
-        if self.blend == "quadratic":
-            em.require("op_smax" if negate else "op_smin")
-            return f"{'opSmax' if negate else 'opSmin'}({a}, {b}, {em.num(self.k)})"
-        lib, fn = BLEND_GLSL[self.blend]
-        em.require(lib)
-        if negate:
-            return f"-{fn}(-{a}, -{b}, {em.num(self.k)})"
-        return f"{fn}({a}, {b}, {em.num(self.k)})"
+        return smooth_glsl(em, a, b, self.k, self.blend, negate)
 
     def distinct_children(self) -> tuple[Node, ...]:
         """The children the shader evaluates: a hard union or intersection of equal children
@@ -181,7 +190,10 @@ class _Boolean(Node):
 class Union(_Boolean):
     """Union (min). A hard union of many simple primitives is kept as data with a cell
     grid (sdfgl.compiler.data.grid): its field is then min(children, cap), a distance bound that
-    is exact wherever the min is below the cap (about one grid cell)."""
+    is exact wherever the min is below the cap (about one grid cell). A smooth union of
+    many instances of one type is kept as data too (sdfgl.compiler.data.blend_lists): each
+    cell lists the children the blend may need there, folded in the union's order, so
+    inside the grid's box the field is the code's; the twin stays the full fold."""
 
     kind = "union"
 
@@ -194,7 +206,12 @@ class Union(_Boolean):
         d = self.__dict__
         if name not in d:
             build = layout("union")
-            d[name] = build(list(self.distinct_children()), least) if self._hard and build is not None else None
+            if build is None or isinstance(self.k, Live):
+                d[name] = None
+            elif self._hard:
+                d[name] = build(list(self.distinct_children()), least)
+            else:
+                d[name] = build(list(self.children), least, blend=(float(self.k), self.blend))
         return d[name]
 
     def data_union(self) -> "Grid | None":
@@ -215,7 +232,7 @@ class Union(_Boolean):
         return acc
 
     def _distance(self, p: np.ndarray) -> np.ndarray:
-        grid = self.grid
+        grid = self.grid if self._hard else None  # a smooth union's twin is the full fold
         if grid is None:
             return super()._distance(p)
         d = grid.field(p)  # what the shader computes: the listed instances and the cap

@@ -18,10 +18,11 @@ import numpy as np
 from ...errors import SdfglError
 from ...nodes.base import Node, box_of
 from ...nodes.primitives import Sphere
-from . import grid_record
+from . import blend_lists, grid_record
 from .slots import slot_values
 
 if TYPE_CHECKING:  # pragma: no cover
+    from .blend_lists import Blend
     from .instances import InstanceType
 
 GRID_MIN = 32       # fewer children than this are written out as code (see the benchmark)
@@ -36,26 +37,38 @@ class Grid:
     """The instances of one union, their types and the cell lists over their bounds."""
 
     def __init__(self, children: list[Node], peeled: list[tuple], types: list[InstanceType], single_cell: bool = False,
-                 boxes: np.ndarray | None = None) -> None:
+                 boxes: np.ndarray | None = None, blend: Blend | None = None) -> None:
         """``single_cell`` makes one cell list every instance: a plain data-driven loop
         (the uber-shader the benchmark compares against); ``boxes`` (n, 2, 3) are the
-        children's bounds when the caller has them."""
+        children's bounds when the caller has them; ``blend`` is a smooth union's (its
+        cells list what the blend needs: sdfgl.compiler.data.blend_lists)."""
         self.children, self.types = children, types
         self.peeled = peeled  # (inner, t, R, s, colour) per child
+        self.blend = blend
         if boxes is None:
             boxes = np.array([bounds_of(c) for c in children])
         los, his = boxes[:, 0], boxes[:, 1]
         lo, hi = los.min(axis=0), his.max(axis=0)
+        if blend is not None:
+            lo, hi = lo - blend.pad, hi + blend.pad
         extent = np.maximum(hi - lo, 1e-9)
-        cell = CELL_FACTOR * float(np.prod(extent) / len(children)) ** (1 / 3)
-        cell = float(extent.max()) * 1.001 if single_cell else max(cell, float(extent.max()) / MAX_DIMS)
-        self.dims = np.minimum(np.ceil(extent / cell).astype(int), MAX_DIMS)
+        factor, most = (CELL_FACTOR, MAX_DIMS) if blend is None else (blend_lists.CELL_FACTOR, blend_lists.MAX_DIMS)
+        cell = factor * float(np.prod(extent) / len(children)) ** (1 / 3)
+        cell = float(extent.max()) * 1.001 if single_cell else max(cell, float(extent.max()) / most)
+        self.dims = np.minimum(np.ceil(extent / cell).astype(int), most)
         self.cell, self.lo = cell, lo
         self.margin = MARGIN * cell
         self.centre = lo + 0.5 * self.dims * cell  # data and code are relative to it (float32 precision)
         self.los, self.his = los, his  # per instance, its box (n, 3) each
-        self._ball_at, self._ball_r = _balls(peeled, boxes) if peeled and not single_cell else (None, None)
+        self._ball_at, self._ball_r = _balls(peeled, boxes) if peeled and not single_cell and blend is None \
+            else (None, None)
         self._textures: dict[tuple, dict[str, np.ndarray]] = {}
+
+    @property
+    def free_way(self) -> bool:
+        """Whether the marcher may step this union's free way along the ray (a hard
+        union's; a blend reaches beyond its instances)."""
+        return self.blend is None
 
     # -- the twin's cap (the same number the shader computes) --------------------------
     def cap(self, p: np.ndarray) -> np.ndarray:
@@ -69,7 +82,10 @@ class Grid:
 
     def field(self, p: np.ndarray) -> np.ndarray:
         """The float64 twin of the shader's loop: min over the instances listed in each
-        point's cell, and the cap (for exact instances, min(all, cap))."""
+        point's cell, and the cap (for exact instances, min(all, cap)); for a blend, the
+        fold over each cell's list (sdfgl.compiler.data.blend_lists.field)."""
+        if self.blend is not None:
+            return blend_lists.field(self, p)
         flat = p.reshape(-1, 3)
         cell = np.clip(np.floor((flat - self.lo) / self.cell), 0, self.dims - 1).astype(np.int64)
         d = self.cap(flat)
@@ -90,6 +106,16 @@ class Grid:
         return a, b
 
     # -- data ------------------------------------------------------------------------
+    def entries(self) -> tuple[np.ndarray, np.ndarray]:
+        """(cell index, child index) of every list entry, sorted by cell (then, for a
+        blend, by child: the union's order; built once)."""
+        if self.blend is None:
+            return self._entries()
+        found = self.__dict__.get("_found")
+        if found is None:
+            found = self.__dict__["_found"] = blend_lists.entries(self)
+        return found
+
     def _entries(self) -> tuple[np.ndarray, np.ndarray]:
         """(cell index, child index) of every list entry, sorted by cell."""
         a, b = self._ranges()
@@ -156,7 +182,7 @@ class Grid:
         key = tuple(default_color)
         if key in self._textures:
             return self._textures[key]
-        cells, child = self._entries()
+        cells, child = self.entries()
         type_of = np.zeros(len(self.children), dtype=np.int64)
         local = np.zeros(len(self.children), dtype=np.int64)
         for ti, t in enumerate(self.types):

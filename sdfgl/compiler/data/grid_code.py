@@ -10,6 +10,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ... import shaderlib
+from ...nodes.booleans import smooth_glsl
 from ...nodes.primitives import Sphere
 from . import bvh, grid_record, ray_entry
 from ..emitter import Emitter
@@ -34,7 +35,12 @@ def emit(grid: Grid, em: "Emitter", p: str) -> str:
         entries: list[tuple[str, str]] = []  # after the grid's helpers: they call its ray tests
         for ti, t in enumerate(grid.types):
             loops += _loop(grid, em, t, ti, color, owner, entries)
-        make = bvh.of(grid).emit_function if em.use_grids == "bvh" else functools.partial(_cell_function, grid)
+        if grid.blend is not None:  # the cells keep the union's order; a hierarchy would not
+            make = functools.partial(_blend_function, grid)
+        elif em.use_grids == "bvh":
+            make = bvh.of(grid).emit_function
+        else:
+            make = functools.partial(_cell_function, grid)
         em.functions[key] = (fn, make(em, fn, color, loops, owner))
         for name, code in entries:
             em.helper(name, code)
@@ -73,6 +79,51 @@ def _cell_function(grid: Grid, em: "Emitter", fn: str, color: bool, loops: list[
             (f"    {rtype} best = {best};", owner),
             *free, *fetch, *loops, *done,
             ("    return best;", owner), ("}", owner)]
+
+
+def _blend_function(grid: Grid, em: "Emitter", fn: str, color: bool, loops: list[tuple[str, str]],
+                    owner: str) -> list[tuple[str, str]]:
+    """The smooth union function ``fn``: outside the grid box the distance to it plus the
+    offset that keeps it below the union's fold; inside, the per-type ``loops`` fold p's
+    cell lists from 3e38 (shaders/templates/grid_blend.glsl)."""
+    gid = em.grid_name(grid)
+    blend = grid.blend
+    assert blend is not None
+    tex = grid.textures(em.grids[id(grid)][2])
+    em.require("data_table")
+    cells, lists = em.data.add(tex["Cells"]), em.data.add(tex["List"])
+    head = shaderlib.read("templates/grid_blend").replace("GRIDID", gid)
+    defs = (f"#define {gid}_LO vec3({', '.join(em.num(x) for x in grid.lo - grid.centre)})\n"
+            f"#define {gid}_CELL {em.num(grid.cell)}\n"
+            f"#define {gid}_OUTSIDE {em.num(blend.pad - blend.support)}\n"
+            f"#define {gid}_DIMS ivec3({', '.join(str(int(x)) for x in grid.dims)})\n"
+            f"#define {gid}_PER_CELL {-(-len(grid.types) // 2)}\n"
+            f"#define {gid}_CELLS {cells}\n#define {gid}_LIST {lists}")
+    em.helper(f"{gid}_grid", defs + "\n" + head)
+    rtype = "vec4" if color else "float"
+    outside = f"vec4(0.0, 0.0, 0.0, away + {gid}_OUTSIDE)" if color else f"away + {gid}_OUTSIDE"
+    fetch = [(f"    vec4 s{j} = dataFetch({gid}_CELLS + cell + {j});", owner) for j in range(-(-len(grid.types) // 2))]
+    return [(f"{rtype} {fn}(vec3 p) {{", owner),
+            ("    float away;", owner),
+            (f"    int cell = {gid}Cell(p, away) * {gid}_PER_CELL;", owner),
+            (f"    if (away > 0.0) return {outside};", owner),
+            (f"    {rtype} best = {'vec4(0.0, 0.0, 0.0, 3.0e38)' if color else '3.0e38'};  // smin(3e38, d) = d", owner),
+            *fetch, *loops,
+            ("    return best;", owner), ("}", owner)]
+
+
+def _blend_step(grid: Grid, em: "Emitter", d: str, rgb: str | None) -> list[str]:
+    """The lines that fold one listed child (distance ``d``, colour ``rgb`` in colour mode)
+    into ``best`` as the union's code does (Union._combine)."""
+    blend = grid.blend
+    assert blend is not None
+    if rgb is None:
+        return [f"        best = {smooth_glsl(em, 'best', d, blend.k, blend.kind)};"]
+    em.require("op_smin_color")
+    lines = [f"        vec4 mixed = opSminColor(best, vec4({rgb}, {d}), {em.num(blend.k)});"]
+    if blend.kind == "quadratic":
+        return lines + ["        best = mixed;"]
+    return lines + [f"        best = vec4(mixed.rgb, {smooth_glsl(em, 'best.w', d, blend.k, blend.kind)});"]
 
 
 def _ray_free(grid: Grid, em: "Emitter", color: bool) -> bool:
@@ -160,7 +211,13 @@ def _loop(grid: Grid, em: "Emitter", t: InstanceType, ti: int, color: bool, owne
     if color:
         rgb = result_color or (slot_expr(color_at, 3) if em.channel == "albedo" else em.vec(em.current()))
         out.append((f"        float dist = {d};", owner))
-        out.append((f"        if (dist < best.w) best = vec4({rgb}, dist);", owner))
+        if grid.blend is not None:
+            out += [(line, owner) for line in _blend_step(grid, em, "dist", rgb)]
+        else:
+            out.append((f"        if (dist < best.w) best = vec4({rgb}, dist);", owner))
+    elif grid.blend is not None:
+        out.append((f"        float dist = {d};", owner))
+        out += [(line, owner) for line in _blend_step(grid, em, "dist", None)]
     else:
         out.append((f"        best = min(best, {d});", owner))
         turned = _ray_free(grid, em, color) and _boxed(t, move) and move == "quat"

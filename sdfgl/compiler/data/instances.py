@@ -21,12 +21,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...nodes.base import IMPLICIT, Node, Primitive, box_of
+from ...nodes.base import EXACT, IMPLICIT, Node, Primitive, box_of
 from ...nodes.primitives import Sphere
 from ...nodes.transforms import Material, Rotate, Scale, Translate
 from ...nodes.traverse import postorder
 from ...params import Live
 from . import grid_record
+from .blend_lists import Blend
 from .grid import GRID_MIN, Grid
 from .slots import primitive_slots, slot_values
 
@@ -169,9 +170,14 @@ class ClassInfo:
         return True
 
 
-def build(children: list[Node], min_children: int | None = None, single_cell: bool = False) -> Grid | None:
+def build(children: list[Node], min_children: int | None = None, single_cell: bool = False,
+          blend: tuple[float, str] | None = None) -> Grid | None:
     """A grid for a union's children if at least ``min_children`` (default GRID_MIN) of
     them are instances (those that are not stay code beside it).
+
+    ``blend`` (k, kind) is a smooth union's: then every child must be an instance of one
+    type whose field is exact (a blend folds in the union's order, so none can stay code
+    beside the grid, and the cells prune by distances: sdfgl.compiler.data.blend_lists).
 
     One pass over the children, no per-node property calls beyond the cached bounds and
     live-parameter lists: each child is peeled into (inner node, translation, rotation,
@@ -244,6 +250,10 @@ def build(children: list[Node], min_children: int | None = None, single_cell: bo
         rows.append(i)
     if len(kept) < least:
         return None
+    if blend is not None:
+        if len(kept) < len(children) or len(types) != 1 or any(u[0].exactness != EXACT for u in peeled):
+            return None
+        return Grid(kept, peeled, list(types.values()), boxes=boxes[rows], blend=Blend.of(*blend))
     return Grid(kept, peeled, list(types.values()), single_cell, boxes[rows])
 
 
