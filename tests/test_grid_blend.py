@@ -32,7 +32,7 @@ def test_a_smooth_union_of_many_spheres_is_one_grid_loop_not_nested_blends():
     s = blob(1000)
     assert s.grid is not None and s.grid.blend == Blend.of(0.1, "quadratic")
     src = sg.compile(s)
-    assert "g0Dist(" in src and "g0Cell(vec3 p, out float away)" in src  # shaders/templates/grid_blend.glsl
+    assert "g0Dist(" in src and "g0Cell(vec3 p, out float away" in src  # shaders/templates/grid_blend.glsl
     assert src.count("opSmin(") < 6  # the library function and one fold a loop, not 1000 nested calls
     assert len(src) < 0.2 * len(sg.compile(s, grid=False))
 
@@ -144,7 +144,7 @@ def test_mixed_trees_keep_their_structure(renderer):
     blobs = [blob(40, seed=i).translate((6.0 * i, 0, 0)) for i in range(3)]
     hard_of_smooth = sg.union(*blobs, sg.sphere(0.5).translate((0, 3, 0)))
     src = sg.compile(hard_of_smooth)
-    assert src.count("Cell(vec3 p, out float away)") == 3  # each blob its own grid inside the hard union
+    assert src.count("Cell(vec3 p, out float away") == 3  # each blob its own grid inside the hard union
 
 
 def test_smooth_unions_that_cannot_be_data_stay_code():
