@@ -42,6 +42,53 @@ def blend_slab(n: int, k: float = 0.1, seed: int = 0) -> tuple[Node, Camera]:
     return scene, OrbitCamera(target=(0, 0, 0), distance=1.9 * half, yaw=30, pitch=35, fov=50)
 
 
+ATOMS = {"C": (0.17, (0.35, 0.35, 0.35)), "N": (0.155, (0.2, 0.3, 0.9)), "O": (0.152, (0.9, 0.15, 0.1)),
+         "S": (0.18, (0.9, 0.8, 0.2)), "H": (0.11, (0.95, 0.95, 0.95))}
+
+
+def molecule(n: int = 1001, k: float = 0.04, seed: int = 0) -> tuple[Node, Camera]:
+    """A molecule of n atoms, spheres smooth-blended with radius ``k`` (the molecule scene kind
+    of the Lipschitz-pruning paper, Barbier et al. 2025): a folded chain, atoms 0.15 apart
+    along it and kept within a globule, each an element's radius and colour."""
+    rng = np.random.default_rng(seed)
+    names = rng.choice(list(ATOMS), n, p=[0.35, 0.1, 0.1, 0.05, 0.4])
+    at = np.zeros((n, 3))
+    step = np.array([1.0, 0.0, 0.0])
+    globule = 0.3 * n ** (1 / 3)  # about the radius of n packed atoms
+    for i in range(1, n):  # a persistent random walk, turned back into a globule
+        out = float(np.linalg.norm(at[i - 1]))
+        step = step + 0.8 * rng.normal(size=3) - (at[i - 1] / out if out > globule else 0.0)
+        step /= np.linalg.norm(step)
+        at[i] = at[i - 1] + 0.15 * step
+    parts = [primitives.sphere(ATOMS[e][0]).color(*ATOMS[e][1]).translate(tuple(p)) for e, p in zip(names, at)]
+    lo, hi = at.min(axis=0), at.max(axis=0)
+    centre = tuple((lo + hi) / 2)
+    return booleans.union(*parts, k=k), OrbitCamera(target=centre, distance=1.6 * float(np.max(hi - lo)) + 1,
+                                                     yaw=30, pitch=25)
+
+
+def trees(n_trees: int = 62, k: float = 0.05, seed: int = 0) -> tuple[Node, Camera]:
+    """A forest of 3 n_trees boxes (186 by default; the trees scene kind of the Lipschitz-
+    pruning paper): each tree a trunk smooth-blended (radius ``k``) into a crown that is
+    the hard union of two turned boxes, four kinds of tree moved and turned about y."""
+    rng = np.random.default_rng(seed)
+    kinds = []
+    for _ in range(4):
+        h = float(rng.uniform(0.6, 1.0))
+        trunk = primitives.box((0.08, h / 2, 0.08)).translate((0, h / 2, 0)).color(0.45, 0.3, 0.15)
+        crown = booleans.union(
+            primitives.box(tuple(rng.uniform(0.2, 0.35, 3))).rotate(float(rng.uniform(0, 90)), (0, 1, 0)),
+            primitives.box(tuple(rng.uniform(0.15, 0.3, 3))).rotate(45, (1, 0, 1)).translate((0, 0.25, 0)))
+        kinds.append(booleans.union(trunk, crown.translate((0, h + 0.15, 0)).color(0.2, 0.55, 0.2), k=k))
+    side = int(np.ceil(n_trees ** 0.5))
+    parts = []
+    for i in range(n_trees):
+        x, z = (i % side - side / 2) * 1.1, (i // side - side / 2) * 1.1
+        parts.append(kinds[i % 4].rotate(float(rng.uniform(0, 360)), (0, 1, 0))
+                     .translate((x + float(rng.uniform(-0.3, 0.3)), 0, z + float(rng.uniform(-0.3, 0.3)))))
+    return booleans.union(*parts), OrbitCamera(target=(0, 0.6, 0), distance=1.5 * side, yaw=30, pitch=30)
+
+
 def _random_rotation(rng: np.random.Generator) -> tuple[float, tuple[float, float, float]]:
     axis = rng.normal(size=3)
     return float(rng.uniform(0, 360)), tuple(axis / np.linalg.norm(axis))
@@ -247,6 +294,11 @@ def run_big(quick: bool, size: tuple[int, int] = (320, 240)) -> str:
                           ("growth: 1024 spheres on a plane", 1024, lambda: on_floor(*growth(1024)))):
         measure([(f"{name}, free way", n, make), (f"{name}, plain steps (free_way=False)", n, make)],
                 extra=({}, {"free_way": False}))
+    n_blend = 1000 if quick else 10 ** 4
+    measure([(f"hard union of {n_blend} spheres in a slab (yardstick)", n_blend, lambda: blend_slab(n_blend, 0.0)),
+             (f"smooth union (k 0.1) of the same {n_blend} spheres", n_blend, lambda: blend_slab(n_blend, 0.1))])
+    measure([("molecule: 1001 atoms smooth-blended (k 0.04)", 1001, lambda: molecule(1001)),
+             ("trees: 186 boxes, 62 trees of smooth and hard CSG", 186, lambda: trees(62))])
     n_mixed = 100 if quick else 5000
     measure([("mixed rotated capsules, cones, tori, boxes, spheres", n_mixed, lambda: mixed(n_mixed))])
     depth = 2000 if quick else 10 ** 5

@@ -1,10 +1,11 @@
-"""Smooth unions kept as data: exact per-cell lists of the ordered fold, parity with the
-twin and with the code version, the grid chosen over nested blends."""
+"""Smooth unions kept as data: exact per-cell lists of the ordered fold (the field is
+min(the code version's, cap)), parity with the twin and with the code version, the grid
+chosen over nested blends."""
 import numpy as np
 import pytest
 
 import sdfgl as sg
-from sdfgl.compiler.data.blend_lists import Blend
+from sdfgl.compiler.data.blend_lists import Blend, cap
 from sdfgl.evaluate import evaluate_channel
 from sdfgl.nodes.base import grid_min_as
 from sdfgl.nodes.booleans import BLEND_SUPPORT
@@ -28,6 +29,11 @@ def inside_grid(g, n, seed=1):
     return np.random.default_rng(seed).uniform(g.lo, g.lo + g.dims * g.cell, (n, 3))
 
 
+def capped(s, p):
+    """The grid's field by the twin: min(the full fold, cap) inside the grid box."""
+    return np.minimum(s.distance(p), cap(s.grid))
+
+
 def test_a_smooth_union_of_many_spheres_is_one_grid_loop_not_nested_blends():
     s = blob(1000)
     assert s.grid is not None and s.grid.blend == Blend.of(0.1, "quadratic")
@@ -42,7 +48,8 @@ def test_the_cells_fold_equals_the_full_fold_of_the_twin_bit_for_bit(kind):
     s = blob(300, k=0.15, blend=kind, seed=2)
     g = s.grid
     p = inside_grid(g, 100_000)
-    assert np.array_equal(g.field(p), s.distance(p))  # skipped and dropped steps change nothing
+    assert np.array_equal(g.field(p), capped(s, p))  # skipped and dropped steps change nothing
+    assert (s.distance(p) < cap(g)).mean() > 0.5  # most of the box is below the cap
     cells, _ = g.entries()
     assert len(cells) < 0.25 * len(s.children) * np.prod(g.dims)  # and the lists are short
 
@@ -56,7 +63,7 @@ def test_the_fold_order_is_kept_where_it_matters_most():
     s = sg.union(*[sg.sphere(0.12).translate(tuple(p)) for p in at], k=0.2)
     g = s.grid
     p = inside_grid(g, 50_000, seed=5)
-    assert np.array_equal(g.field(p), s.distance(p))
+    assert np.array_equal(g.field(p), capped(s, p))
     shuffled = sg.union(*[sg.sphere(0.12).translate(tuple(p)) for p in at[rng.permutation(len(at))]], k=0.2)
     assert np.abs(shuffled.distance(p) - s.distance(p)).max() > 1e-4  # the order is worth keeping
 
@@ -89,7 +96,7 @@ def test_a_child_just_beyond_the_blend_reach_is_left_out_and_one_just_inside_kep
         cells, child = u.grid.entries()
         kept[label] = probe_index in set(child[cells == index].tolist())
         p = lo_c + np.random.default_rng(6).uniform(0, g.cell, (5000, 3))
-        assert np.array_equal(u.grid.field(p), u.distance(p))
+        assert np.array_equal(u.grid.field(p), capped(u, p))
     assert kept == {"beyond": False, "inside": True}
 
 
@@ -102,11 +109,15 @@ def test_the_grid_on_the_gpu_matches_the_twin_and_the_code_version(renderer, kin
     with grid_min_as(10 ** 9):  # the same union as code: 48 nested blends
         code = sg.evaluate(s, p, renderer=renderer)
     twin = s.distance(p)
-    assert np.abs(grid - twin).max() < 2e-6
-    assert np.abs(grid - code).max() < 2e-6
-    colour = evaluate_channel(s, p[:20000], renderer=renderer)
+    near = twin < cap(g)  # where the code version is below the cap the grid is the code version
+    assert near.mean() > 0.5
+    assert np.abs(grid - np.minimum(twin, cap(g))).max() < 2e-6
+    assert np.abs(grid[near] - code[near]).max() < 2e-6
+    assert np.all(grid[~near] >= cap(g) - 2e-6)
+    q = p[near][:20000]
+    colour = evaluate_channel(s, q, renderer=renderer)
     with grid_min_as(10 ** 9):
-        colour_code = evaluate_channel(s, p[:20000], renderer=renderer)
+        colour_code = evaluate_channel(s, q, renderer=renderer)
     assert np.abs(colour - colour_code).max() < 1e-4
 
 
@@ -139,8 +150,8 @@ def test_mixed_trees_keep_their_structure(renderer):
     g = smooth_of_hard.grid
     assert g is not None and len(g.types) == 1 and g.types[0].slots is None
     p = inside_grid(g, 30_000, seed=12)
-    assert np.array_equal(g.field(p), smooth_of_hard.distance(p))
-    assert np.abs(sg.evaluate(smooth_of_hard, p, renderer=renderer) - smooth_of_hard.distance(p)).max() < 2e-6
+    assert np.array_equal(g.field(p), capped(smooth_of_hard, p))
+    assert np.abs(sg.evaluate(smooth_of_hard, p, renderer=renderer) - capped(smooth_of_hard, p)).max() < 2e-6
     blobs = [blob(40, seed=i).translate((6.0 * i, 0, 0)) for i in range(3)]
     hard_of_smooth = sg.union(*blobs, sg.sphere(0.5).translate((0, 3, 0)))
     src = sg.compile(hard_of_smooth)
@@ -153,3 +164,18 @@ def test_smooth_unions_that_cannot_be_data_stay_code():
     assert sg.union(*spheres, sg.plane(), k=0.1).grid is None   # a child as code beside would too
     bound = [sg.sphere(0.3).translate((i, 0, 0)) | sg.sphere(0.2).translate((i, 0.3, 0)) for i in range(40)]
     assert sg.union(*[b.union(sg.box(0.1), k=0.05) for b in bound], k=0.1).grid is None  # not exact
+
+
+def test_cells_whose_fold_lies_above_the_cap_list_nothing():
+    # two blobs far apart: the cells between them hold only the cap
+    a = [sg.sphere(0.2).translate((float(x), 0, 0)) for x in np.linspace(0, 1, 20)]
+    b = [sg.sphere(0.2).translate((float(x), 0, 0)) for x in np.linspace(6, 7, 20)]
+    s = sg.union(*a, *b, k=0.1)
+    g = s.grid
+    cells, _ = g.entries()
+    listed = np.zeros(int(np.prod(g.dims)), dtype=bool)
+    listed[cells] = True
+    p = np.stack([np.linspace(2.5, 4.5, 200), np.zeros(200), np.zeros(200)], axis=1)
+    ijk = np.floor((p - g.lo) / g.cell).astype(int)
+    assert not listed[(ijk[:, 2] * g.dims[1] + ijk[:, 1]) * g.dims[0] + ijk[:, 0]].any()
+    assert np.all(g.field(p) == cap(g)) and np.all(s.distance(p) > cap(g))

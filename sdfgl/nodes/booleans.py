@@ -192,8 +192,9 @@ class Union(_Boolean):
     grid (sdfgl.compiler.data.grid): its field is then min(children, cap), a distance bound that
     is exact wherever the min is below the cap (about one grid cell). A smooth union of
     many instances of one type is kept as data too (sdfgl.compiler.data.blend_lists): each
-    cell lists the children the blend may need there, folded in the union's order, so
-    inside the grid's box the field is the code's; the twin stays the full fold."""
+    cell lists the children the blend may need there, folded in the union's order, so its
+    field is min(the code's, cap), the code's wherever it is below the cap (two cells
+    beyond the blend's support); the twin stays the full fold."""
 
     kind = "union"
 

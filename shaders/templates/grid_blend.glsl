@@ -1,6 +1,7 @@
 // A smooth union kept as data (sdfgl/compiler/data/blend_lists.py): each cell of a uniform
 // grid lists, per type and in the union's order, the children the blend may need there,
-// so folding the list from 3e38 gives the union's own fold at every point of the cell.
+// so folding the list from 3e38 gives the union's own fold at every point of the cell;
+// the field is min(fold, GRIDID_CAP), and a cell whose fold lies above the cap lists nothing.
 // Outside the grid box (which reaches beyond every child by more than the blend's
 // support) nothing is listed: the field is the distance to the box plus GRIDID_OUTSIDE.
 // GRIDID is replaced per union; p is relative to the grid's centre. Its tables are in the

@@ -17,7 +17,10 @@ lies in [lo_j, hi_j]:
 A cell's list is the last dropping child and every later one not skipped, in the union's
 order, so folding it from 3e38 (smin(3e38, d) = d) gives the code version's value at
 every point of the cell: the skipped and dropped steps change nothing, and the kept
-ones are the same operations in the same order. A child's interval is its exact extremes
+ones are the same operations in the same order. The field is min(that fold, cap), as a
+hard union's is min(its children, cap) (``cap``: two cells beyond the blend's support):
+equal to the code version's wherever that is below the cap, and a cell where the whole
+fold lies above the cap (empty space) lists nothing. A child's interval is its exact extremes
 over the cell for a sphere, else its value at the cell centre plus and minus the half
 diagonal (the children are 1-Lipschitz) and at least its box gap (their fields are
 exact), widened by a float32 slack. The lists are built coarse to fine: the whole grid is
@@ -42,6 +45,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from .grid import Grid
 
 ENTRIES_CHUNK = 1 << 21  # list entries pruned in one numpy pass
+CAP_CELLS = 2.0        # the cap, in cells beyond the blend's support
 CELL_FACTOR = 0.25     # cell edge / (volume per child)^(1/3) (see the benchmark)
 MAX_DIMS = 128         # cells per axis at most
 
@@ -107,6 +111,7 @@ class Children:
             at = np.array([t + s * (r @ np.asarray(sph.c, dtype=float)) for sph, t, r, s, _ in grid.peeled])
             self.at = [(at[:, axis] - grid.centre[axis]).astype(np.float32) for axis in range(3)]
             self.rad = np.array([s * float(sph.r) for sph, _, _, s, _ in grid.peeled], dtype=np.float32)
+        self.cap = cap(grid)
         ext = float(np.abs(grid.dims * grid.cell).max())
         self.slack = 1e-5 * max(1.0, ext)  # float32 rounding here, of values and of the shader's point
 
@@ -149,6 +154,12 @@ class Children:
             value[rows] = self.grid.children[i]._distance(centre[rows])
         value = value.reshape(shape)
         return np.maximum(value - half, self.gap(mid, size, kid)) - self.slack, value + half + self.slack
+
+
+def cap(grid: "Grid") -> float:
+    """The cap of a blend's grid: inside its box the field is min(the union's fold, cap)."""
+    assert grid.blend is not None
+    return CAP_CELLS * grid.cell + grid.blend.support
 
 
 def entries(grid: "Grid") -> tuple[np.ndarray, np.ndarray]:
@@ -218,13 +229,16 @@ def _prune(kids: Children, level: Level, mids: np.ndarray, child: np.ndarray, fi
     start = width - 1 - np.argmax(drops[:, :, ::-1], axis=2)
     keep = (rank >= start[:, :, None]) & ~(lo >= before_hi + R)
     keep &= valid[:, None, :]
+    # a cell where the whole fold is at least the cap lists nothing: its field is the cap
+    floor = lo.min(axis=2) - np.minimum(blend.support, np.maximum(length - 1, 0) * blend.lowering)[:, None]
+    keep &= (floor < kids.cap)[:, :, None]
     return keep, kid
 
 
 def field(grid: "Grid", p: np.ndarray) -> np.ndarray:
-    """The float64 twin of the shader's fold over each point's cell list (the code
-    version's value inside the grid box), and outside it the distance to the box plus
-    pad - R."""
+    """The float64 twin of the shader's field: inside the grid box min(the fold over the
+    point's cell list, cap), which is min(the code version's value, cap); outside it the
+    distance to the box plus pad - R."""
     blend = grid.blend
     assert blend is not None
     flat = p.reshape(-1, 3)
@@ -248,5 +262,5 @@ def field(grid: "Grid", p: np.ndarray) -> np.ndarray:
         listed[mine] = False
         if m.any():
             acc[m] = blend.fold(acc[m], c._distance(flat[m]))
-    out = np.where(away > 0, away + blend.pad - blend.support, acc)
+    out = np.where(away > 0, away + blend.pad - blend.support, np.minimum(acc, cap(grid)))
     return out.reshape(p.shape[:-1])

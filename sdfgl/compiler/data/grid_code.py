@@ -12,7 +12,7 @@ import numpy as np
 from ... import shaderlib
 from ...nodes.booleans import smooth_glsl
 from ...nodes.primitives import Sphere
-from . import bvh, grid_record, ray_entry
+from . import blend_lists, bvh, grid_record, ray_entry
 from ..emitter import Emitter
 from .grid import Grid, bounds_of
 from .slots import component, slot_expr, slot_values, template
@@ -85,7 +85,7 @@ def _blend_function(grid: Grid, em: "Emitter", fn: str, color: bool, loops: list
                     owner: str) -> list[tuple[str, str]]:
     """The smooth union function ``fn``: outside the grid box the distance to it plus the
     offset that keeps it below the union's fold; inside, the per-type ``loops`` fold p's
-    cell lists from 3e38 (shaders/templates/grid_blend.glsl)."""
+    cell lists from 3e38, and the cap (shaders/templates/grid_blend.glsl)."""
     gid = em.grid_name(grid)
     blend = grid.blend
     assert blend is not None
@@ -96,6 +96,7 @@ def _blend_function(grid: Grid, em: "Emitter", fn: str, color: bool, loops: list
     defs = (f"#define {gid}_LO vec3({', '.join(em.num(x) for x in grid.lo - grid.centre)})\n"
             f"#define {gid}_CELL {em.num(grid.cell)}\n"
             f"#define {gid}_OUTSIDE {em.num(blend.pad - blend.support)}\n"
+            f"#define {gid}_CAP {em.num(blend_lists.cap(grid))}\n"
             f"#define {gid}_DIMS ivec3({', '.join(str(int(x)) for x in grid.dims)})\n"
             f"#define {gid}_PER_CELL {-(-len(grid.types) // 2)}\n"
             f"#define {gid}_CELLS {cells}\n#define {gid}_LIST {lists}")
@@ -109,7 +110,8 @@ def _blend_function(grid: Grid, em: "Emitter", fn: str, color: bool, loops: list
             (f"    if (away > 0.0) return {outside};", owner),
             (f"    {rtype} best = {'vec4(0.0, 0.0, 0.0, 3.0e38)' if color else '3.0e38'};  // smin(3e38, d) = d", owner),
             *fetch, *loops,
-            ("    return best;", owner), ("}", owner)]
+            (f"    return {'vec4(best.rgb, min(best.w, ' + gid + '_CAP))' if color else 'min(best, ' + gid + '_CAP)'};",
+             owner), ("}", owner)]
 
 
 def _blend_step(grid: Grid, em: "Emitter", d: str, rgb: str | None) -> list[str]:
