@@ -179,3 +179,13 @@ def test_cells_whose_fold_lies_above_the_cap_list_nothing():
     ijk = np.floor((p - g.lo) / g.cell).astype(int)
     assert not listed[(ijk[:, 2] * g.dims[1] + ijk[:, 1]) * g.dims[0] + ijk[:, 0]].any()
     assert np.all(g.field(p) == cap(g)) and np.all(s.distance(p) > cap(g))
+
+
+def test_points_on_cell_faces_are_inside_the_grid_box(renderer):
+    # float32 rounding may put a point beside the cell floor() gives it: it is still inside
+    s = blob(300, seed=13)
+    g = s.grid
+    rng = np.random.default_rng(14)
+    ijk = rng.integers(1, g.dims, (50_000, 3))
+    p = g.lo + ijk * g.cell + rng.uniform(0, g.cell, (50_000, 3)) * (rng.random((50_000, 3)) < 0.5)
+    assert np.abs(sg.evaluate(s, p, renderer=renderer) - capped(s, p)).max() < 2e-6

@@ -8,11 +8,11 @@
 // shader's data texture (lib/data_table.glsl): from GRIDID_CELLS, per cell and type pair
 // (first, count, first, count); from GRIDID_LIST, the records.
 
-// The index of p's cell (clamped to the grid) and how far p lies outside the grid box.
+// The index of p's cell (clamped to the grid) and how far p lies outside the grid box
+// (0 inside it: measured to the box, not to the cell, which rounding may put beside p).
 int GRIDIDCell(vec3 p, out float away) {
     vec3 rel = (p - GRIDID_LO) / GRIDID_CELL;
     ivec3 cell = clamp(ivec3(floor(rel)), ivec3(0), GRIDID_DIMS - 1);
-    vec3 cellLo = GRIDID_LO + vec3(cell) * GRIDID_CELL;
-    away = length(max(max(cellLo - p, p - (cellLo + GRIDID_CELL)), 0.0));
+    away = length(max(max(GRIDID_LO - p, p - (GRIDID_LO + vec3(GRIDID_DIMS) * GRIDID_CELL)), 0.0));
     return (cell.z * GRIDID_DIMS.y + cell.y) * GRIDID_DIMS.x + cell.x;
 }

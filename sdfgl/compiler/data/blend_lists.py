@@ -242,11 +242,9 @@ def field(grid: "Grid", p: np.ndarray) -> np.ndarray:
     blend = grid.blend
     assert blend is not None
     flat = p.reshape(-1, 3)
-    cell_ijk = np.floor((flat - grid.lo) / grid.cell)
-    clamped = np.clip(cell_ijk, 0, grid.dims - 1)
-    cell_lo = grid.lo + clamped * grid.cell
-    away = np.sqrt(np.sum(np.maximum(np.maximum(cell_lo - flat, flat - (cell_lo + grid.cell)), 0.0) ** 2, axis=-1))
-    ijk = clamped.astype(np.int64)
+    ijk = np.clip(np.floor((flat - grid.lo) / grid.cell), 0, grid.dims - 1).astype(np.int64)
+    top = grid.lo + grid.dims * grid.cell
+    away = np.sqrt(np.sum(np.maximum(np.maximum(grid.lo - flat, flat - top), 0.0) ** 2, axis=-1))
     cell = (ijk[:, 2] * grid.dims[1] + ijk[:, 1]) * grid.dims[0] + ijk[:, 0]
     cells, child = grid.entries()
     acc = np.full(len(flat), np.inf)
