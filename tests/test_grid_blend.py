@@ -41,6 +41,7 @@ def test_a_smooth_union_of_many_spheres_is_one_grid_loop_not_nested_blends():
     assert "g0Dist(" in src and "g0Cell(vec3 p, out float away" in src  # shaders/templates/grid_blend.glsl
     assert src.count("opSmin(") < 6  # the library function and one fold a loop, not 1000 nested calls
     assert len(src) < 0.2 * len(sg.compile(s, grid=False))
+    assert "g0Cell(vec3 p, out float away" in sg.compile(s, grid="bvh")  # a hierarchy would reorder the fold
 
 
 @pytest.mark.parametrize("kind", KINDS)
@@ -190,3 +191,13 @@ def test_points_on_cell_faces_are_inside_the_grid_box(renderer):
     ijk = rng.integers(1, g.dims, (50_000, 3))
     p = g.lo + ijk * g.cell + rng.uniform(0, g.cell, (50_000, 3)) * (rng.random((50_000, 3)) < 0.5)
     assert np.abs(sg.evaluate(s, p, renderer=renderer) - capped(s, p)).max() < 2e-6
+
+
+def test_the_benchmark_scenes_keep_their_blends_as_data():
+    from sdfgl import bench_big
+    molecule, _ = bench_big.molecule(300)
+    assert molecule.grid is not None and molecule.grid.blend is not None
+    forest, _ = bench_big.trees(62)  # 62 trees of 3 boxes: a hard grid of four kinds of smooth subtree
+    assert forest.grid is not None and forest.grid.blend is None and len(forest.grid.types) == 4
+    slab, _ = bench_big.blend_slab(100)
+    assert slab.grid.blend == Blend.of(0.1, "quadratic") and bench_big.blend_slab(100, 0.0)[0].grid.blend is None
