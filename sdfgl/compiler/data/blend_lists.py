@@ -97,7 +97,6 @@ class Level:
         return (ijk[..., 2] * self.dims[1] + ijk[..., 1]) * self.dims[0] + ijk[..., 0]
 
 
-
 class Children:
     """What the pruning reads of the union's children: boxes, spheres' centres and radii."""
 
@@ -120,8 +119,8 @@ class Children:
         out = 0.0
         for axis in range(3):
             c = mid[..., axis]
-            g = np.maximum(np.maximum(c - 0.5 * size - self.his[:, axis][kid], self.los[:, axis][kid] - (c + 0.5 * size)),
-                           0.0)
+            below, above = c - 0.5 * size - self.his[:, axis][kid], self.los[:, axis][kid] - (c + 0.5 * size)
+            g = np.maximum(np.maximum(below, above), 0.0)
             out = out + g * g
         return np.sqrt(out)
 

@@ -103,12 +103,13 @@ def _blend_function(grid: Grid, em: "Emitter", fn: str, color: bool, loops: list
     em.helper(f"{gid}_grid", defs + "\n" + head)
     rtype = "vec4" if color else "float"
     outside = f"vec4(0.0, 0.0, 0.0, away + {gid}_OUTSIDE)" if color else f"away + {gid}_OUTSIDE"
+    start = "vec4(0.0, 0.0, 0.0, 3.0e38)" if color else "3.0e38"
     fetch = [(f"    vec4 s{j} = dataFetch({gid}_CELLS + cell + {j});", owner) for j in range(-(-len(grid.types) // 2))]
     return [(f"{rtype} {fn}(vec3 p) {{", owner),
             ("    float away;", owner),
             (f"    int cell = {gid}Cell(p, away) * {gid}_PER_CELL;", owner),
             (f"    if (away > 0.0) return {outside};", owner),
-            (f"    {rtype} best = {'vec4(0.0, 0.0, 0.0, 3.0e38)' if color else '3.0e38'};  // smin(3e38, d) = d", owner),
+            (f"    {rtype} best = {start};  // smin(3e38, d) = d", owner),
             *fetch, *loops,
             (f"    return {'vec4(best.rgb, min(best.w, ' + gid + '_CAP))' if color else 'min(best, ' + gid + '_CAP)'};",
              owner), ("}", owner)]
