@@ -3,6 +3,7 @@
 - :mod:`.instances` and :mod:`.grid`: a hard union of many instances, sorted into types and
   listed per cell of a uniform grid; :mod:`.grid_code` writes its GLSL, :mod:`.grid_record`
   packs each instance's move, :mod:`.slots` reads a primitive's numbers from its record;
+  :mod:`.blend_lists` lists a smooth union's children per cell, its ordered fold pruned exactly;
 - :mod:`.bvh`: the same instances in a bounding volume hierarchy (setting ``grid="bvh"``);
 - :mod:`.ray_entry`: balls and boxes that hold a subtree, for the free way along the ray;
 - :mod:`.polygrid`: a polygon of many vertices, its edges listed per cell;
