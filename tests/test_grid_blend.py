@@ -166,6 +166,8 @@ def test_smooth_unions_that_cannot_be_data_stay_code():
     assert sg.union(*spheres, sg.plane(), k=0.1).grid is None   # a child as code beside would too
     bound = [sg.sphere(0.3).translate((i, 0, 0)) | sg.sphere(0.2).translate((i, 0.3, 0)) for i in range(40)]
     assert sg.union(*[b.union(sg.box(0.1), k=0.05) for b in bound], k=0.1).grid is None  # not exact
+    assert sg.union(*spheres, k=3.0).grid is None  # a blend over most of them: every cell would list all
+    assert sg.union(*spheres, k=0.5).grid is not None
 
 
 def test_cells_whose_fold_lies_above_the_cap_list_nothing():

@@ -48,6 +48,7 @@ ENTRIES_CHUNK = 1 << 21  # list entries pruned in one numpy pass
 CAP_CELLS = 2.0        # the cap, in cells beyond the blend's support
 CELL_FACTOR = 0.25     # cell edge / (volume per child)^(1/3) (see the benchmark)
 MAX_DIMS = 128         # cells per axis at most
+WIDEST = 2.0           # a blend's support at most this many spacings of the children (else lists hold most of them)
 
 
 @dataclass(frozen=True)
@@ -75,6 +76,13 @@ class Blend:
     def fold(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
         """One step of the float64 fold, as the union's twin does it."""
         return smooth_min(a, b, self.k, self.kind)
+
+
+def fits(boxes: np.ndarray, blend: Blend) -> bool:
+    """Whether a blend this wide leaves the cells short lists: its support at most WIDEST
+    times the spacing of the children (boxes (n, 2, 3)), (volume per child)^(1/3)."""
+    extent = np.maximum(boxes[:, 1].max(axis=0) - boxes[:, 0].min(axis=0), 1e-9)
+    return blend.support <= WIDEST * float(np.prod(extent) / len(boxes)) ** (1 / 3)
 
 
 @dataclass(frozen=True)

@@ -27,7 +27,7 @@ from ...nodes.transforms import Material, Rotate, Scale, Translate
 from ...nodes.traverse import postorder
 from ...params import Live
 from . import grid_record
-from .blend_lists import Blend
+from .blend_lists import Blend, fits
 from .grid import GRID_MIN, Grid
 from .slots import primitive_slots, slot_values
 
@@ -177,7 +177,8 @@ def build(children: list[Node], min_children: int | None = None, single_cell: bo
 
     ``blend`` (k, kind) is a smooth union's: then every child must be an instance of one
     type whose field is exact (a blend folds in the union's order, so none can stay code
-    beside the grid, and the cells prune by distances: sdfgl.compiler.data.blend_lists).
+    beside the grid, and the cells prune by distances: sdfgl.compiler.data.blend_lists),
+    and the blend no wider than a few spacings of the children.
 
     One pass over the children, no per-node property calls beyond the cached bounds and
     live-parameter lists: each child is peeled into (inner node, translation, rotation,
@@ -251,9 +252,11 @@ def build(children: list[Node], min_children: int | None = None, single_cell: bo
     if len(kept) < least:
         return None
     if blend is not None:
-        if len(kept) < len(children) or len(types) != 1 or any(u[0].exactness != EXACT for u in peeled):
+        wide = Blend.of(*blend)
+        if len(kept) < len(children) or len(types) != 1 or any(u[0].exactness != EXACT for u in peeled) \
+                or not fits(boxes, wide):
             return None
-        return Grid(kept, peeled, list(types.values()), boxes=boxes[rows], blend=Blend.of(*blend))
+        return Grid(kept, peeled, list(types.values()), boxes=boxes[rows], blend=wide)
     return Grid(kept, peeled, list(types.values()), single_cell, boxes[rows])
 
 
