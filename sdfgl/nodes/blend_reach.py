@@ -11,9 +11,13 @@ n - 1 folds lower it. A point where the result is below t therefore has D < t + 
 
 With every child's field at least its box distance / g (see ``level_factor``), the nearest
 child's box is within g D of p and those N children's boxes within g (2 D + window) of the
-nearest one's. Growing each child's box by g F, where F is the least fixed point of
-F = t + min(1 + N(g (2 F + window)), n - 1) lower, covers every such point: a metaball blend
-of many close spheres grows by many k/4, a blend of scattered parts by little more than one.
+nearest one's. And a fold never goes below D - window: every smooth minimum here is
+non-decreasing in both arguments and equals min(a, b) once |a - b| >= window, so
+smin(r, c) >= smin(D - window, D) = D - window whenever r >= D - window and c >= D. Growing
+each child's box by g F, where F is the least fixed point of
+F = t + min(min(1 + N(g (2 F + window)), n - 1) lower, window), covers every such point: a
+metaball blend of many close spheres grows by up to the window, a blend of scattered parts by
+little more than one fold's reach.
 """
 from __future__ import annotations
 
@@ -41,13 +45,14 @@ def blend_growth(lo: np.ndarray, hi: np.ndarray, t: float, lower: float, window:
     every point where the smooth fold of the children is below ``t`` (see the module's text)."""
     n = len(lo)
     folds = max(n - 1, 1)
+    most = t + min(folds * lower, window)
     if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi))):
-        return np.full(n, g * (t + folds * lower))
-    f = np.full(n, t + min(2, folds) * lower)
+        return np.full(n, g * most)
+    f = np.full(n, t + min(min(2, folds) * lower, window))
     for _ in range(64):
         count = _neighbour_counts(lo, hi, g * (2.0 * f + window))
-        nxt = np.maximum(f, t + np.minimum(1 + count, folds) * lower)
+        nxt = np.maximum(f, t + np.minimum(np.minimum(1 + count, folds) * lower, window))
         if np.array_equal(nxt, f):
             return g * f
         f = nxt
-    return np.full(n, g * (t + folds * lower))
+    return np.full(n, g * most)
