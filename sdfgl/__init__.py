@@ -8,13 +8,14 @@ import numpy as _np
 
 from .camera import Camera, OrbitCamera
 from .compiler.generate import compile
-from .errors import (ContextError, ParameterError, SceneDocumentError, SceneFileError, SdfglError,
+from .errors import (ContextError, MeshError, ParameterError, SceneDocumentError, SceneFileError, SdfglError,
                      ShaderCompileError)
 from .look import directional_light, point_light
 from .evaluate import evaluate
 from .gl.cache import CacheBudget, cache_budget
 from . import mesh  # the package is callable: sg.mesh(scene, step=0.01)
 from .mesh import Mesh
+from .meshin import from_mesh, load_mesh
 from .nodes import (BOUND, EXACT, IMPLICIT, Node, bend, box, box_frame, capsule, circle, displace, elongate, extrude,
                     displace_expr, implicit, noise, parametric,
                     mirror, polygon, rectangle, repeat_polar, revolve, rounded, shell, sierpinski, symmetric, tree, cone, cylinder, difference, ellipsoid,
@@ -209,9 +210,10 @@ __all__ = [
     "octahedron", "hex_prism", "box_frame", "product", "twist", "bend", "repeat", "evaluate", "union",
     "circle", "rectangle", "polygon", "extrude", "revolve", "mirror", "symmetric", "repeat_polar", "elongate",
     "rounded", "shell", "sierpinski", "tree", "displace", "noise", "implicit", "parametric", "displace_expr", "intersection", "difference", "X", "Y", "Z",
-    "EXACT", "BOUND", "IMPLICIT", "SdfglError", "ParameterError", "ShaderCompileError", "ContextError",
+    "EXACT", "BOUND", "IMPLICIT", "SdfglError", "ParameterError", "MeshError", "ShaderCompileError", "ContextError",
     "render_pbr", "to_mitsuba",
     "SceneFileError", "SceneDocumentError", "save_scene", "load_scene", "from_dict",
+    "load_mesh", "from_mesh",
     "Shape2D", "arc", "capsule2", "ellipse", "regular_polygon", "star", "triangle", "slice", "text",
     "bezier_tube", "capped_torus", "dodecahedron", "gyroid", "icosahedron", "pyramid", "slab", "tetrahedron", "tube",
     "morph", "taper", "glsl",

@@ -9,6 +9,10 @@ class ParameterError(SdfglError, ValueError):
     """A node or a setting was given a value it cannot use."""
 
 
+class MeshError(ParameterError):
+    """A triangle mesh cannot be a field (unreadable, empty, not closed, ...); the message names the file."""
+
+
 class ShaderCompileError(SdfglError):
     """The GL driver rejected a generated shader; the message names the node behind the failing line."""
 

@@ -24,6 +24,7 @@ EXTRAS: dict[str, tuple[str, ...]] = {
     "live": ("mido", "rtmidi", "pythonosc"),
     "fast": ("isal",),
     "text": ("fontTools",),
+    "meshin": ("igl", "trimesh"),
 }
 """Each extra of pyproject.toml and the modules (import names) it installs (``all`` is every
 feature extra together, so it has no entry of its own)."""

@@ -16,8 +16,9 @@ _LAYOUTS: dict[str, Callable[..., Any]] = {}
 
 def register_layout(name: str, build: Callable[..., Any]) -> None:
     """Make ``build`` the layout called ``name``: "union" (children, fewest instances or None,
-    and ``blend=(k, kind)`` for a smooth union -> a grid or None) or "polygon" (vertices
-    (n, 2) -> an edge grid or None)."""
+    and ``blend=(k, kind)`` for a smooth union -> a grid or None), "polygon" (vertices
+    (n, 2) -> an edge grid or None) or "mesh" (vertices (v, 3), faces (n, 3) -> a triangle
+    hierarchy)."""
     _LAYOUTS[name] = build
 
 

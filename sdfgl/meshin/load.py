@@ -1,0 +1,88 @@
+"""Reading a mesh file (through trimesh) into a :class:`~sdfgl.nodes.mesh_field.MeshField`."""
+from __future__ import annotations
+
+import os
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ..errors import MeshError
+from ..extras import require_extra
+from ..nodes.mesh_field import MAX_TRIANGLES, MeshField
+from ..values import validate as v
+from ..values.units import MILLIMETRES, unit_name
+
+FORMATS = (".stl", ".obj", ".ply", ".glb", ".gltf", ".3mf", ".off")
+"""File suffixes :func:`load_mesh` reads (trimesh's loaders)."""
+
+
+def _factor(scale: float, units: str | None, scene_units: str, where: str) -> float:
+    s = float(v.scalar(where, "scale", scale, positive=True))
+    if units is None:
+        return s
+    return s * MILLIMETRES[unit_name(units, f"{where}: units")] / MILLIMETRES[unit_name(scene_units, f"{where}: scene_units")]
+
+
+def load_mesh(path: str | os.PathLike, scale: float = 1.0, units: str | None = None,
+              scene_units: str = "mm") -> MeshField:
+    """The exact signed distance to the closed mesh in the file at ``path``.
+
+    Args:
+        path: an STL, OBJ, PLY, GLB/glTF, 3MF or OFF file (all its meshes together).
+        scale: a factor applied to the vertices (after the unit conversion).
+        units: the file's length unit ("mm", "cm", "inch", "m", ...); None: its numbers are
+            taken as scene units.
+        scene_units: what one scene unit is, when ``units`` is given (default "mm", the
+            unit :meth:`Node.save` writes 3MF in).
+
+    Duplicate vertices are merged, faces wound inward are turned and small holes (a
+    missing triangle or quad) are filled. A mesh that stays open, is not a manifold, has
+    non-finite vertices, no triangles or more than
+    :data:`~sdfgl.nodes.mesh_field.MAX_TRIANGLES` raises :class:`~sdfgl.errors.MeshError`
+    naming the file.
+    """
+    require_extra("meshin", "trimesh", purpose="sg.load_mesh")
+    import trimesh
+    name = os.fspath(path)
+    file = Path(name)
+    if not file.is_file():
+        raise MeshError(f"mesh file '{name}': no such file")
+    if file.suffix.lower() not in FORMATS:
+        raise MeshError(f"mesh file '{name}': unknown format {file.suffix!r}; use one of {', '.join(FORMATS)}")
+    if file.stat().st_size == 0:
+        raise MeshError(f"mesh file '{name}': is empty")
+    try:
+        loaded = trimesh.load(name, force="mesh", process=False)
+    except Exception as exc:  # trimesh's loaders raise many kinds of error for a bad file
+        raise MeshError(f"mesh file '{name}': cannot be read ({type(exc).__name__}: {exc})") from None
+    if not isinstance(loaded, trimesh.Trimesh) or len(loaded.faces) == 0:
+        raise MeshError(f"mesh file '{name}': holds no triangles")
+    return from_mesh(loaded, scale=scale, units=units, scene_units=scene_units, name=name)
+
+
+def from_mesh(mesh: Any, scale: float = 1.0, units: str | None = None, scene_units: str = "mm",
+              name: str = "mesh") -> MeshField:
+    """The exact signed distance to a closed ``trimesh.Trimesh`` (repaired as in :func:`load_mesh`;
+    ``mesh`` itself is not changed); ``name`` is what errors call it."""
+    require_extra("meshin", "trimesh", purpose="sg.from_mesh")
+    import trimesh
+    if not isinstance(mesh, trimesh.Trimesh):
+        raise MeshError(f"mesh '{name}': from_mesh needs a trimesh.Trimesh, got {type(mesh).__name__}")
+    factor = _factor(scale, units, scene_units, f"mesh '{name}'")
+    verts = np.asarray(mesh.vertices, dtype=np.float64)
+    faces = np.asarray(mesh.faces)
+    if len(faces) == 0:
+        raise MeshError(f"mesh '{name}': has no triangles")
+    if len(faces) > MAX_TRIANGLES:
+        raise MeshError(f"mesh '{name}': has {len(faces)} triangles, over the limit of {MAX_TRIANGLES}; "
+                        f"simplify it first (e.g. trimesh's simplify_quadric_decimation)")
+    bad = ~np.isfinite(verts).all(axis=1)
+    if bad.any():
+        raise MeshError(f"mesh '{name}': {int(bad.sum())} vertices are not finite (NaN or inf), e.g. vertex "
+                        f"{int(np.flatnonzero(bad)[0])}")
+    tm = trimesh.Trimesh(verts * factor, faces, process=True, validate=False)
+    if not tm.is_watertight:
+        tm.fill_holes()
+    trimesh.repair.fix_winding(tm)
+    return MeshField(tm.vertices, tm.faces, name=name)

@@ -1,0 +1,112 @@
+// Exact signed distance to a closed triangle mesh kept as data (sdfgl/compiler/data/triangles.py).
+// Node i is 4 texels from `nodes` + 4 i: (lo_a, child_a), (hi_a, child_b), (lo_b, 0), (hi_b, 0);
+// a child k >= 0 is node k, k < 0 the leaf of the (-k & 7) triangles from (-k >> 3). Triangle t
+// is 9 texels from `tris` + 9 t: a, b, c (face normal in .w), the pseudonormals of edges ab,
+// bc, ca and of vertices a, b, c. The walk visits the nearer child first and skips boxes
+// farther than the closest triangle so far; the closest point is Ericson's (Real-Time
+// Collision Detection, 5.1.5) with the feature it lies on, whose angle-weighted pseudonormal
+// gives the sign (Baerentzen and Aanaes 2005).
+// requires: data_table
+
+float meshBoxDist2(vec3 p, vec3 lo, vec3 hi) {
+    vec3 d = max(max(lo - p, p - hi), 0.0);
+    return dot(d, d);
+}
+
+// The point of triangle abc closest to p; `feature`: 0 the face, 1..3 vertex a, b, c,
+// 4..6 edge ab, bc, ca.
+vec3 meshClosest(vec3 p, vec3 a, vec3 b, vec3 c, out int feature) {
+    vec3 ab = b - a;
+    vec3 ac = c - a;
+    vec3 ap = p - a;
+    float d1 = dot(ab, ap);
+    float d2 = dot(ac, ap);
+    if (d1 <= 0.0 && d2 <= 0.0) { feature = 1; return a; }
+    vec3 bp = p - b;
+    float d3 = dot(ab, bp);
+    float d4 = dot(ac, bp);
+    if (d3 >= 0.0 && d4 <= d3) { feature = 2; return b; }
+    float vc = d1 * d4 - d3 * d2;
+    if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) { feature = 4; return a + ab * (d1 / (d1 - d3)); }
+    vec3 cp = p - c;
+    float d5 = dot(ab, cp);
+    float d6 = dot(ac, cp);
+    if (d6 >= 0.0 && d5 <= d6) { feature = 3; return c; }
+    float vb = d5 * d2 - d1 * d6;
+    if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) { feature = 6; return a + ac * (d2 / (d2 - d6)); }
+    float va = d3 * d6 - d5 * d4;
+    if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) {
+        feature = 5;
+        return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+    }
+    feature = 0;
+    float denom = 1.0 / (va + vb + vc);
+    return a + ab * (vb * denom) + ac * (vc * denom);
+}
+
+float sdMeshBVH(vec3 p, int nodes, int tris) {
+    float best = 3.0e38;
+    int bestTri = 0;
+    int bestFeature = 0;
+    vec3 bestPoint = p;
+    int stackNode[32];
+    float stackDist[32];
+    int sp = 1;
+    stackNode[0] = 0;
+    stackDist[0] = 0.0;
+    while (sp > 0) {
+        sp--;
+        if (stackDist[sp] >= best) continue;
+        int at = nodes + 4 * stackNode[sp];
+        vec4 loA = dataFetch(at);
+        vec4 hiA = dataFetch(at + 1);
+        vec4 loB = dataFetch(at + 2);
+        vec4 hiB = dataFetch(at + 3);
+        float da = meshBoxDist2(p, loA.xyz, hiA.xyz);
+        float db = meshBoxDist2(p, loB.xyz, hiB.xyz);
+        int ka = int(loA.w);
+        int kb = int(hiA.w);
+        if (db < da) {  // the nearer child first: it is pushed last
+            float t = da; da = db; db = t;
+            int k = ka; ka = kb; kb = k;
+        }
+        for (int j = 0; j < 2; j++) {
+            float dc = j == 0 ? db : da;  // the farther child first
+            int k = j == 0 ? kb : ka;
+            if (dc >= best) continue;
+            if (k >= 0) {
+                stackNode[sp] = k;
+                stackDist[sp] = dc;
+                sp++;
+                continue;
+            }
+            int first = (-k) >> 3;
+            int count = (-k) & 7;
+            for (int i = 0; i < count; i++) {
+                int t = tris + 9 * (first + i);
+                vec3 a = dataFetch(t).xyz;
+                vec3 b = dataFetch(t + 1).xyz;
+                vec3 c = dataFetch(t + 2).xyz;
+                int feature;
+                vec3 q = meshClosest(p, a, b, c, feature);
+                vec3 w = p - q;
+                float d2 = dot(w, w);
+                if (d2 < best) {
+                    best = d2;
+                    bestTri = t;
+                    bestFeature = feature;
+                    bestPoint = q;
+                }
+            }
+        }
+    }
+    vec3 n;
+    if (bestFeature == 0) {
+        n = vec3(dataFetch(bestTri).w, dataFetch(bestTri + 1).w, dataFetch(bestTri + 2).w);
+    } else if (bestFeature <= 3) {
+        n = dataFetch(bestTri + 5 + bestFeature).xyz;
+    } else {
+        n = dataFetch(bestTri + bestFeature - 1).xyz;
+    }
+    return dot(p - bestPoint, n) < 0.0 ? -sqrt(best) : sqrt(best);
+}
