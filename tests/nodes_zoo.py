@@ -1,5 +1,6 @@
 """Every node type in a few configurations, and random compositions, for parity tests."""
 import numpy as np
+import trimesh
 
 import sdfgl as sg
 
@@ -93,6 +94,7 @@ def all_nodes() -> dict[str, sg.Node]:
                               lipschitz=2.0, bounds=((-0.5, -0.5, -0.5), (0.5, 0.5, 0.5))),
         "product": sg.product(sg.sphere(0.6), sg.box(0.8).translate((0.5, 0, 0))),
         "implicit": sg.implicit("x**2 + y**2/0.5 + z**2 - 1", bounds=((-1.2, -1, -1.2), (1.2, 1, 1.2))),
+        "mesh": sg.from_mesh(trimesh.creation.torus(0.6, 0.2, major_sections=48, minor_sections=24), name="torus"),
     })
     return nodes
 

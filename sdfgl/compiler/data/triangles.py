@@ -89,17 +89,12 @@ def _build(tlo: np.ndarray, thi: np.ndarray) -> tuple[np.ndarray, np.ndarray, in
     while stack:
         node, s, e, d = stack.pop()
         depth = max(depth, d)
-        if e - s >= 2:
-            idx = order[s:e]
-            axis = int(np.argmax(np.ptp(cen[idx], axis=0)))
-            mid = (s + e) // 2
-            part = np.argpartition(cen[idx, axis], mid - s)
-            order[s:e] = idx[part]
-            ranges = [(s, mid), (mid, e)]
-        else:  # a mesh of one triangle: the root's two children are that leaf
-            ranges = [(s, e), (s, e)]
+        idx = order[s:e]  # two or more triangles (a closed mesh has four or more)
+        axis = int(np.argmax(np.ptp(cen[idx], axis=0)))
+        mid = (s + e) // 2
+        order[s:e] = idx[np.argpartition(cen[idx, axis], mid - s)]
         rec = nodes[node]
-        for j, (a, b) in enumerate(ranges):
+        for j, (a, b) in enumerate([(s, mid), (mid, e)]):
             lo, hi = _box(tlo, thi, order[a:b])
             rec[2 * j, :3], rec[2 * j + 1, :3] = lo, hi
             if b - a <= LEAF_SIZE:
