@@ -44,9 +44,36 @@ vec3 meshClosest(vec3 p, vec3 a, vec3 b, vec3 c, out int feature) {
     return a + ab * (vb * denom) + ac * (vc * denom);
 }
 
+// Keep triangle record t if it is closer than the closest so far: its squared distance,
+// record, feature and point.
+void meshTriangle(vec3 p, int t, inout float best, inout int bestTri, inout int bestFeature, inout vec3 bestPoint) {
+    int feature;
+    vec3 q = meshClosest(p, dataFetch(t).xyz, dataFetch(t + 1).xyz, dataFetch(t + 2).xyz, feature);
+    vec3 w = p - q;
+    float d2 = dot(w, w);
+    if (d2 < best) {
+        best = d2;
+        bestTri = t;
+        bestFeature = feature;
+        bestPoint = q;
+    }
+}
+
+// The triangles of leaf `code` (< 0), without a loop: llvmpipe ends every loop of a shader
+// invocation once their rounds together pass 65535, and a ray calls map() hundreds of times.
+void meshLeaf(vec3 p, int tris, int code, inout float best, inout int bestTri, inout int bestFeature,
+              inout vec3 bestPoint) {
+    int t = tris + 9 * ((-code) >> 3);
+    int count = (-code) & 7;
+    meshTriangle(p, t, best, bestTri, bestFeature, bestPoint);
+    if (count > 1) meshTriangle(p, t + 9, best, bestTri, bestFeature, bestPoint);
+    if (count > 2) meshTriangle(p, t + 18, best, bestTri, bestFeature, bestPoint);
+    if (count > 3) meshTriangle(p, t + 27, best, bestTri, bestFeature, bestPoint);
+}
+
 float sdMeshBVH(vec3 p, int nodes, int tris) {
     float best = 3.0e38;
-    int bestTri = 0;
+    int bestTri = tris;
     int bestFeature = 0;
     vec3 bestPoint = p;
     int stackNode[32];
@@ -56,46 +83,37 @@ float sdMeshBVH(vec3 p, int nodes, int tris) {
     stackDist[0] = 0.0;
     while (sp > 0) {
         sp--;
-        if (stackDist[sp] >= best) continue;
-        int at = nodes + 4 * stackNode[sp];
-        vec4 loA = dataFetch(at);
-        vec4 hiA = dataFetch(at + 1);
-        vec4 loB = dataFetch(at + 2);
-        vec4 hiB = dataFetch(at + 3);
-        float da = meshBoxDist2(p, loA.xyz, hiA.xyz);
-        float db = meshBoxDist2(p, loB.xyz, hiB.xyz);
-        int ka = int(loA.w);
-        int kb = int(hiA.w);
-        if (db < da) {  // the nearer child first: it is pushed last
-            float t = da; da = db; db = t;
-            int k = ka; ka = kb; kb = k;
-        }
-        for (int j = 0; j < 2; j++) {
-            float dc = j == 0 ? db : da;  // the farther child first
-            int k = j == 0 ? kb : ka;
-            if (dc >= best) continue;
-            if (k >= 0) {
-                stackNode[sp] = k;
-                stackDist[sp] = dc;
-                sp++;
-                continue;
+        if (stackDist[sp] < best) {
+            int at = nodes + 4 * stackNode[sp];
+            vec4 loA = dataFetch(at);
+            vec4 hiA = dataFetch(at + 1);
+            vec4 loB = dataFetch(at + 2);
+            vec4 hiB = dataFetch(at + 3);
+            float dNear = meshBoxDist2(p, loA.xyz, hiA.xyz);
+            float dFar = meshBoxDist2(p, loB.xyz, hiB.xyz);
+            int kNear = int(loA.w);
+            int kFar = int(hiA.w);
+            if (dFar < dNear) {
+                float d = dNear; dNear = dFar; dFar = d;
+                int k = kNear; kNear = kFar; kFar = k;
             }
-            int first = (-k) >> 3;
-            int count = (-k) & 7;
-            for (int i = 0; i < count; i++) {
-                int t = tris + 9 * (first + i);
-                vec3 a = dataFetch(t).xyz;
-                vec3 b = dataFetch(t + 1).xyz;
-                vec3 c = dataFetch(t + 2).xyz;
-                int feature;
-                vec3 q = meshClosest(p, a, b, c, feature);
-                vec3 w = p - q;
-                float d2 = dot(w, w);
-                if (d2 < best) {
-                    best = d2;
-                    bestTri = t;
-                    bestFeature = feature;
-                    bestPoint = q;
+            // the farther child first: a node it pushes is popped after the nearer one's
+            if (dFar < best) {
+                if (kFar >= 0) {
+                    stackNode[sp] = kFar;
+                    stackDist[sp] = dFar;
+                    sp++;
+                } else {
+                    meshLeaf(p, tris, kFar, best, bestTri, bestFeature, bestPoint);
+                }
+            }
+            if (dNear < best) {
+                if (kNear >= 0) {
+                    stackNode[sp] = kNear;
+                    stackDist[sp] = dNear;
+                    sp++;
+                } else {
+                    meshLeaf(p, tris, kNear, best, bestTri, bestFeature, bestPoint);
                 }
             }
         }

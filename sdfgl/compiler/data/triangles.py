@@ -26,6 +26,11 @@ def _unit(v: np.ndarray) -> np.ndarray:
     return np.divide(v, n, out=np.zeros_like(v), where=n > 0)
 
 
+def _sum_by(index: np.ndarray, values: np.ndarray, size: int) -> np.ndarray:
+    """(size, 3): the sum of the rows of ``values`` with each index."""
+    return np.stack([np.bincount(index, values[:, k], minlength=size) for k in range(3)], axis=1)
+
+
 def pseudonormals(vertices: np.ndarray, faces: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(face (n, 3), edge (n, 3, 3) for ab, bc, ca, vertex (n, 3, 3) for a, b, c) unit
     pseudonormals of a closed mesh, per face."""
@@ -37,16 +42,14 @@ def pseudonormals(vertices: np.ndarray, faces: np.ndarray) -> tuple[np.ndarray, 
         e1 = _unit(tri[:, (k + 1) % 3] - tri[:, k])
         e2 = _unit(tri[:, (k + 2) % 3] - tri[:, k])
         angle[:, k] = np.arccos(np.clip((e1 * e2).sum(-1), -1.0, 1.0))
-    acc = np.zeros((len(vertices), 3))
-    for k in range(3):
-        np.add.at(acc, faces[:, k], angle[:, k, None] * face)
+    weighted = angle[:, :, None] * face[:, None, :]  # (n, corner, xyz)
+    acc = _sum_by(faces.reshape(-1), weighted.reshape(-1, 3), len(vertices))
     vertex = _unit(acc)[faces]
     # edge: the sum of its two faces' normals
-    pairs = np.sort(faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2), axis=1)
-    _, inverse = np.unique(pairs, axis=0, return_inverse=True)
-    inverse = inverse.reshape(-1)
-    eacc = np.zeros((inverse.max() + 1, 3))
-    np.add.at(eacc, inverse, np.repeat(face, 3, axis=0))
+    a, b = faces[:, [0, 1, 2]].reshape(-1), faces[:, [1, 2, 0]].reshape(-1)
+    key = np.minimum(a, b).astype(np.int64) * len(vertices) + np.maximum(a, b)
+    _, inverse = np.unique(key, return_inverse=True)
+    eacc = _sum_by(inverse, np.repeat(face, 3, axis=0), int(inverse.max()) + 1)
     edge = _unit(eacc)[inverse].reshape(-1, 3, 3)
     return face, edge, vertex
 
@@ -74,37 +77,47 @@ class TriangleBVH:
         self.count = len(sel)
 
 
-def _box(tlo: np.ndarray, thi: np.ndarray, idx: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    return tlo[idx].min(axis=0), thi[idx].max(axis=0)
+def _ranges(start: np.ndarray, end: np.ndarray) -> np.ndarray:
+    """The positions start[i] .. end[i] - 1 of every range, concatenated."""
+    size = end - start
+    return np.repeat(start - np.concatenate([[0], np.cumsum(size)[:-1]]), size) + np.arange(size.sum())
 
 
 def _build(tlo: np.ndarray, thi: np.ndarray) -> tuple[np.ndarray, np.ndarray, int]:
-    """(triangle order, node texels (m * 4, 4), depth) of the hierarchy over boxes (lo, hi)."""
-    n = len(tlo)
+    """(triangle order, node texels (m * 4, 4), depth) of the hierarchy over boxes (lo, hi),
+    built a level at a time: every node of a level is split at once (numpy, no per-node loop)."""
     cen = 0.5 * (tlo + thi)
-    order = np.arange(n)
-    nodes: list[np.ndarray] = [np.zeros((4, 4))]
-    stack = [(0, 0, n, 1)]  # (node, start, end, depth)
-    depth = 1
-    while stack:
-        node, s, e, d = stack.pop()
-        depth = max(depth, d)
-        idx = order[s:e]  # two or more triangles (a closed mesh has four or more)
-        axis = int(np.argmax(np.ptp(cen[idx], axis=0)))
-        mid = (s + e) // 2
-        order[s:e] = idx[np.argpartition(cen[idx, axis], mid - s)]
-        rec = nodes[node]
-        for j, (a, b) in enumerate([(s, mid), (mid, e)]):
-            lo, hi = _box(tlo, thi, order[a:b])
-            rec[2 * j, :3], rec[2 * j + 1, :3] = lo, hi
-            if b - a <= LEAF_SIZE:
-                code = -(a * 8 + (b - a))
-            else:
-                code = len(nodes)
-                nodes.append(np.zeros((4, 4)))
-                stack.append((code, a, b, d + 1))
-            rec[j, 3] = code
-    return order, np.concatenate(nodes), depth
+    order = np.arange(len(tlo))
+    nodes: list[np.ndarray] = []  # per level, the records of its nodes (ids run on from level to level)
+    ids, start, end = np.array([0]), np.array([0]), np.array([len(tlo)])  # two or more triangles each
+    count, depth = 1, 0
+    while len(ids):
+        depth += 1
+        pos = _ranges(start, end)
+        offsets = np.concatenate([[0], np.cumsum(end - start)[:-1]])
+        c = cen[order[pos]]
+        axis = np.argmax(np.maximum.reduceat(c, offsets) - np.minimum.reduceat(c, offsets), axis=1)
+        seg = np.repeat(np.arange(len(ids)), end - start)
+        perm = np.lexsort((c[np.arange(len(pos)), axis[seg]], seg))  # each range sorted on its longest axis
+        order[pos] = order[pos[perm]]
+        mid = (start + end) // 2
+        lo_a, hi_a = np.stack([start, mid], 1), np.stack([mid, end], 1)  # (node, child) ranges
+        sub = np.stack([offsets, offsets + mid - start], 1).ravel()  # where each child starts in pos
+        blo = np.minimum.reduceat(tlo[order[pos]], sub)
+        bhi = np.maximum.reduceat(thi[order[pos]], sub)
+        size = (hi_a - lo_a).ravel()
+        inner = size > LEAF_SIZE
+        code = -(lo_a.ravel() * 8 + size)
+        code[inner] = count + np.arange(int(inner.sum()))
+        rec = np.zeros((len(ids), 4, 4))
+        rec[:, 0, :3], rec[:, 1, :3] = blo[0::2], bhi[0::2]
+        rec[:, 2, :3], rec[:, 3, :3] = blo[1::2], bhi[1::2]
+        rec[:, 0, 3], rec[:, 1, 3] = code[0::2], code[1::2]
+        nodes.append(rec)
+        ids = code[inner]
+        start, end = lo_a.ravel()[inner], hi_a.ravel()[inner]
+        count += len(ids)
+    return order, np.concatenate(nodes).reshape(-1, 4), depth
 
 
 def build(vertices: np.ndarray, faces: np.ndarray) -> TriangleBVH:
