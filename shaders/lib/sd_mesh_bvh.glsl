@@ -1,8 +1,8 @@
 // Exact signed distance to a closed triangle mesh kept as data (sdfgl/compiler/data/triangles.py).
 // Node i is 4 texels from `nodes` + 4 i: (lo_a, child_a), (hi_a, child_b), (lo_b, 0), (hi_b, 0);
-// a child k >= 0 is node k, k < 0 the leaf of the (-k & 7) triangles from (-k >> 3). Triangle t
-// is 9 texels from `tris` + 9 t: a, b, c (face normal in .w), the pseudonormals of edges ab,
-// bc, ca and of vertices a, b, c. The walk visits the nearer child first and skips boxes
+// a child k >= 0 is node k, k < 0 the leaf of the (-k & 7) triangles from (-k >> 3); both go on
+// the walk's stack. Triangle t is 9 texels from `tris` + 9 t: a, b, c (face normal in .w), the
+// pseudonormals of edges ab, bc, ca and of vertices a, b, c. The walk visits the nearer child first and skips boxes
 // farther than the closest triangle so far; the closest point is Ericson's (Real-Time
 // Collision Detection, 5.1.5) with the feature it lies on, whose angle-weighted pseudonormal
 // gives the sign (Baerentzen and Aanaes 2005).
@@ -60,7 +60,8 @@ void meshTriangle(vec3 p, int t, inout float best, inout int bestTri, inout int 
 }
 
 // The triangles of leaf `code` (< 0), without a loop: llvmpipe ends every loop of a shader
-// invocation once their rounds together pass 65535, and a ray calls map() hundreds of times.
+// invocation once their rounds together pass 65535, and a ray calls map() hundreds of times
+// (leaves are popped from the walk's stack like nodes, so this is written out once).
 void meshLeaf(vec3 p, int tris, int code, inout float best, inout int bestTri, inout int bestFeature,
               inout vec3 bestPoint) {
     int t = tris + 9 * ((-code) >> 3);
@@ -81,10 +82,13 @@ float sdMeshBVH(vec3 p, int nodes, int tris) {
     int sp = 1;
     stackNode[0] = 0;
     stackDist[0] = 0.0;
-    while (sp > 0) {
+    while (sp > 0) {  // an entry: a node (code >= 0) or a leaf (code < 0), with its box's distance
         sp--;
-        if (stackDist[sp] < best) {
-            int at = nodes + 4 * stackNode[sp];
+        int code = stackNode[sp];
+        if (stackDist[sp] < best && code < 0) {
+            meshLeaf(p, tris, code, best, bestTri, bestFeature, bestPoint);
+        } else if (stackDist[sp] < best) {
+            int at = nodes + 4 * code;
             vec4 loA = dataFetch(at);
             vec4 hiA = dataFetch(at + 1);
             vec4 loB = dataFetch(at + 2);
@@ -97,24 +101,15 @@ float sdMeshBVH(vec3 p, int nodes, int tris) {
                 float d = dNear; dNear = dFar; dFar = d;
                 int k = kNear; kNear = kFar; kFar = k;
             }
-            // the farther child first: a node it pushes is popped after the nearer one's
-            if (dFar < best) {
-                if (kFar >= 0) {
-                    stackNode[sp] = kFar;
-                    stackDist[sp] = dFar;
-                    sp++;
-                } else {
-                    meshLeaf(p, tris, kFar, best, bestTri, bestFeature, bestPoint);
-                }
+            if (dFar < best) {  // the farther child first: the nearer one is popped next
+                stackNode[sp] = kFar;
+                stackDist[sp] = dFar;
+                sp++;
             }
             if (dNear < best) {
-                if (kNear >= 0) {
-                    stackNode[sp] = kNear;
-                    stackDist[sp] = dNear;
-                    sp++;
-                } else {
-                    meshLeaf(p, tris, kNear, best, bestTri, bestFeature, bestPoint);
-                }
+                stackNode[sp] = kNear;
+                stackDist[sp] = dNear;
+                sp++;
             }
         }
     }
