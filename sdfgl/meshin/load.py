@@ -18,10 +18,12 @@ FORMATS = (".stl", ".obj", ".ply", ".glb", ".gltf", ".3mf", ".off")
 
 
 def _factor(scale: float, units: str | None, scene_units: str, where: str) -> float:
+    """The factor from the file's numbers to scene units."""
     s = float(v.scalar(where, "scale", scale, positive=True))
     if units is None:
         return s
-    return s * MILLIMETRES[unit_name(units, f"{where}: units")] / MILLIMETRES[unit_name(scene_units, f"{where}: scene_units")]
+    file_unit = MILLIMETRES[unit_name(units, f"{where}: units")]
+    return s * file_unit / MILLIMETRES[unit_name(scene_units, f"{where}: scene_units")]
 
 
 def load_mesh(path: str | os.PathLike, scale: float = 1.0, units: str | None = None,

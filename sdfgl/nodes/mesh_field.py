@@ -90,7 +90,8 @@ class MeshField(Node):
 
     kind = "mesh"
     serializable = False
-    unsaved_reason = "a scene document does not carry triangle arrays; pickle the scene or load the mesh in a Python scene file"
+    unsaved_reason = ("a scene document does not carry triangle arrays; pickle the scene or load the mesh "
+                      "in a Python scene file")
 
     def __init__(self, vertices: Any, faces: Any, name: str = "mesh") -> None:
         verts, tris = checked_mesh(vertices, faces, name)
