@@ -157,6 +157,7 @@ def test_mesh_under_booleans_offsets_and_blends(renderer):
         assert np.abs(gpu - s.distance(pts)).max() < 1e-5, s.label()
 
 
+@pytest.mark.slow
 def test_drilled_mesh_exports_watertight_with_the_twins_volume(tmp_path):
     part = sg.from_mesh(trimesh.creation.icosphere(4))
     drilled = part - sg.cylinder(0.3, 3)
