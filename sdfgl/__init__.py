@@ -39,9 +39,14 @@ _LAZY = {
     "save_3mf": "mesh.multipart", "save_parts": "mesh.multipart",
     "live_control": "live",
 }
+# Subpackages imported on first use that are called like functions: sg.studio(scene).
+_CALLABLE_PACKAGES = ("studio",)
 
 
 def __getattr__(name: str) -> object:
+    if name in _CALLABLE_PACKAGES:
+        import importlib
+        return importlib.import_module(f".{name}", __name__)  # the import binds sdfgl.<name>
     module = _LAZY.get(name)
     if module is None:
         raise AttributeError(f"module 'sdfgl' has no attribute {name!r}")
@@ -52,7 +57,7 @@ def __getattr__(name: str) -> object:
 
 
 def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(_LAZY))
+    return sorted(set(globals()) | set(_LAZY) | set(_CALLABLE_PACKAGES))
 
 
 def show(scene: Node, camera: Camera | None = None, size: tuple[int, int] = (960, 540), *,

@@ -25,6 +25,7 @@ EXTRAS: dict[str, tuple[str, ...]] = {
     "fast": ("isal",),
     "text": ("fontTools",),
     "meshin": ("igl", "trimesh"),
+    "studio": ("tornado",),
 }
 """Each extra of pyproject.toml and the modules (import names) it installs (``all`` is every
 feature extra together, so it has no entry of its own)."""

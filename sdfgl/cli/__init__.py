@@ -1,4 +1,4 @@
-"""Command line: ``sdfgl render | shader | view | html | mesh | pbr | bench | animate | batch``
+"""Command line: ``sdfgl render | shader | view | html | mesh | pbr | bench | animate | batch | studio``
 (also ``python -m sdfgl`` and ``python -m sdfgl.cli``).
 
 One module a subcommand, each with ``add_parser(sub, command)`` and ``run(args)``; the
@@ -12,9 +12,9 @@ from typing import Sequence
 
 from ..errors import SdfglError
 from ..version import __version__
-from . import animate, batch, bench, html, mesh, pbr, render, shader, view
+from . import animate, batch, bench, html, mesh, pbr, render, shader, studio, view
 
-SUBCOMMANDS = (render, shader, view, html, mesh, pbr, bench, animate, batch)
+SUBCOMMANDS = (render, shader, view, html, mesh, pbr, bench, animate, batch, studio)
 """The subcommand modules, in the order ``sdfgl --help`` lists them."""
 
 __all__ = ["build_parser", "main", "SUBCOMMANDS"]

@@ -1,0 +1,408 @@
+// sdfgl studio page: a drawflow node editor whose graph is a scene document. The server
+// (sdfgl/studio/server.py) decodes and compiles it with the Python compiler and sends back
+// the view spec that the browser viewer (sdfgl/web/viewer.js, served as ./viewer.js) draws.
+// Slider moves of live parameters only set uniforms; structure edits recompile on the server.
+import Drawflow from "drawflow";
+import { createViewer } from "./viewer.js";
+import { OUTPUT, fromDocument, paramName, toDocument } from "./graph.js";
+import { History } from "./history.js";
+
+const COMPILE_DELAY_MS = 120;  // edits within this time are compiled together
+const boot = JSON.parse(document.getElementById("studio-boot").textContent);
+const palette = Object.fromEntries(boot.palette.map((e) => [e.kind, e]));
+palette[OUTPUT] = { kind: OUTPUT, group: "scene", inputs: [{ name: "scene", many: false }], fields: [], doc: "the scene" };
+
+const $ = (id) => document.getElementById(id);
+const el = (tag, cls, text) => {
+  const e = document.createElement(tag);
+  if (cls) e.className = cls;
+  if (text !== undefined) e.textContent = text;
+  return e;
+};
+
+const state = {
+  params: {},       // live parameters: name -> {value, min, max}
+  extra: {},        // the document's camera and settings, kept as loaded
+  gen: 0,           // structure edits sent
+  shownGen: 0,      // the edit whose spec is on screen
+  compiles: 0,      // the server's compile count
+  spec: null,
+  paths: {},
+  error: null,
+  file: boot.file,
+  loading: false,
+  waiters: [],
+};
+
+// -- the editor ---------------------------------------------------------------------------
+const editor = new Drawflow($("studio-editor"));
+editor.start();
+
+function fieldText(v) {
+  if (v === undefined || v === null) return "";
+  return typeof v === "string" ? v : JSON.stringify(v);
+}
+// A field's text as a document value: JSON (numbers, arrays, null, true/false) or else the
+// text itself as a string. Never evaluated.
+function parseField(text) {
+  if (text.trim() === "") return undefined;
+  try { return JSON.parse(text); } catch { return text; }
+}
+
+function nodeHtml(kind) {
+  const entry = palette[kind];
+  const rows = entry.fields.map((f) => {
+    const live = f.number ? `<label class="studio-live" title="a live parameter: a slider, no recompile"><input type="checkbox" data-live="${f.name}">~</label>` : "";
+    return `<label class="studio-field"><span>${f.name}${f.required ? "*" : ""}</span><input data-field="${f.name}" spellcheck="false">${live}</label>`;
+  }).join("");
+  const slots = entry.inputs.map((s) => s.name + (s.many ? " (many)" : "")).join(", ");
+  return `<div class="studio-node-title" title="${entry.doc.replace(/"/g, "&quot;")}">${kind}</div>`
+    + (slots ? `<div class="studio-slots">in: ${slots}</div>` : "") + rows + `<div class="studio-node-error"></div>`;
+}
+
+function nodeElement(id) {
+  return document.getElementById(`node-${id}`);
+}
+
+function makeNode(kind, x, y, fields = {}, live = {}) {
+  const entry = palette[kind];
+  if (!entry) throw new Error(`unknown node kind ${JSON.stringify(kind)}`);
+  const given = { ...fields };
+  for (const f of entry.fields) if (!(f.name in given) && f.default !== null && f.default !== undefined) given[f.name] = f.default;
+  const outputs = kind === OUTPUT ? 0 : 1;
+  const id = editor.addNode(kind, entry.inputs.length, outputs, x, y, `studio-kind-${kind}`,
+    { kind, fields: given, live: { ...live } }, nodeHtml(kind));
+  showFields(id);
+  return id;
+}
+
+function showFields(id) {
+  const node = editor.getNodeFromId(id);
+  const elem = nodeElement(id);
+  for (const input of elem.querySelectorAll("input[data-field]")) input.value = fieldText(node.data.fields[input.dataset.field]);
+  for (const box of elem.querySelectorAll("input[data-live]")) box.checked = Boolean(node.data.live[box.dataset.live]);
+}
+
+function setField(id, name, value) {
+  const node = editor.getNodeFromId(id);
+  const fields = { ...node.data.fields };
+  if (value === undefined) delete fields[name]; else fields[name] = value;
+  editor.updateNodeDataFromId(id, { ...node.data, fields });
+  const p = node.data.live[name];
+  if (p && state.params[p] && typeof value === "number") state.params[p].value = value;
+  showFields(id);
+  edited();
+}
+
+function setLive(id, name, on) {
+  const node = editor.getNodeFromId(id);
+  const live = { ...node.data.live };
+  const f = palette[node.data.kind].fields.find((x) => x.name === name);
+  if (on) {
+    const p = paramName(id, name);
+    const v = node.data.fields[name];
+    const value = typeof v === "number" ? v : (f.default ?? 1.0);
+    state.params[p] = { value, min: Math.min(f.min, value), max: Math.max(f.max, value) };
+    live[name] = p;
+  } else {
+    delete live[name];
+  }
+  editor.updateNodeDataFromId(id, { ...node.data, live });
+  showFields(id);
+  edited();
+}
+
+$("studio-editor").addEventListener("change", (e) => {
+  const t = e.target;
+  const nodeEl = t.closest(".drawflow-node");
+  if (!nodeEl) return;
+  const id = Number(nodeEl.id.slice(5));
+  if (t.dataset.field) setField(id, t.dataset.field, parseField(t.value));
+  else if (t.dataset.live) setLive(id, t.dataset.live, t.checked);
+});
+// keys typed in a field are the field's, not the editor's (Delete would remove the node)
+$("studio-editor").addEventListener("keydown", (e) => { if (e.target.tagName === "INPUT") e.stopPropagation(); }, true);
+
+function connect(fromId, toId, slot = 0) {
+  const k = typeof slot === "number" ? slot : palette[editor.getNodeFromId(toId).data.kind].inputs.findIndex((s) => s.name === slot);
+  if (k < 0) throw new Error(`node ${toId} has no input ${slot}`);
+  editor.addConnection(fromId, toId, "output_1", `input_${k + 1}`);
+}
+
+// an input that takes one node keeps only its newest connection
+editor.on("connectionCreated", (c) => {
+  if (state.loading) return;
+  const node = editor.getNodeFromId(c.input_id);
+  const k = Number(c.input_class.split("_")[1]) - 1;
+  const slot = palette[node.data.kind].inputs[k];
+  const conns = node.inputs[c.input_class].connections;
+  if (slot && !slot.many && conns.length > 1) {
+    for (const old of conns.slice(0, -1)) editor.removeSingleConnection(old.node, c.input_id, old.input, c.input_class);
+  }
+  edited();
+});
+for (const ev of ["connectionRemoved", "nodeRemoved"]) editor.on(ev, () => { if (!state.loading) edited(); });
+
+// -- palette --------------------------------------------------------------------------------
+function buildPalette() {
+  const nav = $("studio-palette");
+  const groups = {};
+  for (const e of [palette[OUTPUT], ...boot.palette]) (groups[e.group] = groups[e.group] || []).push(e);
+  for (const [group, entries] of Object.entries(groups)) {
+    nav.append(el("h3", "", group));
+    for (const e of entries) {
+      const b = el("button", "studio-add", e.kind);
+      b.title = e.doc;
+      b.addEventListener("click", () => {
+        const id = makeNode(e.kind, 80 + Math.random() * 200, 80 + Math.random() * 200);
+        edited();
+        return id;
+      });
+      nav.append(b);
+    }
+  }
+}
+
+// -- document, history, compiling ------------------------------------------------------------
+function graphData() {
+  return editor.export().drawflow.Home.data;
+}
+function currentDocument() {
+  return toDocument(graphData(), palette, state.params, state.extra);
+}
+
+const history = new History(() => ({ graph: editor.export(), params: JSON.parse(JSON.stringify(state.params)) }));
+
+function restore(snap) {
+  state.loading = true;
+  editor.import(snap.graph);
+  state.params = JSON.parse(JSON.stringify(snap.params));
+  for (const id of Object.keys(graphData())) showFields(Number(id));
+  state.loading = false;
+  scheduleCompile();
+}
+
+let compileTimer = 0;
+function edited() {
+  if (state.loading) return;
+  history.record();
+  scheduleCompile();
+}
+function scheduleCompile() {
+  clearTimeout(compileTimer);
+  compileTimer = setTimeout(compileNow, COMPILE_DELAY_MS);
+}
+
+function clearErrors() {
+  for (const e of document.querySelectorAll(".studio-node-error")) e.textContent = "";
+  for (const e of document.querySelectorAll(".drawflow-node.studio-has-error")) e.classList.remove("studio-has-error");
+  $("studio-error").textContent = "";
+}
+function showError(nodeId, message) {
+  state.error = { node: nodeId, message };
+  $("studio-error").textContent = message;
+  const elem = nodeId !== null && nodeId !== undefined ? nodeElement(nodeId) : null;
+  if (elem) {
+    elem.classList.add("studio-has-error");
+    elem.querySelector(".studio-node-error").textContent = message;
+  }
+}
+// the node of the longest document path that the error's path starts with
+function nodeOfPath(path) {
+  let best = null, len = -1;
+  for (const [p, id] of Object.entries(state.paths)) {
+    if ((path === p || path.startsWith(`${p}.`) || path.startsWith(`${p}[`)) && p.length > len) { best = id; len = p.length; }
+  }
+  return best;
+}
+
+function compileNow() {
+  clearTimeout(compileTimer);
+  const { doc, paths, error } = currentDocument();
+  state.gen++;
+  clearErrors();
+  if (error) {
+    showError(error.node, error.message);
+    state.shownGen = state.gen;
+    return Promise.resolve(state.error);
+  }
+  state.paths = paths;
+  send({ type: "doc", gen: state.gen, doc });
+  const gen = state.gen;
+  return new Promise((resolve) => state.waiters.push({ gen, resolve }));
+}
+
+function settle(gen, value) {
+  state.waiters = state.waiters.filter((w) => {
+    if (w.gen <= gen) { w.resolve(value); return false; }
+    return true;
+  });
+}
+
+// -- the view ----------------------------------------------------------------------------
+let viewer = null;
+function showSpec(spec) {
+  const root = $("studio-view");
+  const camera = viewer ? viewer.camera : null;
+  const settings = viewer ? viewer.settings : null;
+  if (viewer) viewer.destroy();
+  state.spec = spec;
+  viewer = createViewer(root, spec, { onParams: paramsMoved });
+  if (camera && state.keepCamera) viewer.setCamera(camera);
+  if (settings) viewer.setSettings(settings);
+  state.keepCamera = true;
+}
+function paramsMoved(values) {
+  const named = {};
+  state.spec.params.forEach((p, i) => {
+    if (state.params[p.label]) { state.params[p.label].value = values[i]; named[p.label] = values[i]; }
+  });
+  for (const id of Object.keys(graphData())) {
+    const node = editor.getNodeFromId(Number(id));
+    for (const [field, p] of Object.entries(node.data.live || {})) {
+      if (p in named) editor.updateNodeDataFromId(Number(id), { ...node.data, fields: { ...node.data.fields, [field]: named[p] } });
+    }
+    showFields(Number(id));
+  }
+  send({ type: "values", values: named });
+}
+// a slider's value set from outside (a test, a controller): uniforms only, no recompile
+function setParam(name, value) {
+  const i = state.spec.params.findIndex((p) => p.label === name);
+  if (i < 0) throw new Error(`no live parameter ${name}`);
+  const values = viewer.values;
+  values[i] = value;
+  viewer.setValues(values);
+  paramsMoved(values);
+}
+
+// -- the server ----------------------------------------------------------------------------
+let socket = null;
+const replies = {};
+function send(msg) {
+  socket.send(JSON.stringify(msg));
+}
+function request(type, extra = {}) {
+  return new Promise((resolve, reject) => {
+    replies[type] = { resolve, reject };
+    send({ type, ...extra });
+  });
+}
+function answer(type, value, failed) {
+  const r = replies[type];
+  if (!r) return;
+  delete replies[type];
+  if (failed) r.reject(new Error(value)); else r.resolve(value);
+}
+
+function load(doc) {
+  state.loading = true;
+  try {
+    state.extra = {};
+    for (const key of ["camera", "settings", "metadata"]) if (doc[key] !== undefined) state.extra[key] = doc[key];
+    state.params = fromDocument(editor, doc, palette, makeNode);
+  } finally {
+    state.loading = false;
+  }
+  state.keepCamera = false;
+  history.reset();
+  return compileNow();
+}
+
+function connectSocket() {
+  socket = new WebSocket(`ws://${location.host}/ws`);
+  socket.addEventListener("message", (ev) => {
+    const msg = JSON.parse(ev.data);
+    if (msg.type === "hello") {
+      state.compiles = msg.compiles;
+      load(msg.doc);
+      document.body.dataset.ready = "1";
+    } else if (msg.type === "spec") {
+      state.compiles = msg.compiles;
+      if (msg.gen >= state.gen) { showSpec(msg.spec); state.shownGen = msg.gen; }
+      settle(msg.gen, null);
+    } else if (msg.type === "error" && msg.request === "doc") {
+      if (msg.gen >= state.gen) {
+        showError(nodeOfPath(msg.path), msg.path ? `${msg.path}: ${msg.message}` : msg.message);
+        state.shownGen = msg.gen;
+      }
+      settle(msg.gen, state.error);
+    } else if (msg.type === "error" || msg.type === "failed") {
+      $("studio-error").textContent = msg.path ? `${msg.path}: ${msg.message}` : msg.message;
+      answer(msg.request, msg.message, true);
+    } else if (msg.type === "saved") {
+      answer("save", msg.file);
+    } else if (msg.type === "python") {
+      $("studio-code").textContent = msg.code;
+      answer("python", msg.code);
+    } else if (msg.type === "png") {
+      answer("png", msg.b64);
+    }
+  });
+  socket.addEventListener("close", () => { $("studio-error").textContent = "the studio server has stopped"; });
+}
+
+// -- toolbar -------------------------------------------------------------------------------
+function save() {
+  const { doc, error } = currentDocument();
+  if (error) return Promise.reject(new Error(error.message));
+  return request("save", { doc });
+}
+function exportPng() {
+  return request("png").then((b64) => {
+    const a = el("a");
+    a.href = `data:image/png;base64,${b64}`;
+    a.download = "scene.png";
+    a.click();
+    return b64;
+  });
+}
+function buildToolbar() {
+  const bar = $("studio-toolbar");
+  const button = (text, fn, title) => {
+    const b = el("button", "studio-tool", text);
+    b.title = title;
+    b.addEventListener("click", () => { Promise.resolve(fn()).catch((e) => { $("studio-error").textContent = String(e.message || e); }); });
+    bar.append(b);
+  };
+  if (state.file) button(`Save ${state.file}`, save, "write the document to the file the studio opened");
+  button("Undo", () => history.undo(restore), "Ctrl+Z");
+  button("Redo", () => history.redo(restore), "Ctrl+Shift+Z");
+  button("Copy as Python", () => request("python").then((code) => navigator.clipboard?.writeText(code).catch(() => {})),
+    "Python code that rebuilds this scene");
+  button("Export PNG", exportPng, "render with sg.render on the server");
+}
+document.addEventListener("keydown", (e) => {
+  if (e.target.tagName === "INPUT") return;
+  if ((e.ctrlKey || e.metaKey) && e.key.toLowerCase() === "z") {
+    e.preventDefault();
+    if (e.shiftKey) history.redo(restore); else history.undo(restore);
+  } else if (viewer && e.target === document.body) {
+    viewer.onKey(e);
+  }
+});
+
+buildPalette();
+buildToolbar();
+connectSocket();
+
+// The page's API (used by the tests and usable from the browser console).
+window.studio = {
+  editor,
+  state,
+  addNode: (kind, x = 100, y = 100, fields = {}) => { const id = makeNode(kind, x, y, fields); edited(); return id; },
+  connect: (from, to, slot = 0) => connect(from, to, slot),
+  setField,
+  setLive,
+  setParam,
+  document: () => currentDocument().doc,
+  load,
+  compileNow,
+  clear: () => { state.loading = true; editor.clear(); state.params = {}; state.loading = false; edited(); },
+  save,
+  python: () => request("python"),
+  png: () => request("png"),
+  undo: () => history.undo(restore),
+  redo: () => history.redo(restore),
+  get viewer() { return viewer; },
+};

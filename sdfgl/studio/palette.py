@@ -1,0 +1,66 @@
+"""The studio's node palette, generated from the node registry (no second list of nodes in JS).
+
+Each registered kind becomes one palette entry: its input slots (parameters that take a
+node or a 2D shape; a ``*children`` parameter takes any number of inputs) and its fields
+(every other constructor parameter, with its default and a slider range for numbers).
+"""
+from __future__ import annotations
+
+import inspect
+import math
+from typing import Any
+
+from ..nodes.record import registry
+from ..scene_io.encode import signature
+
+NODE_TYPES = ("Node", "Shape2D")
+NUMBER_TYPES = ("float", "int")
+
+
+def slider_range(default: Any) -> tuple[float, float]:
+    """The slider range the studio offers for a number field whose default is ``default``:
+    0 .. 4 x a positive default, symmetric about 0 for a negative or zero one."""
+    if isinstance(default, (int, float)) and not isinstance(default, bool) and math.isfinite(default) and default:
+        mag = 4.0 * abs(float(default))
+        return (0.0, mag) if default > 0 else (-mag, mag)
+    return (-2.0, 2.0)
+
+
+def _json_default(value: Any) -> Any:
+    if isinstance(value, tuple):
+        return [_json_default(v) for v in value]
+    if isinstance(value, float) and not math.isfinite(value):
+        return {"float": "inf" if value > 0 else "-inf"}
+    if value is None or isinstance(value, (bool, int, float, str)):
+        return value
+    return None
+
+
+def entry(kind: str, cls: type) -> dict[str, Any]:
+    """The palette entry of one node kind."""
+    inputs: list[dict[str, Any]] = []
+    fields: list[dict[str, Any]] = []
+    for p in signature(cls).parameters.values():
+        if p.kind == p.VAR_KEYWORD:
+            continue
+        annotation = str(p.annotation)
+        required = p.default is inspect.Parameter.empty
+        if any(t in annotation for t in NODE_TYPES) and "|" not in annotation.replace("| None", ""):
+            inputs.append({"name": p.name, "many": p.kind == p.VAR_POSITIONAL, "shape2d": "Shape2D" in annotation})
+            continue
+        default = None if required else _json_default(p.default)
+        number = (isinstance(default, (int, float)) and not isinstance(default, bool)) or \
+            annotation.replace(" | None", "") in NUMBER_TYPES
+        field: dict[str, Any] = {"name": p.name, "required": required, "default": default, "number": number}
+        if number:
+            field["min"], field["max"] = slider_range(default)
+        fields.append(field)
+    doc = inspect.cleandoc(cls.__doc__ or "").split("\n\n")[0]
+    return {"kind": kind, "group": cls.__module__.rsplit(".", 1)[-1], "inputs": inputs, "fields": fields,
+            "doc": " ".join(doc.split())}
+
+
+def palette() -> list[dict[str, Any]]:
+    """Every node kind of the registry, sorted by group and kind."""
+    items = [entry(kind, cls) for kind, cls in registry().items()]
+    return sorted(items, key=lambda e: (e["group"], e["kind"]))

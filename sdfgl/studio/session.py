@@ -1,0 +1,111 @@
+"""What a studio page edits: one scene document, its compiled browser view, its file.
+
+The document (a dict in the versioned JSON format) is decoded by :mod:`sdfgl.scene_io`
+and compiled by the same ``build`` as the one-file HTML view (:mod:`sdfgl.web.spec`), so
+the page draws the same WebGL2 shaders. Compiles are counted (:attr:`Session.compiles`):
+moving a live parameter changes only its value and never recompiles. The only file a
+session reads or writes is the document it was opened with.
+"""
+from __future__ import annotations
+
+import base64
+import json
+import threading
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from ..errors import ParameterError, SceneDocumentError, SdfglError
+from ..files import write_text_atomically
+from ..scene_io import FORMAT, VERSION, load_scene
+from ..scene_io.decode import Document, from_document
+
+EMPTY: dict[str, Any] = {"format": FORMAT, "version": VERSION, "scene": {"kind": "sphere", "radius": 1.0}}
+"""The document a studio opened on no file (or on a file that does not exist yet) starts with."""
+
+
+@dataclass
+class CompileError:
+    """A document the decoder or compiler refused: the JSON path at fault and the message."""
+
+    path: str
+    message: str
+
+    def to_json(self) -> dict[str, Any]:
+        """The error as the page receives it."""
+        return {"type": "error", "path": self.path, "message": self.message}
+
+
+def error_of(exc: SdfglError) -> CompileError:
+    """The :class:`CompileError` of an exception (a document error's text starts with its JSON path)."""
+    text = str(exc)
+    if isinstance(exc, SceneDocumentError) and ": " in text:
+        path, _, rest = text.partition(": ")
+        if " " not in path or path == "(document)":
+            return CompileError(path, rest)
+    return CompileError("", text)
+
+
+class Session:
+    """One edited document: the last document that compiled, its view spec, the file it saves to."""
+
+    def __init__(self, path: str | Path | None = None, doc: dict[str, Any] | None = None,
+                 size: tuple[int, int] = (640, 400)) -> None:
+        self.path = Path(path) if path is not None else None
+        if doc is None and self.path is not None and self.path.exists():
+            doc = json.loads(self.path.read_text(encoding="utf-8"))
+            load_scene(self.path)  # refuse a bad file now, with its JSON path
+        self.doc: dict[str, Any] = doc if doc is not None else json.loads(json.dumps(EMPTY))
+        self.size = size
+        self.compiles = 0
+        self.document: Document | None = None
+        self._lock = threading.Lock()
+
+    def compile(self, doc: dict[str, Any]) -> dict[str, Any]:
+        """Decode and compile ``doc``; on success it becomes the session's document and the
+        page's view spec is returned. Raises :class:`SdfglError` (the last good one stays)."""
+        from ..web.spec import build
+        document = from_document(doc)
+        spec, _ = build(document.scene, document.camera, self.size, **document.settings)
+        with self._lock:
+            self.compiles += 1
+            self.doc = json.loads(json.dumps(doc))
+            self.document = document
+        return spec
+
+    def set_values(self, values: dict[str, Any]) -> None:
+        """Set live parameters by name (a slider moved): the document and the compiled scene
+        take the values; nothing is recompiled."""
+        with self._lock:
+            table = self.doc.get("params", {})
+            for name, value in values.items():
+                if name not in table:
+                    raise ParameterError(f"studio: no live parameter named {name!r} in the document")
+                if self.document is not None and name in self.document.params:
+                    self.document.params[name].value = value
+                table[name]["value"] = value
+
+    def save(self, doc: dict[str, Any] | None = None) -> Path:
+        """Write the document (after checking it decodes) to the file the session was opened on."""
+        if self.path is None:
+            raise SdfglError("this studio was started without a file: run `sdfgl studio FILE.json` to save")
+        doc = self.doc if doc is None else doc
+        from_document(doc)
+        return write_text_atomically(self.path, json.dumps(doc, indent=1, allow_nan=False) + "\n", "scene document")
+
+    def python(self) -> str:
+        """The document as Python code (see :mod:`sdfgl.studio.python_code`)."""
+        from .python_code import to_python
+        return to_python(self.doc)
+
+    def png(self) -> bytes:
+        """The current scene rendered by ``sg.render`` (the page's size, camera and settings) as PNG."""
+        from ..png import encode_png
+        from ..render import render
+        document = self.document or from_document(self.doc)
+        result = render(document.scene, document.camera, self.size, **document.settings)
+        return encode_png(result.color)
+
+    def png_base64(self) -> str:
+        """:meth:`png` as base64 text (for the websocket)."""
+        return base64.b64encode(self.png()).decode("ascii")
