@@ -28,6 +28,8 @@ const state = {
   compiles: 0,      // the server's compile count
   spec: null,
   paths: {},
+  cameraKey: null,  // the document camera (JSON) of the spec on screen
+  cameraKeys: {},   // that of each edit in flight
   error: null,
   file: boot.file,
   loading: false,
@@ -79,7 +81,10 @@ function makeNode(kind, x, y, fields = {}, live = {}) {
 function showFields(id) {
   const node = editor.getNodeFromId(id);
   const elem = nodeElement(id);
-  for (const input of elem.querySelectorAll("input[data-field]")) input.value = fieldText(node.data.fields[input.dataset.field]);
+  for (const input of elem.querySelectorAll("input[data-field]")) {
+    const p = state.params[node.data.live[input.dataset.field]];
+    input.value = fieldText(p ? p.value : node.data.fields[input.dataset.field]);
+  }
   for (const box of elem.querySelectorAll("input[data-live]")) box.checked = Boolean(node.data.live[box.dataset.live]);
 }
 
@@ -176,7 +181,10 @@ const history = new History(() => ({ graph: editor.export(), params: JSON.parse(
 function restore(snap) {
   state.loading = true;
   editor.import(snap.graph);
+  // undo is for structure: a slider's value stays where it was moved to
+  const values = Object.fromEntries(Object.entries(state.params).map(([k, p]) => [k, p.value]));
   state.params = JSON.parse(JSON.stringify(snap.params));
+  for (const [k, p] of Object.entries(state.params)) if (k in values) p.value = values[k];
   for (const id of Object.keys(graphData())) showFields(Number(id));
   state.loading = false;
   scheduleCompile();
@@ -227,6 +235,7 @@ function compileNow() {
     return Promise.resolve(state.error);
   }
   state.paths = paths;
+  state.cameraKeys[state.gen] = JSON.stringify(doc.camera ?? null);
   send({ type: "doc", gen: state.gen, doc });
   const gen = state.gen;
   return new Promise((resolve) => state.waiters.push({ gen, resolve }));
@@ -241,16 +250,17 @@ function settle(gen, value) {
 
 // -- the view ----------------------------------------------------------------------------
 let viewer = null;
-function showSpec(spec) {
+// A new spec keeps the view's camera and toggles, unless the document's camera changed.
+function showSpec(spec, cameraKey) {
   const root = $("studio-view");
-  const camera = viewer ? viewer.camera : null;
+  const camera = viewer && cameraKey === state.cameraKey ? viewer.camera : null;
   const settings = viewer ? viewer.settings : null;
   if (viewer) viewer.destroy();
   state.spec = spec;
+  state.cameraKey = cameraKey;
   viewer = createViewer(root, spec, { onParams: paramsMoved });
-  if (camera && state.keepCamera) viewer.setCamera(camera);
+  if (camera) viewer.setCamera(camera);
   if (settings) viewer.setSettings(settings);
-  state.keepCamera = true;
 }
 function paramsMoved(values) {
   const named = {};
@@ -304,7 +314,6 @@ function load(doc) {
   } finally {
     state.loading = false;
   }
-  state.keepCamera = false;
   history.reset();
   return compileNow();
 }
@@ -319,7 +328,8 @@ function connectSocket() {
       document.body.dataset.ready = "1";
     } else if (msg.type === "spec") {
       state.compiles = msg.compiles;
-      if (msg.gen >= state.gen) { showSpec(msg.spec); state.shownGen = msg.gen; }
+      if (msg.gen >= state.gen) { showSpec(msg.spec, state.cameraKeys[msg.gen]); state.shownGen = msg.gen; }
+      delete state.cameraKeys[msg.gen];
       settle(msg.gen, null);
     } else if (msg.type === "error" && msg.request === "doc") {
       if (msg.gen >= state.gen) {

@@ -1,0 +1,298 @@
+"""sdfgl studio: the node palette, copy as Python, the session, the server's security checks,
+and the page in headless Chromium (built by its own editor API) against sg.render.
+
+Pixel tolerance as in test_browser.py: under 1% of pixels may differ by more than 8/255
+(SwiftShader and llvmpipe round transcendental functions differently).
+"""
+import asyncio
+import base64
+import http.client
+import io
+import json
+
+import numpy as np
+import pytest
+
+import sdfgl as sg
+from sdfgl.errors import SceneDocumentError, SdfglError
+from sdfgl.nodes.record import registry
+from sdfgl.scene_io import from_dict, to_dict
+from sdfgl.studio import Session, Studio
+from sdfgl.studio.palette import palette
+from sdfgl.studio.python_code import to_python
+from sdfgl.web.chromium import Chromium, find_chromium
+
+tornado = pytest.importorskip("tornado")
+
+W, H = 160, 120
+TOLERANCE = 8
+MAX_FRACTION = 0.01
+CAMERA = sg.OrbitCamera(target=(0, 0, 0), distance=4.5, yaw=30, pitch=25)
+CODE = "__import__('os').system('touch /tmp/owned')"
+
+
+def csg() -> sg.Node:
+    """fogleman/sdf's CSG example."""
+    c = sg.cylinder(0.5, 4)
+    return (sg.sphere(1) & sg.box(1.5)) - (c.orient(sg.X) | c | c.orient(sg.Z))
+
+
+def differing(a: np.ndarray, b: np.ndarray) -> float:
+    return float((np.abs(a.astype(int) - b.astype(int)).max(axis=2) > TOLERANCE).mean())
+
+
+# -- without a server -------------------------------------------------------------------------
+
+def test_palette_lists_every_registered_kind_with_its_inputs_and_fields():
+    entries = {e["kind"]: e for e in palette()}
+    assert set(entries) == set(registry())
+    assert entries["union"]["inputs"] == [{"name": "children", "many": True, "shape2d": False}]
+    assert [f["name"] for f in entries["union"]["fields"]] == ["k", "blend"]
+    radius = next(f for f in entries["sphere"]["fields"] if f["name"] == "radius")
+    assert radius == {"name": "radius", "required": False, "default": 1.0, "number": True, "min": 0.0, "max": 4.0}
+    assert [i["name"] for i in entries["translate"]["inputs"]] == ["child"]
+    assert entries["extrude"]["inputs"][0]["shape2d"] is True
+    json.dumps(palette(), allow_nan=False)  # the page receives it as JSON
+
+
+def test_copy_as_python_rebuilds_the_same_glsl():
+    r = sg.param(0.9, "r", range=(0.5, 1.5))
+    c = sg.cylinder(0.5, 4)
+    scene = (sg.sphere(r) & sg.box(1.5)) - (c.orient(sg.X) | c | c.orient(sg.Z))
+    doc = to_dict(scene.translate((0.1, 0, 0)), CAMERA, {"aa": 2})
+    code = to_python(doc)
+    assert "eval" not in code and "from_dict" not in code
+    ns: dict = {}
+    exec(compile(code, "<studio>", "exec"), ns)  # the code this module generated, nothing from a document
+    assert sg.compile(ns["scene"]) == sg.compile(from_dict(doc))
+    assert ns["settings"] == {"aa": 2} and ns["camera"].distance == CAMERA.distance
+
+
+def test_session_counts_compiles_and_slider_values_do_not_recompile(tmp_path):
+    s = Session(tmp_path / "part.json", size=(W, H))
+    r = sg.param(0.7, "r", range=(0.2, 1.2))
+    spec = s.compile(to_dict(sg.sphere(r)))
+    assert s.compiles == 1 and spec["params"][0]["label"] == "r"
+    s.set_values({"r": 1.1})
+    assert s.compiles == 1 and s.doc["params"]["r"]["value"] == 1.1 and s.document.params["r"].value == 1.1
+    with pytest.raises(SdfglError, match="no live parameter named 'q'"):
+        s.set_values({"q": 1})
+    path = s.save()
+    assert json.loads(path.read_text()) == s.doc
+    again = Session(path, size=(W, H))
+    assert again.doc == s.doc
+
+
+def test_session_refuses_code_in_strings_with_the_json_path(tmp_path):
+    s = Session(None, size=(W, H))
+    bad = {"format": "sdfgl-scene", "version": 1, "scene": {"kind": "implicit", "expr": CODE}}
+    with pytest.raises(SceneDocumentError, match=r"^scene: implicit: unexpected character") as exc:
+        s.compile(bad)
+    assert s.compiles == 0
+    from sdfgl.studio.session import error_of
+    assert error_of(exc.value).path == "scene"
+    with pytest.raises(SdfglError, match="started without a file"):
+        s.save(bad)
+    (tmp_path / "bad.json").write_text(json.dumps(bad))
+    with pytest.raises(SceneDocumentError, match="scene: implicit: unexpected character"):
+        Session(tmp_path / "bad.json")
+
+
+# -- the server ---------------------------------------------------------------------------------
+
+@pytest.fixture(scope="module")
+def served(tmp_path_factory):
+    path = tmp_path_factory.mktemp("studio") / "part.json"
+    with Studio(Session(path, size=(W, H))) as st:
+        yield st
+
+
+def get(st: Studio, target: str, host: str | None = None, cookie: str | None = None) -> int:
+    conn = http.client.HTTPConnection("127.0.0.1", st.port, timeout=10)
+    headers = {"Host": host or f"127.0.0.1:{st.port}"}
+    if cookie:
+        headers["Cookie"] = cookie
+    conn.request("GET", target, headers=headers)
+    status = conn.getresponse().status
+    conn.close()
+    return status
+
+
+def test_token_and_host_are_required(served):
+    st = served
+    assert get(st, f"/?token={st.token}") == 200
+    assert get(st, f"/?token={st.token}", host=f"localhost:{st.port}") == 200
+    assert get(st, "/") == 403
+    assert get(st, "/?token=wrong") == 403
+    assert get(st, "/assets/studio.js") == 403
+    assert get(st, "/assets/studio.js", cookie=f"sdfgl-studio-token={st.token}") == 200
+    assert get(st, f"/assets/viewer.js?token={st.token}") == 200
+    assert get(st, f"/?token={st.token}", host=f"evil.example:{st.port}") == 403   # DNS rebinding
+    assert get(st, f"/?token={st.token}", host="127.0.0.1:1") == 403
+    assert get(st, f"/assets/..%2Fserver.py?token={st.token}") == 404
+
+
+def ws_talk(st: Studio, origin: str, messages: list[dict], token: str | None = None, replies: int = 1) -> list[dict]:
+    from tornado.httpclient import HTTPRequest
+    from tornado.websocket import websocket_connect
+
+    async def talk() -> list[dict]:
+        req = HTTPRequest(f"ws://127.0.0.1:{st.port}/ws?token={token or st.token}", headers={"Origin": origin})
+        conn = await websocket_connect(req)
+        out = [json.loads(await conn.read_message())]
+        for m in messages:
+            conn.write_message(json.dumps(m))
+        while len(out) < replies + 1:
+            out.append(json.loads(await conn.read_message()))
+        conn.close()
+        return out
+    return asyncio.run(asyncio.wait_for(talk(), 60))
+
+
+def test_websocket_checks_origin_and_token(served):
+    from tornado.httpclient import HTTPClientError
+    st = served
+    with pytest.raises(HTTPClientError, match="403"):
+        ws_talk(st, "http://evil.example", [], replies=0)
+    with pytest.raises(HTTPClientError, match="403"):
+        ws_talk(st, f"http://127.0.0.1:{st.port + 1}", [], replies=0)
+    with pytest.raises(HTTPClientError, match="403"):
+        ws_talk(st, st.origin, [], token="wrong", replies=0)
+    hello, = ws_talk(st, st.origin, [], replies=0)
+    assert hello["type"] == "hello" and hello["doc"]["format"] == "sdfgl-scene" and hello["file"] == "part.json"
+
+
+def test_websocket_refuses_code_in_strings_with_the_json_path(served):
+    st = served
+    before = st.session.compiles
+    doc = {"format": "sdfgl-scene", "version": 1,
+           "scene": {"kind": "union", "children": [{"kind": "sphere"}, {"kind": "implicit", "expr": CODE}]}}
+    _, reply = ws_talk(st, st.origin, [{"type": "doc", "gen": 1, "doc": doc}])
+    assert reply["type"] == "error" and reply["path"] == "scene.children[1]" and reply["gen"] == 1
+    assert st.session.compiles == before
+
+
+# -- the page in headless Chromium ------------------------------------------------------------------
+
+def canvas(b: Chromium) -> np.ndarray:
+    rect = b.evaluate("(() => { const r = document.querySelector('#studio-view canvas').getBoundingClientRect();"
+                      " return [r.x, r.y, r.width, r.height]; })()")
+    assert rect[2:] == [W, H]
+    return b.screenshot(tuple(rect))
+
+
+def frames(b: Chromium) -> int:
+    return int(b.evaluate("+document.getElementById('studio-view').dataset.frames || 0"))
+
+
+def settle(b: Chromium, after: int = -1) -> None:
+    """Wait until the newest edit's view has drawn a full-resolution frame (after frame ``after``
+    of the same view, for a slider move; a recompile starts a new view)."""
+    root = "document.getElementById('studio-view')"
+    b.wait_for(f"window.studio.state.shownGen === window.studio.state.gen && {root}.dataset.still === '1'"
+               f" && +{root}.dataset.frames > {after}", timeout=120)
+
+
+BUILD_CSG = """(async () => {
+  const s = window.studio;
+  s.clear();
+  s.state.extra = { camera: %(camera)s };
+  const cyl = s.addNode("cylinder", 40, 300, { radius: 0.5, height: 4 });
+  const rx = s.addNode("rotate", 300, 250, { matrix: %(mx)s });
+  const rz = s.addNode("rotate", 300, 420, { matrix: %(mz)s });
+  s.connect(cyl, rx); s.connect(cyl, rz);
+  const holes = s.addNode("union", 560, 300);
+  s.connect(rx, holes); s.connect(cyl, holes); s.connect(rz, holes);
+  const ball = s.addNode("sphere", 300, 20, { radius: 1 });
+  const box = s.addNode("box", 300, 130, { size: 1.5 });
+  const core = s.addNode("intersection", 560, 60);
+  s.connect(ball, core); s.connect(box, core);
+  const part = s.addNode("difference", 820, 150);
+  s.connect(core, part); s.connect(holes, part);
+  const out = s.addNode("output", 1060, 150);
+  s.connect(part, out);
+  const err = await s.compileNow();
+  return { err, ball, box, doc: s.document() };
+})()"""
+
+
+@pytest.fixture(scope="module")
+def page(tmp_path_factory):
+    path = tmp_path_factory.mktemp("page") / "part.json"
+    with Studio(Session(path, size=(W, H))) as st, Chromium(size=(1400, 800)) as b:
+        b.goto(st.url)
+        b.wait_for("document.body.dataset.ready === '1' && window.studio.state.shownGen >= 1", timeout=60)
+        yield st, b
+
+
+@pytest.mark.browser
+@pytest.mark.slow
+@pytest.mark.skipif(find_chromium() is None, reason="needs Chromium (./install.sh --test installs it)")
+def test_csg_part_built_in_the_page_renders_like_sg_render(page):
+    st, b = page
+    m = {"camera": json.dumps(to_dict(sg.sphere(1), CAMERA)["camera"]),
+         "mx": json.dumps(to_dict(sg.sphere(1).orient(sg.X))["scene"]["matrix"]),
+         "mz": json.dumps(to_dict(sg.sphere(1).orient(sg.Z))["scene"]["matrix"])}
+    built = b.evaluate(BUILD_CSG % m)
+    assert built["err"] is None, built["err"]
+    settle(b)
+    assert b.evaluate("document.getElementById('studio-error').textContent") == ""
+    doc = built["doc"]
+    assert doc["nodes"] and doc["scene"]["kind"] == "difference"  # the cylinder used three times is shared
+    web = canvas(b)
+    egl = sg.render(csg(), CAMERA, (W, H), shadows="soft", ao=True).color
+    assert differing(web, egl) < MAX_FRACTION
+
+    # a live parameter: making the field live recompiles once; moving its slider never does
+    compiles = st.session.compiles
+    b.evaluate(f"window.studio.setLive({built['ball']}, 'radius', true); window.studio.compileNow()")
+    b.wait_for(f"window.studio.state.compiles > {compiles}", timeout=60)
+    settle(b)
+    compiles = st.session.compiles
+    name = f"n{built['ball']}_radius"
+    n = frames(b)
+    b.evaluate(f"window.studio.setParam('{name}', 1.12)")
+    settle(b, n)
+    grown = sg.render((sg.sphere(1.12) & sg.box(1.5)) - _holes(), CAMERA, (W, H), shadows="soft", ao=True).color
+    assert differing(canvas(b), grown) < MAX_FRACTION
+    assert differing(canvas(b), egl) > 0.01
+    assert st.session.compiles == compiles and b.evaluate("window.studio.state.compiles") == compiles
+    b.wait_for(f"window.studio.state.params['{name}'].value === 1.12")
+
+    # an error stays at its node; the last good image stays up
+    n_err = b.evaluate(f"""(async () => {{ window.studio.setField({built['box']}, 'size', 'wide');
+        return await window.studio.compileNow(); }})()""")
+    assert n_err["node"] == built["box"] and "size" in n_err["message"]
+    assert b.evaluate(f"document.getElementById('node-{built['box']}').classList.contains('studio-has-error')")
+    assert differing(canvas(b), grown) < MAX_FRACTION
+    assert st.session.compiles == compiles
+    assert b.evaluate("window.studio.undo()") is True
+    b.wait_for("window.studio.state.shownGen === window.studio.state.gen && "
+               "document.getElementById('studio-error').textContent === ''", timeout=60)
+
+    # save -> the file holds the page's document; load it back -> the same GLSL
+    saved_name = b.evaluate("window.studio.save()")
+    assert saved_name == "part.json"
+    saved = json.loads(st.session.path.read_text())
+    page_doc = b.evaluate("window.studio.document()")
+    assert saved == page_doc and saved["params"][name]["value"] == 1.12
+    b.evaluate(f"window.studio.load({json.dumps(saved)})")
+    reloaded = b.evaluate("window.studio.document()")
+    assert sg.compile(from_dict(reloaded)) == sg.compile(from_dict(saved))
+    assert reloaded["params"] == saved["params"] and reloaded["camera"] == saved["camera"]
+
+    # copy as Python rebuilds the same GLSL
+    code = b.evaluate("window.studio.python()")
+    ns: dict = {}
+    exec(compile(code, "<studio>", "exec"), ns)  # generated by sdfgl from the decoded document
+    assert sg.compile(ns["scene"]) == sg.compile(from_dict(saved))
+
+    # export PNG: sg.render on the server
+    from PIL import Image
+    png = np.asarray(Image.open(io.BytesIO(base64.b64decode(b.evaluate("window.studio.png()")))).convert("RGB"))
+    assert png.shape == (H, W, 3) and differing(png, grown) < MAX_FRACTION
+
+
+def _holes() -> sg.Node:
+    c = sg.cylinder(0.5, 4)
+    return c.orient(sg.X) | c | c.orient(sg.Z)
