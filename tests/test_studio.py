@@ -296,3 +296,42 @@ def test_csg_part_built_in_the_page_renders_like_sg_render(page):
 def _holes() -> sg.Node:
     c = sg.cylinder(0.5, 4)
     return c.orient(sg.X) | c | c.orient(sg.Z)
+
+
+IMPLICIT_SETTINGS = {"shadows": "soft", "ao": False, "method": "newton"}  # the view's start for an implicit scene
+
+
+def build_one(b: Chromium, make: str) -> dict:
+    """Clear the graph, add one node by the primitives panel's call ``make`` and view it."""
+    cam = json.dumps(to_dict(sg.sphere(1), CAMERA)["camera"])
+    return b.evaluate(f"""(async () => {{
+      const s = window.studio;
+      s.clear();
+      s.state.extra = {{ camera: {cam} }};
+      const id = await {make};
+      s.connect(id, s.addNode("output", 600, 100));
+      return {{ err: await s.compileNow(), doc: s.document() }};
+    }})()""")
+
+
+@pytest.mark.browser
+@pytest.mark.slow
+@pytest.mark.skipif(find_chromium() is None, reason="needs Chromium (./install.sh --test installs it)")
+def test_implicit_and_parametric_primitives_of_the_panel_render_like_python(page):
+    pytest.importorskip("sympy")
+    st, b = page
+    box = ((-1.2, -1.2, -1.2), (1.2, 1.2, 1.2))
+    built = build_one(b, f"window.studio.addImplicit('x^4 + y^4 + z^4 - 1', {json.dumps(box)})")
+    assert built["err"] is None, built["err"]
+    settle(b)
+    want = sg.render(sg.implicit("x^4 + y^4 + z^4 - 1", box), CAMERA, (W, H), **IMPLICIT_SETTINGS).color
+    assert differing(canvas(b), want) < MAX_FRACTION
+
+    unit = ((-1.0, -1.0, -1.0), (1.0, 1.0, 1.0))
+    built = build_one(b, f"window.studio.addParametric('s', 't', 's^2 - t^2', {json.dumps(unit)})")
+    assert built["err"] is None, built["err"]
+    settle(b)
+    surface = sg.parametric("s", "t", "s^2 - t^2", unit)
+    assert sg.compile(from_dict(built["doc"])) == sg.compile(surface)
+    want = sg.render(surface, CAMERA, (W, H), **IMPLICIT_SETTINGS).color
+    assert differing(canvas(b), want) < MAX_FRACTION

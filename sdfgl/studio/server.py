@@ -9,9 +9,11 @@ server's own. Messages are JSON data: the server decodes documents with
 
 Websocket messages, page -> server: ``{"type": "doc", "gen", "doc"}`` (compile),
 ``{"type": "values", "values": {name: value}}`` (a slider moved: no compile),
-``{"type": "save", "doc"}``, ``{"type": "python"}``, ``{"type": "png"}``. Server -> page:
+``{"type": "save", "doc"}``, ``{"type": "python"}``, ``{"type": "png"}``,
+``{"type": "parametric", "x", "y", "z", "bounds"}`` (the primitives panel). Server -> page:
 ``hello`` (the document, the file name), ``spec`` (the view spec, ``gen``, ``compiles``),
-``error`` (``path``, ``message``, ``gen``), ``saved``, ``python``, ``png``, ``failed``.
+``error`` (``path``, ``message``, ``gen``, ``request``), ``saved``, ``python``, ``png``,
+``parametric`` (an implicit node), ``failed``.
 """
 from __future__ import annotations
 
@@ -174,6 +176,10 @@ def make_app(studio: Studio) -> Any:
         def get(self) -> None:
             self.write({"compiles": studio.session.compiles})
 
+    class NoIcon(Guarded):
+        def get(self) -> None:
+            self.set_status(204)
+
     class Socket(tornado.websocket.WebSocketHandler):
         def prepare(self) -> None:
             Guarded.prepare(self)  # type: ignore[arg-type]
@@ -214,6 +220,10 @@ def make_app(studio: Studio) -> Any:
                     self.send({"type": "saved", "file": path.name})
                 elif kind == "python":
                     self.send({"type": "python", "code": s.python()})
+                elif kind == "parametric":
+                    node = await loop.run_in_executor(studio.worker, s.parametric, msg.get("x"), msg.get("y"),
+                                                      msg.get("z"), msg.get("bounds"))
+                    self.send({"type": "parametric", "node": node})
                 elif kind == "png":
                     data = await loop.run_in_executor(studio.worker, s.png_base64)
                     self.send({"type": "png", "b64": data})
@@ -222,10 +232,14 @@ def make_app(studio: Studio) -> Any:
             except SdfglError as exc:
                 err = error_of(exc).to_json()
                 self.send({**err, "gen": msg.get("gen"), "request": kind})
+            except (TypeError, ValueError, AttributeError) as exc:  # a message of the wrong shape
+                self.send({"type": "error", "path": "", "message": f"bad {kind!r} message: {exc}",
+                           "gen": msg.get("gen"), "request": kind})
 
     return tornado.web.Application([
         (r"/", PageHandler),
         (r"/stats", StatsHandler),
+        (r"/favicon\.ico", NoIcon),
         (r"/ws", Socket),
         (r"/assets/([A-Za-z0-9_.-]+)", AssetHandler),
     ], websocket_max_message_size=32 * 1024 * 1024)

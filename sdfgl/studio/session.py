@@ -22,6 +22,7 @@ from ..scene_io.decode import Document, from_document
 
 EMPTY: dict[str, Any] = {"format": FORMAT, "version": VERSION, "scene": {"kind": "sphere", "radius": 1.0}}
 """The document a studio opened on no file (or on a file that does not exist yet) starts with."""
+PARAMETRIC_TIMEOUT_S = 20.0  # the longest a parametric surface of the primitives panel may take to implicitize
 
 
 @dataclass
@@ -97,6 +98,22 @@ class Session:
         """The document as Python code (see :mod:`sdfgl.studio.python_code`)."""
         from .python_code import to_python
         return to_python(self.doc)
+
+    @staticmethod
+    def parametric(x: str, y: str, z: str, bounds: Any = None, timeout: float = PARAMETRIC_TIMEOUT_S) -> dict[str, Any]:
+        """The document node of the rational parametric surface (x, y, z)(s, t): implicitized by
+        :func:`sdfgl.parametric` (a Groebner basis, in a subprocess with ``timeout``), so the
+        page gets an ``implicit`` node like the built-ins."""
+        from ..nodes.implicit import parametric
+        from ..scene_io import to_dict
+        for name, e in (("x", x), ("y", y), ("z", z)):
+            if not isinstance(e, str):
+                raise ParameterError(f"parametric: {name} must be an expression string, got {type(e).__name__}")
+        try:
+            box = None if bounds is None else tuple(tuple(float(v) for v in corner) for corner in bounds)
+        except (TypeError, ValueError):
+            raise ParameterError(f"parametric: bounds must be two corners of 3 numbers, got {bounds!r}") from None
+        return to_dict(parametric(x, y, z, box, timeout=timeout))["scene"]
 
     def png(self) -> bytes:
         """The current scene rendered by ``sg.render`` (the page's size, camera and settings) as PNG."""

@@ -260,7 +260,11 @@ function showSpec(spec, cameraKey) {
   state.cameraKey = cameraKey;
   viewer = createViewer(root, spec, { onParams: paramsMoved });
   if (camera) viewer.setCamera(camera);
-  if (settings) viewer.setSettings(settings);
+  // the toggles carry over where the new scene offers them (an implicit scene has no AO)
+  if (settings) {
+    viewer.setSettings(Object.fromEntries(Object.entries(settings).filter(
+      ([k, v]) => (spec.toggles[k] || []).some((x) => x === v))));
+  }
 }
 function paramsMoved(values) {
   const named = {};
@@ -345,6 +349,8 @@ function connectSocket() {
     } else if (msg.type === "python") {
       $("studio-code").textContent = msg.code;
       answer("python", msg.code);
+    } else if (msg.type === "parametric") {
+      answer("parametric", msg.node);
     } else if (msg.type === "png") {
       answer("png", msg.b64);
     }
@@ -392,8 +398,57 @@ document.addEventListener("keydown", (e) => {
   }
 });
 
+// -- primitives panel: an implicit equation, or a rational parametric surface that the
+// server implicitizes (sg.parametric); either becomes an `implicit` node.
+function addImplicit(expr, bounds = null, x = 120, y = 120) {
+  const fields = { expr };
+  if (bounds) fields.bounds = bounds;
+  const id = makeNode("implicit", x, y, fields);
+  edited();
+  return id;
+}
+function addParametric(xs, ys, zs, bounds = null) {
+  return request("parametric", { x: xs, y: ys, z: zs, bounds }).then((node) => addImplicit(node.expr, node.bounds ?? bounds));
+}
+function buildPrimitives() {
+  const box = $("studio-primitives");
+  const kind = el("select");
+  for (const [v, text] of [["implicit", "implicit equation f(x, y, z) = 0"], ["parametric", "parametric surface (s, t)"]]) {
+    const o = el("option", "", text);
+    o.value = v;
+    kind.append(o);
+  }
+  const input = (label, value) => {
+    const row = el("label", "studio-field");
+    const i = el("input");
+    i.value = value;
+    row.append(el("span", "", label), i);
+    box.append(row);
+    return { row, i };
+  };
+  box.append(kind);
+  const f = input("f", "x^2 + y^2 + z^2 - 1");
+  const px = input("x(s,t)", "s"), py = input("y(s,t)", "t"), pz = input("z(s,t)", "s^2 - t^2");
+  const bounds = input("bounds", "[[-1,-1,-1],[1,1,1]]");
+  const show = () => {
+    f.row.hidden = kind.value !== "implicit";
+    for (const p of [px, py, pz]) p.row.hidden = kind.value !== "parametric";
+  };
+  kind.addEventListener("change", show);
+  show();
+  const add = el("button", "studio-tool", "Add node");
+  add.addEventListener("click", () => {
+    const b = parseField(bounds.i.value) ?? null;
+    const done = kind.value === "implicit" ? Promise.resolve(addImplicit(f.i.value, b))
+      : addParametric(px.i.value, py.i.value, pz.i.value, b);
+    done.catch((e) => { $("studio-error").textContent = String(e.message || e); });
+  });
+  box.append(add);
+}
+
 buildPalette();
 buildToolbar();
+buildPrimitives();
 connectSocket();
 
 // The page's API (used by the tests and usable from the browser console).
@@ -412,6 +467,8 @@ window.studio = {
   save,
   python: () => request("python"),
   png: () => request("png"),
+  addImplicit,
+  addParametric,
   undo: () => history.undo(restore),
   redo: () => history.redo(restore),
   get viewer() { return viewer; },
