@@ -1,4 +1,4 @@
-"""sdfgl studio: the node palette, copy as Python, the session, the server's security checks,
+"""sdfgl studio: the node palette, copy as Python, the workspace, the server's security checks,
 and the page in headless Chromium (built by its own editor API) against sg.render.
 
 Pixel tolerance as in test_browser.py: under 1% of pixels may differ by more than 8/255
@@ -17,7 +17,7 @@ import sdfgl as sg
 from sdfgl.errors import SceneDocumentError, SdfglError
 from sdfgl.nodes.record import registry
 from sdfgl.scene_io import from_dict, to_dict
-from sdfgl.studio import Session, Studio
+from sdfgl.studio import Workspace, Studio
 from sdfgl.studio.palette import palette
 from sdfgl.studio.python_code import to_python
 from sdfgl.web.chromium import Chromium, find_chromium
@@ -68,8 +68,8 @@ def test_copy_as_python_rebuilds_the_same_glsl():
     assert ns["settings"] == {"aa": 2} and ns["camera"].distance == CAMERA.distance
 
 
-def test_session_counts_compiles_and_slider_values_do_not_recompile(tmp_path):
-    s = Session(tmp_path / "part.json", size=(W, H))
+def test_workspace_counts_compiles_and_slider_values_do_not_recompile(tmp_path):
+    s = Workspace(tmp_path / "part.json", size=(W, H))
     r = sg.param(0.7, "r", range=(0.2, 1.2))
     spec = s.compile(to_dict(sg.sphere(r)))
     assert s.compiles == 1 and spec["params"][0]["label"] == "r"
@@ -79,23 +79,23 @@ def test_session_counts_compiles_and_slider_values_do_not_recompile(tmp_path):
         s.set_values({"q": 1})
     path = s.save()
     assert json.loads(path.read_text()) == s.doc
-    again = Session(path, size=(W, H))
+    again = Workspace(path, size=(W, H))
     assert again.doc == s.doc
 
 
-def test_session_refuses_code_in_strings_with_the_json_path(tmp_path):
-    s = Session(None, size=(W, H))
+def test_workspace_refuses_code_in_strings_with_the_json_path(tmp_path):
+    s = Workspace(None, size=(W, H))
     bad = {"format": "sdfgl-scene", "version": 1, "scene": {"kind": "implicit", "expr": CODE}}
     with pytest.raises(SceneDocumentError, match=r"^scene: implicit: unexpected character") as exc:
         s.compile(bad)
     assert s.compiles == 0
-    from sdfgl.studio.session import error_of
+    from sdfgl.studio.workspace import error_of
     assert error_of(exc.value).path == "scene"
     with pytest.raises(SdfglError, match="started without a file"):
         s.save(bad)
     (tmp_path / "bad.json").write_text(json.dumps(bad))
     with pytest.raises(SceneDocumentError, match="scene: implicit: unexpected character"):
-        Session(tmp_path / "bad.json")
+        Workspace(tmp_path / "bad.json")
 
 
 # -- the server ---------------------------------------------------------------------------------
@@ -103,7 +103,7 @@ def test_session_refuses_code_in_strings_with_the_json_path(tmp_path):
 @pytest.fixture(scope="module")
 def served(tmp_path_factory):
     path = tmp_path_factory.mktemp("studio") / "part.json"
-    with Studio(Session(path, size=(W, H))) as st:
+    with Studio(Workspace(path, size=(W, H))) as st:
         yield st
 
 
@@ -164,12 +164,12 @@ def test_websocket_checks_origin_and_token(served):
 
 def test_websocket_refuses_code_in_strings_with_the_json_path(served):
     st = served
-    before = st.session.compiles
+    before = st.workspace.compiles
     doc = {"format": "sdfgl-scene", "version": 1,
            "scene": {"kind": "union", "children": [{"kind": "sphere"}, {"kind": "implicit", "expr": CODE}]}}
     _, reply = ws_talk(st, st.origin, [{"type": "doc", "gen": 1, "doc": doc}])
     assert reply["type"] == "error" and reply["path"] == "scene.children[1]" and reply["gen"] == 1
-    assert st.session.compiles == before
+    assert st.workspace.compiles == before
 
 
 # -- the page in headless Chromium ------------------------------------------------------------------
@@ -219,7 +219,7 @@ BUILD_CSG = """(async () => {
 @pytest.fixture(scope="module")
 def page(tmp_path_factory):
     path = tmp_path_factory.mktemp("page") / "part.json"
-    with Studio(Session(path, size=(W, H))) as st, Chromium(size=(1400, 800)) as b:
+    with Studio(Workspace(path, size=(W, H))) as st, Chromium(size=(1400, 800)) as b:
         b.goto(st.url)
         b.wait_for("document.body.dataset.ready === '1' && window.studio.state.shownGen >= 1", timeout=60)
         yield st, b
@@ -244,11 +244,11 @@ def test_csg_part_built_in_the_page_renders_like_sg_render(page):
     assert differing(web, egl) < MAX_FRACTION
 
     # a live parameter: making the field live recompiles once; moving its slider never does
-    compiles = st.session.compiles
+    compiles = st.workspace.compiles
     b.evaluate(f"window.studio.setLive({built['ball']}, 'radius', true); window.studio.compileNow()")
     b.wait_for(f"window.studio.state.compiles > {compiles}", timeout=60)
     settle(b)
-    compiles = st.session.compiles
+    compiles = st.workspace.compiles
     name = f"n{built['ball']}_radius"
     n = frames(b)
     b.evaluate(f"window.studio.setParam('{name}', 1.12)")
@@ -256,7 +256,7 @@ def test_csg_part_built_in_the_page_renders_like_sg_render(page):
     grown = sg.render((sg.sphere(1.12) & sg.box(1.5)) - _holes(), CAMERA, (W, H), shadows="soft", ao=True).color
     assert differing(canvas(b), grown) < MAX_FRACTION
     assert differing(canvas(b), egl) > 0.01
-    assert st.session.compiles == compiles and b.evaluate("window.studio.state.compiles") == compiles
+    assert st.workspace.compiles == compiles and b.evaluate("window.studio.state.compiles") == compiles
     b.wait_for(f"window.studio.state.params['{name}'].value === 1.12")
 
     # an error stays at its node; the last good image stays up
@@ -265,7 +265,7 @@ def test_csg_part_built_in_the_page_renders_like_sg_render(page):
     assert n_err["node"] == built["box"] and "size" in n_err["message"]
     assert b.evaluate(f"document.getElementById('node-{built['box']}').classList.contains('studio-has-error')")
     assert differing(canvas(b), grown) < MAX_FRACTION
-    assert st.session.compiles == compiles
+    assert st.workspace.compiles == compiles
     assert b.evaluate("window.studio.undo()") is True
     b.wait_for("window.studio.state.shownGen === window.studio.state.gen && "
                "document.getElementById('studio-error').textContent === ''", timeout=60)
@@ -273,7 +273,7 @@ def test_csg_part_built_in_the_page_renders_like_sg_render(page):
     # save -> the file holds the page's document; load it back -> the same GLSL
     saved_name = b.evaluate("window.studio.save()")
     assert saved_name == "part.json"
-    saved = json.loads(st.session.path.read_text())
+    saved = json.loads(st.workspace.path.read_text())
     page_doc = b.evaluate("window.studio.document()")
     assert saved == page_doc and saved["params"][name]["value"] == 1.12
     b.evaluate(f"window.studio.load({json.dumps(saved)})")

@@ -21,9 +21,9 @@ from typing import Any
 
 from ..camera import Camera
 from .server import Studio
-from .session import Session
+from .workspace import Workspace
 
-__all__ = ["Studio", "Session", "open_studio"]
+__all__ = ["Studio", "Workspace", "open_studio"]
 
 
 def open_studio(scene: Any = None, path: str | Path | None = None, camera: Camera | None = None, *,
@@ -47,8 +47,8 @@ def open_studio(scene: Any = None, path: str | Path | None = None, camera: Camer
     if scene is not None:
         from ..scene_io import to_dict
         doc = to_dict(scene, camera, settings)
-    session = Session(path, doc, size)
-    st = Studio(session, port=port).start()
+    workspace = Workspace(path, doc, size)
+    st = Studio(workspace, port=port).start()
     if open_browser:
         webbrowser.open(st.url)
     return st

@@ -5,7 +5,7 @@ needs the per-run token (``?token=`` in the URL the studio opens, then an HttpOn
 set by the page), a ``Host`` header naming 127.0.0.1 or localhost at this port (a DNS
 rebinding page has its own host name), and the websocket an ``Origin`` equal to the
 server's own. Messages are JSON data: the server decodes documents with
-:mod:`sdfgl.scene_io` (no code runs) and writes only the session's own file.
+:mod:`sdfgl.scene_io` (no code runs) and writes only the workspace's own file.
 
 Websocket messages, page -> server: ``{"type": "doc", "gen", "doc"}`` (compile),
 ``{"type": "values", "values": {name: value}}`` (a slider moved: no compile),
@@ -30,7 +30,7 @@ from urllib.parse import urlsplit
 from ..errors import SdfglError
 from ..extras import require_extra
 from .palette import palette
-from .session import Session, error_of
+from .workspace import Workspace, error_of
 
 ASSETS = Path(__file__).resolve().parent / "assets"   # built by js/build.sh (npm run build)
 PAGE = Path(__file__).resolve().parent / "page.html"
@@ -46,11 +46,11 @@ def _page(boot: dict[str, Any]) -> str:
 
 
 class Studio:
-    """A running studio server on one :class:`Session` (start with :meth:`start`)."""
+    """A running studio server on one :class:`Workspace` (start with :meth:`start`)."""
 
-    def __init__(self, session: Session, host: str = "127.0.0.1", port: int = 0) -> None:
+    def __init__(self, workspace: Workspace, host: str = "127.0.0.1", port: int = 0) -> None:
         require_extra("studio", "tornado", purpose="sdfgl studio")
-        self.session = session
+        self.workspace = workspace
         self.host = host
         self.port = port
         self.token = secrets.token_urlsafe(24)
@@ -153,7 +153,7 @@ def make_app(studio: Studio) -> Any:
             self.set_cookie(COOKIE, studio.token, httponly=True, samesite="Strict")
             self.set_header("Content-Security-Policy", "default-src 'self'; img-src 'self' data: blob:; "
                                                        "style-src 'self' 'unsafe-inline'; connect-src 'self'")
-            path = studio.session.path
+            path = studio.workspace.path
             self.write(_page({"title": f"sdfgl studio: {path.name}" if path else "sdfgl studio",
                               "palette": palette(), "file": path.name if path else None}))
 
@@ -174,7 +174,7 @@ def make_app(studio: Studio) -> Any:
 
     class StatsHandler(Guarded):
         def get(self) -> None:
-            self.write({"compiles": studio.session.compiles})
+            self.write({"compiles": studio.workspace.compiles})
 
     class NoIcon(Guarded):
         def get(self) -> None:
@@ -188,7 +188,7 @@ def make_app(studio: Studio) -> Any:
             return origin in studio.allowed_origins() and urlsplit(origin).netloc == self.request.host
 
         def open(self) -> None:
-            s = studio.session
+            s = studio.workspace
             self.send({"type": "hello", "doc": s.doc, "file": s.path.name if s.path else None,
                        "compiles": s.compiles})
 
@@ -208,7 +208,7 @@ def make_app(studio: Studio) -> Any:
                 self.send({"type": "failed", "message": "a message must be a JSON object with 'type'"})
                 return
             loop = asyncio.get_running_loop()
-            s = studio.session
+            s = studio.workspace
             try:
                 if kind == "doc":
                     spec = await loop.run_in_executor(studio.worker, s.compile, msg.get("doc"))

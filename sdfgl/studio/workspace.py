@@ -2,9 +2,9 @@
 
 The document (a dict in the versioned JSON format) is decoded by :mod:`sdfgl.scene_io`
 and compiled by the same ``build`` as the one-file HTML view (:mod:`sdfgl.web.spec`), so
-the page draws the same WebGL2 shaders. Compiles are counted (:attr:`Session.compiles`):
+the page draws the same WebGL2 shaders. Compiles are counted (:attr:`Workspace.compiles`):
 moving a live parameter changes only its value and never recompiles. The only file a
-session reads or writes is the document it was opened with.
+workspace reads or writes is the document it was opened with.
 """
 from __future__ import annotations
 
@@ -47,7 +47,7 @@ def error_of(exc: SdfglError) -> CompileError:
     return CompileError("", text)
 
 
-class Session:
+class Workspace:
     """One edited document: the last document that compiled, its view spec, the file it saves to."""
 
     def __init__(self, path: str | Path | None = None, doc: dict[str, Any] | None = None,
@@ -63,7 +63,7 @@ class Session:
         self._lock = threading.Lock()
 
     def compile(self, doc: dict[str, Any]) -> dict[str, Any]:
-        """Decode and compile ``doc``; on success it becomes the session's document and the
+        """Decode and compile ``doc``; on success it becomes the workspace's document and the
         page's view spec is returned. Raises :class:`SdfglError` (the last good one stays)."""
         from ..web.spec import build
         document = from_document(doc)
@@ -87,7 +87,7 @@ class Session:
                 table[name]["value"] = value
 
     def save(self, doc: dict[str, Any] | None = None) -> Path:
-        """Write the document (after checking it decodes) to the file the session was opened on."""
+        """Write the document (after checking it decodes) to the file the workspace was opened on."""
         if self.path is None:
             raise SdfglError("this studio was started without a file: run `sdfgl studio FILE.json` to save")
         doc = self.doc if doc is None else doc
