@@ -335,3 +335,34 @@ def test_implicit_and_parametric_primitives_of_the_panel_render_like_python(page
     assert sg.compile(from_dict(built["doc"])) == sg.compile(surface)
     want = sg.render(surface, CAMERA, (W, H), **IMPLICIT_SETTINGS).color
     assert differing(canvas(b), want) < MAX_FRACTION
+
+
+@pytest.mark.browser
+@pytest.mark.slow
+@pytest.mark.skipif(find_chromium() is None, reason="needs Chromium (./install.sh --test installs it)")
+def test_a_structure_edit_compiles_in_the_background_while_the_view_stays_live(page):
+    import threading
+    st, b = page
+    b.evaluate("""(async () => { const s = window.studio; s.clear();
+      const ball = s.addNode("sphere", 40, 40, { radius: 0.8 });
+      s.setLive(ball, "radius", true);
+      s.connect(ball, s.addNode("output", 400, 40));
+      window.testBall = ball;
+      return await s.compileNow(); })()""")
+    settle(b)
+    gate = threading.Event()
+    st.worker.submit(gate.wait, 60)  # the server's compile worker is busy until the gate opens
+    try:
+        compiles = st.workspace.compiles
+        b.evaluate("window.studio.setField(window.testBall, 'center', [0.3, 0, 0]); window.studio.compileNow(); 0")
+        n = frames(b)
+        b.evaluate("window.studio.setParam(`n${window.testBall}_radius`, 1.2)")
+        settle_same_view = f"+document.getElementById('studio-view').dataset.frames > {n}"
+        b.wait_for(settle_same_view, timeout=60)   # the old view still draws, with the new value
+        assert b.evaluate("window.studio.state.shownGen < window.studio.state.gen")
+        assert st.workspace.compiles == compiles
+    finally:
+        gate.set()
+    settle(b)
+    assert st.workspace.compiles == compiles + 1
+    assert b.evaluate("window.studio.document()")["scene"]["center"] == [0.3, 0, 0]
