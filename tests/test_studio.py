@@ -17,7 +17,7 @@ import sdfgl as sg
 from sdfgl.errors import SceneDocumentError, SdfglError
 from sdfgl.nodes.record import registry
 from sdfgl.scene_io import from_dict, to_dict
-from sdfgl.studio import Workspace, Studio
+from sdfgl.studio import Studio, Workspace
 from sdfgl.studio.palette import palette
 from sdfgl.studio.python_code import to_python
 from sdfgl.web.chromium import Chromium, find_chromium
@@ -289,7 +289,7 @@ def test_csg_part_built_in_the_page_renders_like_sg_render(page):
 
     # export PNG: sg.render on the server
     from PIL import Image
-    png = np.asarray(Image.open(io.BytesIO(base64.b64decode(b.evaluate("window.studio.png()")))).convert("RGB"))
+    png = np.asarray(Image.open(io.BytesIO(base64.b64decode(b.evaluate("window.studio.export('png').then((r) => r.b64)")))).convert("RGB"))
     assert png.shape == (H, W, 3) and differing(png, grown) < MAX_FRACTION
 
 
@@ -366,3 +366,21 @@ def test_a_structure_edit_compiles_in_the_background_while_the_view_stays_live(p
     settle(b)
     assert st.workspace.compiles == compiles + 1
     assert b.evaluate("window.studio.document()")["scene"]["center"] == [0.3, 0, 0]
+
+
+def test_exports_go_through_the_existing_writers(tmp_path):
+    ws = Workspace(tmp_path / "part.json", size=(W, H))
+    ws.compile(to_dict(sg.sphere(0.8) | sg.box(0.9).translate((0.7, 0, 0)), CAMERA))
+    name, page = ws.export("html")
+    assert name == "part.html" and page.decode().startswith("<!DOCTYPE html>") and b"sdfgl-spec" in page
+    name, png = ws.export("png")
+    from PIL import Image
+    image = np.asarray(Image.open(io.BytesIO(png)).convert("RGB"))
+    assert name == "part.png" and differing(image, sg.render(sg.sphere(0.8) | sg.box(0.9).translate((0.7, 0, 0)),
+                                                             CAMERA, (W, H)).color) == 0
+    pytest.importorskip("trimesh")
+    name, stl = ws.export("stl")
+    assert name == "part.stl" and len(stl) > 84
+    with pytest.raises(SdfglError, match="format must be one of png, html, stl, 3mf"):
+        ws.export("exe")
+    assert sorted(p.name for p in tmp_path.iterdir()) == []   # nothing written beside the document

@@ -9,15 +9,17 @@ server's own. Messages are JSON data: the server decodes documents with
 
 Websocket messages, page -> server: ``{"type": "doc", "gen", "doc"}`` (compile),
 ``{"type": "values", "values": {name: value}}`` (a slider moved: no compile),
-``{"type": "save", "doc"}``, ``{"type": "python"}``, ``{"type": "png"}``,
+``{"type": "save", "doc"}``, ``{"type": "python"}``, ``{"type": "export", "format"}``,
 ``{"type": "parametric", "x", "y", "z", "bounds"}`` (the primitives panel). Server -> page:
 ``hello`` (the document, the file name), ``spec`` (the view spec, ``gen``, ``compiles``),
-``error`` (``path``, ``message``, ``gen``, ``request``), ``saved``, ``python``, ``png``,
+``error`` (``path``, ``message``, ``gen``, ``request``), ``saved``, ``python``, ``export``
+(``file``, ``b64``),
 ``parametric`` (an implicit node), ``failed``.
 """
 from __future__ import annotations
 
 import asyncio
+import base64
 import html
 import json
 import secrets
@@ -224,9 +226,9 @@ def make_app(studio: Studio) -> Any:
                     node = await loop.run_in_executor(studio.worker, s.parametric, msg.get("x"), msg.get("y"),
                                                       msg.get("z"), msg.get("bounds"))
                     self.send({"type": "parametric", "node": node})
-                elif kind == "png":
-                    data = await loop.run_in_executor(studio.worker, s.png_base64)
-                    self.send({"type": "png", "b64": data})
+                elif kind == "export":
+                    name, data = await loop.run_in_executor(studio.worker, s.export, msg.get("format"))
+                    self.send({"type": "export", "file": name, "b64": base64.b64encode(data).decode("ascii")})
                 else:
                     self.send({"type": "failed", "message": f"unknown message type {kind!r}"})
             except SdfglError as exc:

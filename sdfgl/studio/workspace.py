@@ -8,8 +8,8 @@ workspace reads or writes is the document it was opened with.
 """
 from __future__ import annotations
 
-import base64
 import json
+import tempfile
 import threading
 from dataclasses import dataclass
 from pathlib import Path
@@ -22,6 +22,8 @@ from ..scene_io.decode import Document, from_document
 
 EMPTY: dict[str, Any] = {"format": FORMAT, "version": VERSION, "scene": {"kind": "sphere", "radius": 1.0}}
 """The document a studio opened on no file (or on a file that does not exist yet) starts with."""
+EXPORTS = ("png", "html", "stl", "3mf")
+"""The formats the page's export buttons ask for."""
 PARAMETRIC_TIMEOUT_S = 20.0  # the longest a parametric surface of the primitives panel may take to implicitize
 
 
@@ -115,14 +117,26 @@ class Workspace:
             raise ParameterError(f"parametric: bounds must be two corners of 3 numbers, got {bounds!r}") from None
         return to_dict(parametric(x, y, z, box, timeout=timeout))["scene"]
 
-    def png(self) -> bytes:
-        """The current scene rendered by ``sg.render`` (the page's size, camera and settings) as PNG."""
-        from ..png import encode_png
-        from ..render import render
+    def export(self, fmt: str) -> tuple[str, bytes]:
+        """The current scene as a file of format ``fmt`` through the existing exporters: ``png``
+        (``sg.render`` at the page's size, camera and settings), ``html`` (the one-file WebGL2
+        page), ``stl`` or ``3mf`` (``sg.mesh``, the ``mesh`` extra). Returns (file name, bytes);
+        the file is made in a temporary folder, never beside the document."""
+        if fmt not in EXPORTS:
+            raise ParameterError(f"studio export: format must be one of {', '.join(EXPORTS)}, got {fmt!r}")
         document = self.document or from_document(self.doc)
-        result = render(document.scene, document.camera, self.size, **document.settings)
-        return encode_png(result.color)
-
-    def png_base64(self) -> str:
-        """:meth:`png` as base64 text (for the websocket)."""
-        return base64.b64encode(self.png()).decode("ascii")
+        stem = self.path.stem if self.path is not None else "scene"
+        if fmt == "png":
+            from ..png import encode_png
+            from ..render import render
+            data = encode_png(render(document.scene, document.camera, self.size, **document.settings).color)
+        elif fmt == "html":
+            from ..web.html import to_html
+            data = to_html(document.scene, document.camera, self.size, **document.settings).encode("utf-8")
+        else:
+            from ..mesh import mesh
+            with tempfile.TemporaryDirectory(prefix="sdfgl-studio-") as tmp:
+                target = Path(tmp) / f"{stem}.{fmt}"
+                mesh(document.scene).save(target)
+                data = target.read_bytes()
+        return f"{stem}.{fmt}", data

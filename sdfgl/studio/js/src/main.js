@@ -351,8 +351,8 @@ function connectSocket() {
       answer("python", msg.code);
     } else if (msg.type === "parametric") {
       answer("parametric", msg.node);
-    } else if (msg.type === "png") {
-      answer("png", msg.b64);
+    } else if (msg.type === "export") {
+      answer("export", { file: msg.file, b64: msg.b64 });
     }
   });
   socket.addEventListener("close", () => { $("studio-error").textContent = "the studio server has stopped"; });
@@ -364,11 +364,12 @@ function save() {
   if (error) return Promise.reject(new Error(error.message));
   return request("save", { doc });
 }
-function exportPng() {
-  return request("png").then((b64) => {
+// a file made by the server's exporters, offered as a download
+function exportAs(format) {
+  return request("export", { format }).then(({ file, b64 }) => {
     const a = el("a");
-    a.href = `data:image/png;base64,${b64}`;
-    a.download = "scene.png";
+    a.href = `data:application/octet-stream;base64,${b64}`;
+    a.download = file;
     a.click();
     return b64;
   });
@@ -386,7 +387,10 @@ function buildToolbar() {
   button("Redo", () => history.redo(restore), "Ctrl+Shift+Z");
   button("Copy as Python", () => request("python").then((code) => navigator.clipboard?.writeText(code).catch(() => {})),
     "Python code that rebuilds this scene");
-  button("Export PNG", exportPng, "render with sg.render on the server");
+  button("PNG", () => exportAs("png"), "export: render with sg.render on the server");
+  button("HTML", () => exportAs("html"), "export: the one-file WebGL2 page");
+  button("STL", () => exportAs("stl"), "export: a mesh by sg.mesh (the mesh extra)");
+  button("3MF", () => exportAs("3mf"), "export: a mesh by sg.mesh (the mesh extra)");
 }
 document.addEventListener("keydown", (e) => {
   if (e.target.tagName === "INPUT") return;
@@ -466,7 +470,7 @@ window.studio = {
   clear: () => { state.loading = true; editor.clear(); state.params = {}; state.loading = false; edited(); },
   save,
   python: () => request("python"),
-  png: () => request("png"),
+  export: (format) => request("export", { format }),
   addImplicit,
   addParametric,
   undo: () => history.undo(restore),
