@@ -259,6 +259,16 @@ def test_csg_part_built_in_the_page_renders_like_sg_render(page):
     assert st.workspace.compiles == compiles and b.evaluate("window.studio.state.compiles") == compiles
     b.wait_for(f"window.studio.state.params['{name}'].value === 1.12")
 
+    # a node's own preview: its subtree rendered by sg.render
+    b.evaluate(f"window.studio.setPreview({built['ball']}, true)")
+    b.wait_for(f"+document.getElementById('node-{built['ball']}').dataset.previews > 0", timeout=60)
+    src = b.evaluate(f"document.querySelector('#node-{built['ball']} .studio-preview').src")
+    from PIL import Image
+    thumb = np.asarray(Image.open(io.BytesIO(base64.b64decode(src.split(",", 1)[1]))).convert("RGB"))
+    want = sg.render(sg.sphere(1.12), None, (120, 80), aa=1, shadows=False, ao=False).color
+    assert thumb.shape == (80, 120, 3) and differing(thumb, want) < MAX_FRACTION
+    assert st.workspace.compiles == compiles
+
     # an error stays at its node; the last good image stays up
     n_err = b.evaluate(f"""(async () => {{ window.studio.setField({built['box']}, 'size', 'wide');
         return await window.studio.compileNow(); }})()""")
@@ -288,7 +298,6 @@ def test_csg_part_built_in_the_page_renders_like_sg_render(page):
     assert sg.compile(ns["scene"]) == sg.compile(from_dict(saved))
 
     # export PNG: sg.render on the server
-    from PIL import Image
     png = np.asarray(Image.open(io.BytesIO(base64.b64decode(b.evaluate("window.studio.export('png').then((r) => r.b64)")))).convert("RGB"))
     assert png.shape == (H, W, 3) and differing(png, grown) < MAX_FRACTION
 

@@ -18,7 +18,7 @@ from sdfgl.studio import Workspace, Studio
 from sdfgl.web.chromium import Chromium
 
 ROOT = Path(__file__).resolve().parents[2]
-W, H = 1280, 640
+W, H = 1600, 800
 VIEW = (360, 260)
 FRAMES = 14
 
@@ -37,6 +37,11 @@ def main() -> None:
         b.goto(st.url)
         b.wait_for(f"document.body.dataset.ready === '1' && window.studio.state.shownGen >= 1 && {still}", timeout=120)
         b.evaluate("window.studio.python()")  # fills the code box
+        count = b.evaluate("""(() => { const s = window.studio, data = s.editor.export().drawflow.Home.data;
+          const ids = Object.values(data).filter((n) => n.name !== "output").map((n) => n.id);
+          s.editor.zoom_out(); s.editor.zoom_out(); s.editor.zoom_out(); s.editor.zoom_out();
+          ids.forEach((id) => s.setPreview(id, true)); return ids.length; })()""")
+        b.wait_for(f"document.querySelectorAll('.drawflow-node[data-previews]').length === {count}", timeout=120)
         b.wait_for(still)
         Image.fromarray(b.screenshot()).save(ROOT / "docs" / "studio.png", optimize=True)
         rect = b.evaluate("(() => { const r = document.getElementById('studio-side').getBoundingClientRect();"

@@ -10,11 +10,12 @@ server's own. Messages are JSON data: the server decodes documents with
 Websocket messages, page -> server: ``{"type": "doc", "gen", "doc"}`` (compile),
 ``{"type": "values", "values": {name: value}}`` (a slider moved: no compile),
 ``{"type": "save", "doc"}``, ``{"type": "python"}``, ``{"type": "export", "format"}``,
-``{"type": "parametric", "x", "y", "z", "bounds"}`` (the primitives panel). Server -> page:
+``{"type": "parametric", "x", "y", "z", "bounds"}`` (the primitives panel),
+``{"type": "preview", "node", "doc"}`` (a node's own picture). Server -> page:
 ``hello`` (the document, the file name), ``spec`` (the view spec, ``gen``, ``compiles``),
 ``error`` (``path``, ``message``, ``gen``, ``request``), ``saved``, ``python``, ``export``
 (``file``, ``b64``),
-``parametric`` (an implicit node), ``failed``.
+``parametric`` (an implicit node), ``preview`` (``node``, ``b64``), ``failed``.
 """
 from __future__ import annotations
 
@@ -226,6 +227,9 @@ def make_app(studio: Studio) -> Any:
                     node = await loop.run_in_executor(studio.worker, s.parametric, msg.get("x"), msg.get("y"),
                                                       msg.get("z"), msg.get("bounds"))
                     self.send({"type": "parametric", "node": node})
+                elif kind == "preview":
+                    data = await loop.run_in_executor(studio.worker, s.preview, msg.get("doc"))
+                    self.send({"type": "preview", "node": msg.get("node"), "b64": base64.b64encode(data).decode("ascii")})
                 elif kind == "export":
                     name, data = await loop.run_in_executor(studio.worker, s.export, msg.get("format"))
                     self.send({"type": "export", "file": name, "b64": base64.b64encode(data).decode("ascii")})
@@ -233,7 +237,7 @@ def make_app(studio: Studio) -> Any:
                     self.send({"type": "failed", "message": f"unknown message type {kind!r}"})
             except SdfglError as exc:
                 err = error_of(exc).to_json()
-                self.send({**err, "gen": msg.get("gen"), "request": kind})
+                self.send({**err, "gen": msg.get("gen"), "request": kind, "node": msg.get("node")})
             except (TypeError, ValueError, AttributeError) as exc:  # a message of the wrong shape
                 self.send({"type": "error", "path": "", "message": f"bad {kind!r} message: {exc}",
                            "gen": msg.get("gen"), "request": kind})

@@ -22,6 +22,7 @@ from ..scene_io.decode import Document, from_document
 
 EMPTY: dict[str, Any] = {"format": FORMAT, "version": VERSION, "scene": {"kind": "sphere", "radius": 1.0}}
 """The document a studio opened on no file (or on a file that does not exist yet) starts with."""
+PREVIEW_SIZE = (120, 80)  # a node's own preview, in pixels
 EXPORTS = ("png", "html", "stl", "3mf")
 """The formats the page's export buttons ask for."""
 PARAMETRIC_TIMEOUT_S = 20.0  # the longest a parametric surface of the primitives panel may take to implicitize
@@ -116,6 +117,18 @@ class Workspace:
         except (TypeError, ValueError):
             raise ParameterError(f"parametric: bounds must be two corners of 3 numbers, got {bounds!r}") from None
         return to_dict(parametric(x, y, z, box, timeout=timeout))["scene"]
+
+    @staticmethod
+    def preview(doc: dict[str, Any]) -> bytes:
+        """A small PNG of the document ``doc`` (a node's subtree): ``sg.render`` framing its
+        bounds at PREVIEW_SIZE, one sample a pixel, no shadows or AO."""
+        from ..nodes.base import Node
+        from ..png import encode_png
+        from ..render import render
+        scene = from_document(doc).scene
+        if not isinstance(scene, Node):
+            raise ParameterError(f"a {scene.kind} is a 2D shape: extrude or revolve it to see it")
+        return encode_png(render(scene, None, PREVIEW_SIZE, aa=1, shadows=False, ao=False).color)
 
     def export(self, fmt: str) -> tuple[str, bytes]:
         """The current scene as a file of format ``fmt`` through the existing exporters: ``png``

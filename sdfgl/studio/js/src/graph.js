@@ -16,12 +16,16 @@ export function paramName(id, field) {
 // The document of the graph `data` (drawflow's export().drawflow.Home.data), the live
 // parameter table `params` and extra top-level keys `extra` (camera, settings). Returns
 // {doc, paths, error}: `paths` maps each node's JSON path to its drawflow id.
-export function toDocument(data, palette, params, extra = {}) {
+// With `rootId`, the document of that node's subtree (a node's own preview).
+export function toDocument(data, palette, params, extra = {}, rootId = null) {
   const paths = {};
-  const out = Object.values(data).find((n) => n.name === OUTPUT);
-  if (!out) return { doc: null, paths, error: { node: null, message: "add a scene output node" } };
-  const rootConn = out.inputs.input_1 && out.inputs.input_1.connections[0];
-  if (!rootConn) return { doc: null, paths, error: { node: out.id, message: "connect a node to the scene output" } };
+  let rootConn = rootId === null ? null : { node: String(rootId) };
+  if (!rootConn) {
+    const out = Object.values(data).find((n) => n.name === OUTPUT);
+    if (!out) return { doc: null, paths, error: { node: null, message: "add a scene output node" } };
+    rootConn = out.inputs.input_1 && out.inputs.input_1.connections[0];
+    if (!rootConn) return { doc: null, paths, error: { node: out.id, message: "connect a node to the scene output" } };
+  }
   const uses = {};
   for (const n of Object.values(data)) {
     for (const inp of Object.values(n.inputs || {})) for (const c of inp.connections) uses[c.node] = (uses[c.node] || 0) + 1;
@@ -68,7 +72,7 @@ export function toDocument(data, palette, params, extra = {}) {
   return { doc, paths, error };
 }
 
-const COLUMN = 300, ROW = 150;  // layout of a loaded document, in editor pixels
+const COLUMN = 300, ROW = 240;  // layout of a loaded document, in editor pixels
 
 // The depth of the document's deepest node (the root is 1), refs followed.
 function depthOf(doc) {

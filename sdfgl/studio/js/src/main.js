@@ -59,7 +59,9 @@ function nodeHtml(kind) {
   }).join("");
   const slots = entry.inputs.map((s) => s.name + (s.many ? " (many)" : "")).join(", ");
   return `<div class="studio-node-title" title="${entry.doc.replace(/"/g, "&quot;")}">${kind}</div>`
-    + (slots ? `<div class="studio-slots">in: ${slots}</div>` : "") + rows + `<div class="studio-node-error"></div>`;
+    + (slots ? `<div class="studio-slots">in: ${slots}</div>` : "") + rows
+    + (kind === OUTPUT ? "" : `<label class="studio-preview-toggle"><input type="checkbox" data-preview="1"> preview</label><img class="studio-preview" alt="" hidden>`)
+    + `<div class="studio-node-error"></div>`;
 }
 
 function nodeElement(id) {
@@ -124,6 +126,7 @@ $("studio-editor").addEventListener("change", (e) => {
   const id = Number(nodeEl.id.slice(5));
   if (t.dataset.field) setField(id, t.dataset.field, parseField(t.value));
   else if (t.dataset.live) setLive(id, t.dataset.live, t.checked);
+  else if (t.dataset.preview) setPreview(id, t.checked);
 });
 // keys typed in a field are the field's, not the editor's (Delete would remove the node)
 $("studio-editor").addEventListener("keydown", (e) => { if (e.target.tagName === "INPUT") e.stopPropagation(); }, true);
@@ -248,6 +251,31 @@ function settle(gen, value) {
   });
 }
 
+// -- each node's own preview: its subtree rendered by sg.render on the server, refreshed
+// after every compile while its box is ticked
+const previews = new Set();
+function setPreview(id, on) {
+  const img = nodeElement(id).querySelector(".studio-preview");
+  nodeElement(id).querySelector("input[data-preview]").checked = on;
+  if (on) previews.add(id); else previews.delete(id);
+  img.hidden = !on;
+  if (on) requestPreview(id);
+}
+function requestPreview(id) {
+  if (!graphData()[id]) { previews.delete(id); return; }
+  const { doc, error } = toDocument(graphData(), palette, state.params, {}, id);
+  if (error || !doc) return;
+  send({ type: "preview", node: id, doc });
+}
+function showPreview(id, b64, message) {
+  const elem = nodeElement(id);
+  if (!elem) return;
+  const img = elem.querySelector(".studio-preview");
+  if (b64) { img.src = `data:image/png;base64,${b64}`; img.title = ""; }
+  else img.title = message;
+  elem.dataset.previews = String(+(elem.dataset.previews || 0) + 1);
+}
+
 // -- the view ----------------------------------------------------------------------------
 let viewer = null;
 // A new spec keeps the view's camera and toggles, unless the document's camera changed.
@@ -332,7 +360,11 @@ function connectSocket() {
       document.body.dataset.ready = "1";
     } else if (msg.type === "spec") {
       state.compiles = msg.compiles;
-      if (msg.gen >= state.gen) { showSpec(msg.spec, state.cameraKeys[msg.gen]); state.shownGen = msg.gen; }
+      if (msg.gen >= state.gen) {
+        showSpec(msg.spec, state.cameraKeys[msg.gen]);
+        state.shownGen = msg.gen;
+        for (const id of previews) requestPreview(id);
+      }
       delete state.cameraKeys[msg.gen];
       settle(msg.gen, null);
     } else if (msg.type === "error" && msg.request === "doc") {
@@ -341,6 +373,10 @@ function connectSocket() {
         state.shownGen = msg.gen;
       }
       settle(msg.gen, state.error);
+    } else if (msg.type === "preview") {
+      showPreview(msg.node, msg.b64);
+    } else if (msg.type === "error" && msg.request === "preview") {
+      showPreview(msg.node, null, msg.message);
     } else if (msg.type === "error" || msg.type === "failed") {
       $("studio-error").textContent = msg.path ? `${msg.path}: ${msg.message}` : msg.message;
       answer(msg.request, msg.message, true);
@@ -473,6 +509,7 @@ window.studio = {
   export: (format) => request("export", { format }),
   addImplicit,
   addParametric,
+  setPreview,
   undo: () => history.undo(restore),
   redo: () => history.redo(restore),
   get viewer() { return viewer; },
