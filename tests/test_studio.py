@@ -393,3 +393,25 @@ def test_exports_go_through_the_existing_writers(tmp_path):
     with pytest.raises(SdfglError, match="format must be one of png, html, stl, 3mf"):
         ws.export("exe")
     assert sorted(p.name for p in tmp_path.iterdir()) == []   # nothing written beside the document
+
+
+def test_the_command_line_serves_the_document_until_interrupted(tmp_path):
+    import signal
+    import subprocess
+    import sys
+    doc = tmp_path / "part.json"
+    sg.save_scene(sg.sphere(0.7), doc)
+    proc = subprocess.Popen([sys.executable, "-m", "sdfgl", "studio", str(doc), "--no-browser", "--size", "64x48"],
+                            stdout=subprocess.PIPE, text=True)
+    try:
+        line = proc.stdout.readline()
+        assert line.startswith("sdfgl studio: http://127.0.0.1:") and "?token=" in line, line
+        url = line.split()[2]
+        port = int(url.split(":")[2].split("/")[0])
+        conn = http.client.HTTPConnection("127.0.0.1", port, timeout=10)
+        conn.request("GET", url.split(f":{port}", 1)[1])
+        assert conn.getresponse().status == 200
+        conn.close()
+    finally:
+        proc.send_signal(signal.SIGINT)
+        assert proc.wait(20) == 0

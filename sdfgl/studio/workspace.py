@@ -57,8 +57,8 @@ class Workspace:
                  size: tuple[int, int] = (640, 400)) -> None:
         self.path = Path(path) if path is not None else None
         if doc is None and self.path is not None and self.path.exists():
-            doc = json.loads(self.path.read_text(encoding="utf-8"))
             load_scene(self.path)  # refuse a bad file now, with its JSON path
+            doc = json.loads(self.path.read_text(encoding="utf-8"))
         self.doc: dict[str, Any] = doc if doc is not None else json.loads(json.dumps(EMPTY))
         self.size = size
         self.compiles = 0
