@@ -219,7 +219,11 @@ BUILD_CSG = """(async () => {
 @pytest.fixture(scope="module")
 def page(tmp_path_factory):
     path = tmp_path_factory.mktemp("page") / "part.json"
-    with Studio(Workspace(path, size=(W, H))) as st, Chromium(size=(1400, 800)) as b:
+    pytest.importorskip("pythonosc")
+    from sdfgl.live import LiveControl
+    live = LiveControl(osc=0)
+    with Studio(Workspace(path, size=(W, H)), live=live) as st, Chromium(size=(1400, 800)) as b:
+        live.start()
         b.goto(st.url)
         b.wait_for("document.body.dataset.ready === '1' && window.studio.state.shownGen >= 1", timeout=60)
         yield st, b
@@ -415,3 +419,28 @@ def test_the_command_line_serves_the_document_until_interrupted(tmp_path):
     finally:
         proc.send_signal(signal.SIGINT)
         assert proc.wait(20) == 0
+
+
+@pytest.mark.browser
+@pytest.mark.slow
+@pytest.mark.skipif(find_chromium() is None, reason="needs Chromium (./install.sh --test installs it)")
+def test_an_osc_binding_moves_the_pages_slider_without_a_recompile(page):
+    from sdfgl.live import send_osc
+    st, b = page
+    ball = b.evaluate("""(async () => { const s = window.studio; s.clear();
+      const ball = s.addNode("sphere", 40, 40, { radius: 0.7 });
+      s.setLive(ball, "radius", true);
+      s.connect(ball, s.addNode("output", 400, 40));
+      await s.compileNow();
+      return ball; })()""")
+    settle(b)
+    name = f"n{ball}_radius"
+    compiles = st.workspace.compiles
+    st.live.bind_osc("/radius", name)
+    n = frames(b)
+    send_osc("/radius", 1.3, port=st.live.osc_port)    # loopback UDP
+    b.wait_for(f"Math.abs(window.studio.state.params['{name}'].value - 1.3) < 1e-6", timeout=30)  # OSC floats: 32 bits
+    settle(b, n)
+    want = sg.render(sg.sphere(1.3), CAMERA, (W, H), shadows="soft", ao=True).color
+    assert differing(canvas(b), want) < MAX_FRACTION
+    assert st.workspace.compiles == compiles and st.workspace.doc["params"][name]["value"] == pytest.approx(1.3)

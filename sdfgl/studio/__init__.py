@@ -27,8 +27,8 @@ __all__ = ["Studio", "Workspace", "open_studio"]
 
 
 def open_studio(scene: Any = None, path: str | Path | None = None, camera: Camera | None = None, *,
-           size: tuple[int, int] = (640, 400), open_browser: bool = True, port: int = 0,
-           settings: dict[str, Any] | None = None) -> Studio:
+                size: tuple[int, int] = (640, 400), open_browser: bool = True, port: int = 0,
+                settings: dict[str, Any] | None = None, live: Any = None) -> Studio:
     """Start the studio on ``scene`` (a node) or on the document file ``path``; returns the
     running :class:`Studio` (``.url``, ``.stop()``).
 
@@ -40,6 +40,9 @@ def open_studio(scene: Any = None, path: str | Path | None = None, camera: Camer
         open_browser: open the page in the system's browser.
         port: the port on 127.0.0.1 (0: a free one).
         settings: render settings (with ``scene``).
+        live: a :class:`sdfgl.live.LiveControl` (MIDI / OSC bindings) whose values move the
+            page's sliders; the studio starts it (and stops it with itself), switches it to
+            deferred delivery and offers it each compiled document's parameters.
 
     Needs the ``studio`` extra (tornado).
     """
@@ -48,7 +51,9 @@ def open_studio(scene: Any = None, path: str | Path | None = None, camera: Camer
         from ..scene_io import to_dict
         doc = to_dict(scene, camera, settings)
     workspace = Workspace(path, doc, size)
-    st = Studio(workspace, port=port).start()
+    st = Studio(workspace, port=port, live=live).start()
+    if live is not None:
+        live.start()
     if open_browser:
         webbrowser.open(st.url)
     return st

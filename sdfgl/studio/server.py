@@ -15,7 +15,8 @@ Websocket messages, page -> server: ``{"type": "doc", "gen", "doc"}`` (compile),
 ``hello`` (the document, the file name), ``spec`` (the view spec, ``gen``, ``compiles``),
 ``error`` (``path``, ``message``, ``gen``, ``request``), ``saved``, ``python``, ``export``
 (``file``, ``b64``),
-``parametric`` (an implicit node), ``preview`` (``node``, ``b64``), ``failed``.
+``parametric`` (an implicit node), ``preview`` (``node``, ``b64``), ``values`` (live
+parameters moved by a MIDI or OSC controller, :mod:`sdfgl.live`), ``failed``.
 """
 from __future__ import annotations
 
@@ -27,7 +28,7 @@ import secrets
 import threading
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 from urllib.parse import urlsplit
 
 from ..errors import SdfglError
@@ -35,11 +36,19 @@ from ..extras import require_extra
 from .palette import palette
 from .workspace import Workspace, error_of
 
+if TYPE_CHECKING:
+    from ..live import LiveControl
+
 ASSETS = Path(__file__).resolve().parent / "assets"   # built by js/build.sh (npm run build)
 PAGE = Path(__file__).resolve().parent / "page.html"
 ASSET_TYPES = {".js": "text/javascript", ".css": "text/css"}
 WEB_FILES = {"viewer.js": "viewer.js", "viewer.css": "style.css"}   # served from sdfgl/web
 COOKIE = "sdfgl-studio-token"
+
+
+def _json_value(v: Any) -> Any:
+    """A parameter value as JSON (a 3-vector as a list)."""
+    return v.tolist() if hasattr(v, "tolist") else float(v)
 
 
 def _page(boot: dict[str, Any]) -> str:
@@ -51,9 +60,16 @@ def _page(boot: dict[str, Any]) -> str:
 class Studio:
     """A running studio server on one :class:`Workspace` (start with :meth:`start`)."""
 
-    def __init__(self, workspace: Workspace, host: str = "127.0.0.1", port: int = 0) -> None:
+    def __init__(self, workspace: Workspace, host: str = "127.0.0.1", port: int = 0,
+                 live: LiveControl | None = None) -> None:
         require_extra("studio", "tornado", purpose="sdfgl studio")
         self.workspace = workspace
+        self.live = live
+        self.sockets: set[Any] = set()  # the open pages
+        if live is not None:  # values from controllers reach the pages through this server's loop
+            live.deferred = True
+            live.wake = self.wake
+            live.use(list(workspace.document.params.values()))
         self.host = host
         self.port = port
         self.token = secrets.token_urlsafe(24)
@@ -87,6 +103,30 @@ class Studio:
         """Whether ``given`` is this run's token (compared in constant time)."""
         return bool(given) and secrets.compare_digest(given.encode(), self.token.encode())
 
+    # -- live control -------------------------------------------------------------------
+    def wake(self) -> None:
+        """Called by the live control's threads when a controller moved a parameter."""
+        if self.loop is not None:
+            self.loop.call_soon_threadsafe(self.apply_live)
+
+    def apply_live(self) -> None:
+        """Take the controllers' values (on the server's loop) and send them to every page:
+        uniforms only, no recompile."""
+        assert self.live is not None
+        changed = self.live.apply_pending()
+        known = self.workspace.doc.get("params", {})
+        values = {self.live.key(p): _json_value(p.value) for p in changed if self.live.key(p) in known}
+        if not values:
+            return
+        self.workspace.set_values(values)
+        for socket in list(self.sockets):
+            socket.send({"type": "values", "values": values})
+
+    def compiled(self) -> None:
+        """After a compile: the live control drives the new document's parameters."""
+        if self.live is not None:
+            self.live.use(list(self.workspace.document.params.values()))
+
     # -- running ------------------------------------------------------------------------
     def start(self) -> "Studio":
         """Start serving on a background thread; returns when the port is bound."""
@@ -116,7 +156,9 @@ class Studio:
         self.loop.close()
 
     def stop(self) -> None:
-        """Stop the server and its worker."""
+        """Stop the server, its worker and its live control (if any)."""
+        if self.live is not None:
+            self.live.stop()
         if self.loop is not None and self._thread is not None and self._thread.is_alive():
             def halt() -> None:
                 self._server.stop()
@@ -191,9 +233,13 @@ def make_app(studio: Studio) -> Any:
             return origin in studio.allowed_origins() and urlsplit(origin).netloc == self.request.host
 
         def open(self) -> None:
+            studio.sockets.add(self)
             s = studio.workspace
             self.send({"type": "hello", "doc": s.doc, "file": s.path.name if s.path else None,
                        "compiles": s.compiles})
+
+        def on_close(self) -> None:
+            studio.sockets.discard(self)
 
         def send(self, msg: dict[str, Any]) -> None:
             try:
@@ -215,6 +261,7 @@ def make_app(studio: Studio) -> Any:
             try:
                 if kind == "doc":
                     spec = await loop.run_in_executor(studio.worker, s.compile, msg.get("doc"))
+                    studio.compiled()
                     self.send({"type": "spec", "gen": msg.get("gen"), "spec": spec, "compiles": s.compiles})
                 elif kind == "values":
                     s.set_values(dict(msg.get("values") or {}))

@@ -62,7 +62,7 @@ class Workspace:
         self.doc: dict[str, Any] = doc if doc is not None else json.loads(json.dumps(EMPTY))
         self.size = size
         self.compiles = 0
-        self.document: Document | None = None
+        self.document: Document = from_document(self.doc)  # decoded, not compiled: the page asks for that
         self._lock = threading.Lock()
 
     def compile(self, doc: dict[str, Any]) -> dict[str, Any]:
@@ -85,7 +85,7 @@ class Workspace:
             for name, value in values.items():
                 if name not in table:
                     raise ParameterError(f"studio: no live parameter named {name!r} in the document")
-                if self.document is not None and name in self.document.params:
+                if name in self.document.params:
                     self.document.params[name].value = value
                 table[name]["value"] = value
 
@@ -137,7 +137,7 @@ class Workspace:
         the file is made in a temporary folder, never beside the document."""
         if fmt not in EXPORTS:
             raise ParameterError(f"studio export: format must be one of {', '.join(EXPORTS)}, got {fmt!r}")
-        document = self.document or from_document(self.doc)
+        document = self.document
         stem = self.path.stem if self.path is not None else "scene"
         if fmt == "png":
             from ..png import encode_png

@@ -297,8 +297,14 @@ function showSpec(spec, cameraKey) {
 function paramsMoved(values) {
   const named = {};
   state.spec.params.forEach((p, i) => {
-    if (state.params[p.label]) { state.params[p.label].value = values[i]; named[p.label] = values[i]; }
+    if (state.params[p.label]) named[p.label] = values[i];
   });
+  takeValues(named);
+  send({ type: "values", values: named });
+}
+// live parameters' new values (by name) into the parameter table and the nodes' fields
+function takeValues(named) {
+  for (const [name, v] of Object.entries(named)) if (state.params[name]) state.params[name].value = v;
   for (const id of Object.keys(graphData())) {
     const node = editor.getNodeFromId(Number(id));
     for (const [field, p] of Object.entries(node.data.live || {})) {
@@ -306,7 +312,15 @@ function paramsMoved(values) {
     }
     showFields(Number(id));
   }
-  send({ type: "values", values: named });
+}
+// values a MIDI or OSC controller set on the server: uniforms only, no recompile
+function controllerMoved(named) {
+  if (!viewer) return;
+  const values = viewer.values;
+  state.spec.params.forEach((p, i) => { if (p.label in named) values[i] = named[p.label]; });
+  viewer.setValues(values);
+  takeValues(named);
+  state.controllerMoves = (state.controllerMoves || 0) + 1;
 }
 // a slider's value set from outside (a test, a controller): uniforms only, no recompile
 function setParam(name, value) {
@@ -373,6 +387,8 @@ function connectSocket() {
         state.shownGen = msg.gen;
       }
       settle(msg.gen, state.error);
+    } else if (msg.type === "values") {
+      controllerMoved(msg.values);
     } else if (msg.type === "preview") {
       showPreview(msg.node, msg.b64);
     } else if (msg.type === "error" && msg.request === "preview") {
