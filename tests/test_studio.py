@@ -45,7 +45,8 @@ def differing(a: np.ndarray, b: np.ndarray) -> float:
 
 def test_palette_lists_every_registered_kind_with_its_inputs_and_fields():
     entries = {e["kind"]: e for e in palette()}
-    assert set(entries) == set(registry())
+    assert set(entries) == set(registry()) | {"output"} and "output" not in registry()
+    assert [f["name"] for f in entries["output"]["fields"]] == ["camera", "settings"]
     assert entries["union"]["inputs"] == [{"name": "children", "many": True, "shape2d": False}]
     assert [f["name"] for f in entries["union"]["fields"]] == ["k", "blend"]
     radius = next(f for f in entries["sphere"]["fields"] if f["name"] == "radius")
@@ -160,6 +161,7 @@ def test_websocket_checks_origin_and_token(served):
         ws_talk(st, st.origin, [], token="wrong", replies=0)
     hello, = ws_talk(st, st.origin, [], replies=0)
     assert hello["type"] == "hello" and hello["doc"]["format"] == "sdfgl-scene" and hello["file"] == "part.json"
+    assert f'src="{st.url}"'.replace("&", "&amp;") in st._repr_html_()   # a notebook cell shows the page
 
 
 def test_websocket_refuses_code_in_strings_with_the_json_path(served):
@@ -196,7 +198,6 @@ def settle(b: Chromium, after: int = -1) -> None:
 BUILD_CSG = """(async () => {
   const s = window.studio;
   s.clear();
-  s.state.extra = { camera: %(camera)s };
   const cyl = s.addNode("cylinder", 40, 300, { radius: 0.5, height: 4 });
   const rx = s.addNode("rotate", 300, 250, { matrix: %(mx)s });
   const rz = s.addNode("rotate", 300, 420, { matrix: %(mz)s });
@@ -209,7 +210,7 @@ BUILD_CSG = """(async () => {
   s.connect(ball, core); s.connect(box, core);
   const part = s.addNode("difference", 820, 150);
   s.connect(core, part); s.connect(holes, part);
-  const out = s.addNode("output", 1060, 150);
+  const out = s.addNode("output", 1060, 150, { camera: %(camera)s });
   s.connect(part, out);
   const err = await s.compileNow();
   return { err, ball, box, doc: s.document() };
@@ -262,6 +263,15 @@ def test_csg_part_built_in_the_page_renders_like_sg_render(page):
     assert differing(canvas(b), egl) > 0.01
     assert st.workspace.compiles == compiles and b.evaluate("window.studio.state.compiles") == compiles
     b.wait_for(f"window.studio.state.params['{name}'].value === 1.12")
+
+    # a colour node: the picker writes the colour as the document does
+    tinted = b.evaluate("""(() => { const s = window.studio;
+      const c = s.addNode("color", 300, 600);
+      const pick = document.querySelector(`#node-${c} input[data-colour]`);
+      pick.value = "#ff8000"; pick.dispatchEvent(new Event("change", { bubbles: true }));
+      return s.editor.getNodeFromId(c).data.fields.rgb; })()""")
+    assert tinted == [1, 0.502, 0]
+    b.evaluate("window.studio.undo()")
 
     # a node's own preview: its subtree rendered by sg.render
     b.evaluate(f"window.studio.setPreview({built['ball']}, true)")
@@ -320,9 +330,8 @@ def build_one(b: Chromium, make: str) -> dict:
     return b.evaluate(f"""(async () => {{
       const s = window.studio;
       s.clear();
-      s.state.extra = {{ camera: {cam} }};
       const id = await {make};
-      s.connect(id, s.addNode("output", 600, 100));
+      s.connect(id, s.addNode("output", 600, 100, {{ camera: {cam} }}));
       return {{ err: await s.compileNow(), doc: s.document() }};
     }})()""")
 
@@ -427,12 +436,13 @@ def test_the_command_line_serves_the_document_until_interrupted(tmp_path):
 def test_an_osc_binding_moves_the_pages_slider_without_a_recompile(page):
     from sdfgl.live import send_osc
     st, b = page
+    cam = json.dumps(to_dict(sg.sphere(1), CAMERA)["camera"])
     ball = b.evaluate("""(async () => { const s = window.studio; s.clear();
       const ball = s.addNode("sphere", 40, 40, { radius: 0.7 });
       s.setLive(ball, "radius", true);
-      s.connect(ball, s.addNode("output", 400, 40));
+      s.connect(ball, s.addNode("output", 400, 40, { camera: CAMERA }));
       await s.compileNow();
-      return ball; })()""")
+      return ball; })()""".replace("CAMERA", cam))
     settle(b)
     name = f"n{ball}_radius"
     compiles = st.workspace.compiles

@@ -15,6 +15,7 @@ from ..scene_io.encode import signature
 
 NODE_TYPES = ("Node", "Shape2D")
 NUMBER_TYPES = ("float", "int")
+COLOUR_FIELDS = ("rgb", "color", "emission")  # fields of colour nodes and materials: the page adds a colour picker
 
 
 def slider_range(default: Any) -> tuple[float, float]:
@@ -54,13 +55,28 @@ def entry(kind: str, cls: type) -> dict[str, Any]:
         field: dict[str, Any] = {"name": p.name, "required": required, "default": default, "number": number}
         if number:
             field["min"], field["max"] = slider_range(default)
+        if p.name in COLOUR_FIELDS:
+            field["colour"] = True
         fields.append(field)
     doc = inspect.cleandoc(cls.__doc__ or "").split("\n\n")[0]
     return {"kind": kind, "group": cls.__module__.rsplit(".", 1)[-1], "inputs": inputs, "fields": fields,
             "doc": " ".join(doc.split())}
 
 
+OUTPUT = "output"
+"""The studio's scene-output node: its input is the document's ``scene``, its fields the
+document's ``camera`` and ``settings`` (not a node kind: no document names it)."""
+
+
+def output_entry() -> dict[str, Any]:
+    """The palette entry of the scene-output node."""
+    fields = [{"name": key, "required": False, "default": None, "number": False} for key in ("camera", "settings")]
+    return {"kind": OUTPUT, "group": "scene", "inputs": [{"name": "scene", "many": False, "shape2d": False}],
+            "fields": fields, "doc": "The scene: the document's root, camera (an object) and render settings "
+                                     "(an object, e.g. {\"background\": \"#223\", \"method\": \"enhanced\"})."}
+
+
 def palette() -> list[dict[str, Any]]:
-    """Every node kind of the registry, sorted by group and kind."""
-    items = [entry(kind, cls) for kind, cls in registry().items()]
-    return sorted(items, key=lambda e: (e["group"], e["kind"]))
+    """The scene-output node, then every node kind of the registry sorted by group and kind."""
+    items = sorted((entry(kind, cls) for kind, cls in registry().items()), key=lambda e: (e["group"], e["kind"]))
+    return [output_entry(), *items]

@@ -91,6 +91,11 @@ class Studio:
         """The page's URL with the token."""
         return f"{self.origin}/?token={self.token}"
 
+    def _repr_html_(self) -> str:
+        """The page in an iframe: ``sg.studio(scene)`` as the last line of a notebook cell shows the editor."""
+        return (f'<iframe src="{html.escape(self.url)}" width="100%" height="720" '
+                f'style="border: 1px solid #ccc"></iframe>')
+
     def allowed_hosts(self) -> set[str]:
         """The Host headers the server answers (no DNS rebinding)."""
         return {f"127.0.0.1:{self.port}", f"localhost:{self.port}", f"[::1]:{self.port}"}

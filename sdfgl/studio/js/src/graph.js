@@ -20,8 +20,13 @@ export function paramName(id, field) {
 export function toDocument(data, palette, params, extra = {}, rootId = null) {
   const paths = {};
   let rootConn = rootId === null ? null : { node: String(rootId) };
+  const top = {};  // the output node's fields: the document's camera and settings
   if (!rootConn) {
     const out = Object.values(data).find((n) => n.name === OUTPUT);
+    for (const key of ["camera", "settings"]) {
+      const v = out ? out.data.fields[key] : undefined;
+      if (v !== undefined && v !== null && v !== "") top[key] = v;
+    }
     if (!out) return { doc: null, paths, error: { node: null, message: "add a scene output node" } };
     rootConn = out.inputs.input_1 && out.inputs.input_1.connections[0];
     if (!rootConn) return { doc: null, paths, error: { node: out.id, message: "connect a node to the scene output" } };
@@ -68,7 +73,7 @@ export function toDocument(data, palette, params, extra = {}, rootId = null) {
   if (Object.keys(usedParams).length) doc.params = usedParams;
   if (Object.keys(table).length) doc.nodes = table;
   doc.scene = scene;
-  Object.assign(doc, extra);
+  Object.assign(doc, top, extra);
   return { doc, paths, error };
 }
 
@@ -133,7 +138,9 @@ export function fromDocument(editor, doc, palette, makeNode) {
     return id;
   }
   const root = build(doc.scene, 1);
-  const out = makeNode(OUTPUT, 30 + deepest * COLUMN, 30, {});
+  const top = {};
+  for (const key of ["camera", "settings"]) if (doc[key] !== undefined) top[key] = doc[key];
+  const out = makeNode(OUTPUT, 30 + deepest * COLUMN, 30, top);
   editor.addConnection(root, out, "output_1", "input_1");
   return params;
 }

@@ -10,7 +10,6 @@ import { History } from "./history.js";
 const COMPILE_DELAY_MS = 120;  // edits within this time are compiled together
 const boot = JSON.parse(document.getElementById("studio-boot").textContent);
 const palette = Object.fromEntries(boot.palette.map((e) => [e.kind, e]));
-palette[OUTPUT] = { kind: OUTPUT, group: "scene", inputs: [{ name: "scene", many: false }], fields: [], doc: "the scene" };
 
 const $ = (id) => document.getElementById(id);
 const el = (tag, cls, text) => {
@@ -22,7 +21,7 @@ const el = (tag, cls, text) => {
 
 const state = {
   params: {},       // live parameters: name -> {value, min, max}
-  extra: {},        // the document's camera and settings, kept as loaded
+  extra: {},        // the document's metadata, kept as loaded
   gen: 0,           // structure edits sent
   shownGen: 0,      // the edit whose spec is on screen
   compiles: 0,      // the server's compile count
@@ -54,7 +53,8 @@ function parseField(text) {
 function nodeHtml(kind) {
   const entry = palette[kind];
   const rows = entry.fields.map((f) => {
-    const live = f.number ? `<label class="studio-live" title="a live parameter: a slider, no recompile"><input type="checkbox" data-live="${f.name}">~</label>` : "";
+    const live = f.number ? `<label class="studio-live" title="a live parameter: a slider, no recompile"><input type="checkbox" data-live="${f.name}">~</label>`
+      : f.colour ? `<input type="color" class="studio-colour" data-colour="${f.name}">` : "";
     return `<label class="studio-field"><span>${f.name}${f.required ? "*" : ""}</span><input data-field="${f.name}" spellcheck="false">${live}</label>`;
   }).join("");
   const slots = entry.inputs.map((s) => s.name + (s.many ? " (many)" : "")).join(", ");
@@ -62,6 +62,14 @@ function nodeHtml(kind) {
     + (slots ? `<div class="studio-slots">in: ${slots}</div>` : "") + rows
     + (kind === OUTPUT ? "" : `<label class="studio-preview-toggle"><input type="checkbox" data-preview="1"> preview</label><img class="studio-preview" alt="" hidden>`)
     + `<div class="studio-node-error"></div>`;
+}
+
+// colours as the document writes them (three numbers in 0..1) and as a colour picker does (#rrggbb)
+function hexOf(rgb) {
+  return `#${rgb.map((c) => Math.round(Math.min(Math.max(Number(c) || 0, 0), 1) * 255).toString(16).padStart(2, "0")).join("")}`;
+}
+function rgbOf(hex) {
+  return [1, 3, 5].map((i) => Math.round((parseInt(hex.slice(i, i + 2), 16) / 255) * 1000) / 1000);
 }
 
 function nodeElement(id) {
@@ -88,6 +96,10 @@ function showFields(id) {
     input.value = fieldText(p ? p.value : node.data.fields[input.dataset.field]);
   }
   for (const box of elem.querySelectorAll("input[data-live]")) box.checked = Boolean(node.data.live[box.dataset.live]);
+  for (const pick of elem.querySelectorAll("input[data-colour]")) {
+    const v = node.data.fields[pick.dataset.colour];
+    if (Array.isArray(v) && v.length === 3) pick.value = hexOf(v);
+  }
 }
 
 function setField(id, name, value) {
@@ -127,6 +139,7 @@ $("studio-editor").addEventListener("change", (e) => {
   if (t.dataset.field) setField(id, t.dataset.field, parseField(t.value));
   else if (t.dataset.live) setLive(id, t.dataset.live, t.checked);
   else if (t.dataset.preview) setPreview(id, t.checked);
+  else if (t.dataset.colour) setField(id, t.dataset.colour, rgbOf(t.value));
 });
 // keys typed in a field are the field's, not the editor's (Delete would remove the node)
 $("studio-editor").addEventListener("keydown", (e) => { if (e.target.tagName === "INPUT") e.stopPropagation(); }, true);
@@ -155,7 +168,7 @@ for (const ev of ["connectionRemoved", "nodeRemoved"]) editor.on(ev, () => { if 
 function buildPalette() {
   const nav = $("studio-palette");
   const groups = {};
-  for (const e of [palette[OUTPUT], ...boot.palette]) (groups[e.group] = groups[e.group] || []).push(e);
+  for (const e of boot.palette) (groups[e.group] = groups[e.group] || []).push(e);
   for (const [group, entries] of Object.entries(groups)) {
     nav.append(el("h3", "", group));
     for (const e of entries) {
@@ -230,6 +243,12 @@ function nodeOfPath(path) {
 function compileNow() {
   clearTimeout(compileTimer);
   const { doc, paths, error } = currentDocument();
+  const text = error ? null : JSON.stringify(doc);
+  if (text !== null && text === state.lastSent && state.shownGen === state.gen && !state.error) {
+    return Promise.resolve(null);  // an edit that leaves the document as it was (a node not yet connected)
+  }
+  state.lastSent = text;
+  state.error = null;
   state.gen++;
   clearErrors();
   if (error) {
@@ -355,7 +374,7 @@ function load(doc) {
   state.loading = true;
   try {
     state.extra = {};
-    for (const key of ["camera", "settings", "metadata"]) if (doc[key] !== undefined) state.extra[key] = doc[key];
+    if (doc.metadata !== undefined) state.extra.metadata = doc.metadata;
     state.params = fromDocument(editor, doc, palette, makeNode);
   } finally {
     state.loading = false;
