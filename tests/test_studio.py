@@ -126,7 +126,8 @@ def test_token_and_host_are_required(served):
     assert get(st, "/") == 403
     assert get(st, "/?token=wrong") == 403
     assert get(st, "/assets/studio.js") == 403
-    assert get(st, "/assets/studio.js", cookie=f"sdfgl-studio-token={st.token}") == 200
+    assert get(st, "/assets/studio.js", cookie=f"sdfgl-studio-token-{st.port}={st.token}") == 200
+    assert get(st, "/assets/studio.js", cookie=f"sdfgl-studio-token-{st.port + 1}={st.token}") == 403
     assert get(st, f"/assets/viewer.js?token={st.token}") == 200
     assert get(st, f"/?token={st.token}", host=f"evil.example:{st.port}") == 403   # DNS rebinding
     assert get(st, f"/?token={st.token}", host="127.0.0.1:1") == 403

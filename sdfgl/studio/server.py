@@ -43,7 +43,7 @@ ASSETS = Path(__file__).resolve().parent / "assets"   # built by js/build.sh (np
 PAGE = Path(__file__).resolve().parent / "page.html"
 ASSET_TYPES = {".js": "text/javascript", ".css": "text/css"}
 WEB_FILES = {"viewer.js": "viewer.js", "viewer.css": "style.css"}   # served from sdfgl/web
-COOKIE = "sdfgl-studio-token"
+COOKIE = "sdfgl-studio-token-{port}"  # cookies do not tell ports apart: one name a server
 
 
 def _json_value(v: Any) -> Any:
@@ -190,7 +190,7 @@ def make_app(studio: Studio) -> Any:
         def prepare(self) -> None:
             if self.request.host not in studio.allowed_hosts():
                 raise tornado.web.HTTPError(403, "unknown Host")
-            given = self.get_query_argument("token", None) or self.get_cookie(COOKIE)
+            given = self.get_query_argument("token", None) or self.get_cookie(COOKIE.format(port=studio.port))
             if not studio.token_ok(given):
                 raise tornado.web.HTTPError(403, "missing or wrong token")
 
@@ -200,7 +200,7 @@ def make_app(studio: Studio) -> Any:
 
     class PageHandler(Guarded):
         def get(self) -> None:
-            self.set_cookie(COOKIE, studio.token, httponly=True, samesite="Strict")
+            self.set_cookie(COOKIE.format(port=studio.port), studio.token, httponly=True, samesite="Strict")
             self.set_header("Content-Security-Policy", "default-src 'self'; img-src 'self' data: blob:; "
                                                        "style-src 'self' 'unsafe-inline'; connect-src 'self'")
             path = studio.workspace.path
