@@ -50,7 +50,7 @@ def test_palette_lists_every_registered_kind_with_its_inputs_and_fields():
     assert entries["union"]["inputs"] == [{"name": "children", "many": True, "shape2d": False}]
     assert [f["name"] for f in entries["union"]["fields"]] == ["k", "blend"]
     radius = next(f for f in entries["sphere"]["fields"] if f["name"] == "radius")
-    assert radius == {"name": "radius", "required": False, "default": 1.0, "number": True, "min": 0.0, "max": 4.0}
+    assert radius == {"name": "radius", "required": False, "default": 1.0, "number": True, "min": 0.125, "max": 4.0}
     assert [i["name"] for i in entries["translate"]["inputs"]] == ["child"]
     assert entries["extrude"]["inputs"][0]["shape2d"] is True
     json.dumps(palette(), allow_nan=False)  # the page receives it as JSON
@@ -435,6 +435,8 @@ def test_the_command_line_serves_the_document_until_interrupted(tmp_path):
 @pytest.mark.slow
 @pytest.mark.skipif(find_chromium() is None, reason="needs Chromium (./install.sh --test installs it)")
 def test_an_osc_binding_moves_the_pages_slider_without_a_recompile(page):
+    import time
+
     from sdfgl.live import send_osc
     st, b = page
     cam = json.dumps(to_dict(sg.sphere(1), CAMERA)["camera"])
@@ -447,6 +449,21 @@ def test_an_osc_binding_moves_the_pages_slider_without_a_recompile(page):
     settle(b)
     name = f"n{ball}_radius"
     compiles = st.workspace.compiles
+    # MIDI learn in the page: the next control change moved drives the parameter (the Web MIDI
+    # handler fed with the bytes of a CC message; headless Chromium has no MIDI device)
+    n = frames(b)
+    b.evaluate(f"window.studio.midiLearn('{name}')")
+    assert b.evaluate("window.studio.midiMessage([0xB0, 21, 127])") is True
+    settle(b, n)
+    lo, hi = b.evaluate(f"[window.studio.state.params['{name}'].min, window.studio.state.params['{name}'].max]")
+    assert b.evaluate(f"window.studio.state.params['{name}'].value") == pytest.approx(hi)
+    assert b.evaluate("window.studio.document().metadata.studio.midi")[name] == {"cc": 21, "channel": 0}
+    b.evaluate("window.studio.midiMessage([0xB0, 21, 0])")
+    assert b.evaluate(f"window.studio.state.params['{name}'].value") == pytest.approx(lo)
+    assert b.evaluate("window.studio.midiMessage([0xB1, 21, 64])") is False   # another channel
+    time.sleep(0.5)   # longer than the page's compile delay: learning and moving scheduled no compile
+    assert st.workspace.compiles == compiles and b.evaluate("window.studio.state.shownGen === window.studio.state.gen")
+
     st.live.bind_osc("/radius", name)
     n = frames(b)
     send_osc("/radius", 1.3, port=st.live.osc_port)    # loopback UDP

@@ -20,10 +20,11 @@ COLOUR_FIELDS = ("rgb", "color", "emission")  # fields of colour nodes and mater
 
 def slider_range(default: Any) -> tuple[float, float]:
     """The slider range the studio offers for a number field whose default is ``default``:
-    0 .. 4 x a positive default, symmetric about 0 for a negative or zero one."""
+    1/8 .. 4 x a positive default (sizes stay positive), symmetric about 0 for a negative or
+    zero one."""
     if isinstance(default, (int, float)) and not isinstance(default, bool) and math.isfinite(default) and default:
         mag = 4.0 * abs(float(default))
-        return (0.0, mag) if default > 0 else (-mag, mag)
+        return (abs(float(default)) / 8.0, mag) if default > 0 else (-mag, mag)
     return (-2.0, 2.0)
 
 

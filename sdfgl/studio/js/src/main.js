@@ -6,6 +6,7 @@ import Drawflow from "drawflow";
 import { createViewer } from "./viewer.js";
 import { OUTPUT, fromDocument, paramName, toDocument } from "./graph.js";
 import { History } from "./history.js";
+import { MidiLearn } from "./midi.js";
 
 const COMPILE_DELAY_MS = 120;  // edits within this time are compiled together
 const boot = JSON.parse(document.getElementById("studio-boot").textContent);
@@ -189,7 +190,11 @@ function graphData() {
   return editor.export().drawflow.Home.data;
 }
 function currentDocument() {
-  return toDocument(graphData(), palette, state.params, state.extra);
+  const extra = { ...state.extra };
+  if (Object.keys(midi.bindings).length) {
+    extra.metadata = { ...(extra.metadata || {}), studio: { ...((extra.metadata || {}).studio || {}), midi: midi.toJSON() } };
+  }
+  return toDocument(graphData(), palette, state.params, extra);
 }
 
 const history = new History(() => ({ graph: editor.export(), params: JSON.parse(JSON.stringify(state.params)) }));
@@ -243,7 +248,7 @@ function nodeOfPath(path) {
 function compileNow() {
   clearTimeout(compileTimer);
   const { doc, paths, error } = currentDocument();
-  const text = error ? null : JSON.stringify(doc);
+  const text = error ? null : JSON.stringify({ ...doc, metadata: undefined });  // metadata never changes the scene
   if (text !== null && text === state.lastSent && state.shownGen === state.gen && !state.error) {
     return Promise.resolve(null);  // an edit that leaves the document as it was (a node not yet connected)
   }
@@ -293,6 +298,40 @@ function showPreview(id, b64, message) {
   if (b64) { img.src = `data:image/png;base64,${b64}`; img.title = ""; }
   else img.title = message;
   elem.dataset.previews = String(+(elem.dataset.previews || 0) + 1);
+}
+
+// -- MIDI learn (Web MIDI): a CC moves a live parameter's slider
+const midi = new MidiLearn(() => state.params, (name, value) => {
+  if (state.spec && state.spec.params.some((p) => p.label === name)) setParam(name, value);
+});
+function buildMidi() {
+  const box = $("studio-midi");
+  const status = el("div", "studio-midi-status", "MIDI: off");
+  const start = el("button", "studio-tool", "Connect MIDI");
+  start.addEventListener("click", () => midi.connect()
+    .then((n) => { status.textContent = `MIDI: ${n} input(s)`; })
+    .catch((e) => { status.textContent = `MIDI: ${e.message || e}`; }));
+  const rows = el("div", "studio-midi-rows");
+  box.append(start, status, rows);
+  return rows;
+}
+const midiRows = buildMidi();
+function showMidi() {
+  midiRows.replaceChildren();
+  for (const name of Object.keys(state.params)) {
+    const row = el("div", "studio-midi-row");
+    const b = midi.bindings[name];
+    const learn = el("button", "studio-tool", midi.learning === name ? "move a control..." : "learn");
+    learn.addEventListener("click", () => { midi.learn(name); showMidi(); });
+    row.append(el("span", "", name), el("span", "", b ? `CC${b.cc}/ch${b.channel}` : "-"), learn);
+    midiRows.append(row);
+  }
+}
+function midiMessage(data) {
+  const learning = midi.learning;
+  const moved = midi.message(data);
+  if (learning !== null && midi.learning === null) { showMidi(); history.record(); }  // metadata: no recompile
+  return moved;
 }
 
 // -- the view ----------------------------------------------------------------------------
@@ -375,6 +414,7 @@ function load(doc) {
   try {
     state.extra = {};
     if (doc.metadata !== undefined) state.extra.metadata = doc.metadata;
+    midi.load(doc.metadata && doc.metadata.studio ? doc.metadata.studio.midi : null);
     state.params = fromDocument(editor, doc, palette, makeNode);
   } finally {
     state.loading = false;
@@ -397,6 +437,7 @@ function connectSocket() {
         showSpec(msg.spec, state.cameraKeys[msg.gen]);
         state.shownGen = msg.gen;
         for (const id of previews) requestPreview(id);
+        showMidi();
       }
       delete state.cameraKeys[msg.gen];
       settle(msg.gen, null);
@@ -545,6 +586,9 @@ window.studio = {
   addImplicit,
   addParametric,
   setPreview,
+  midi,
+  midiMessage,
+  midiLearn: (name) => { midi.learn(name); showMidi(); },
   undo: () => history.undo(restore),
   redo: () => history.redo(restore),
   get viewer() { return viewer; },
