@@ -404,7 +404,11 @@ def test_exports_go_through_the_existing_writers(tmp_path):
     pytest.importorskip("trimesh")
     name, stl = ws.export("stl")
     assert name == "part.stl" and len(stl) > 84
-    with pytest.raises(SdfglError, match="format must be one of png, html, stl, 3mf"):
+    pytest.importorskip("imageio_ffmpeg")
+    ws.size = (32, 24)   # a small clip: 120 frames
+    name, clip = ws.export("mp4")
+    assert name == "part.mp4" and clip[4:8] == b"ftyp"
+    with pytest.raises(SdfglError, match="format must be one of png, html, stl, 3mf, mp4"):
         ws.export("exe")
     assert sorted(p.name for p in tmp_path.iterdir()) == []   # nothing written beside the document
 

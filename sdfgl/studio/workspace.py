@@ -23,7 +23,8 @@ from ..scene_io.decode import Document, from_document
 EMPTY: dict[str, Any] = {"format": FORMAT, "version": VERSION, "scene": {"kind": "sphere", "radius": 1.0}}
 """The document a studio opened on no file (or on a file that does not exist yet) starts with."""
 PREVIEW_SIZE = (120, 80)  # a node's own preview, in pixels
-EXPORTS = ("png", "html", "stl", "3mf")
+EXPORTS = ("png", "html", "stl", "3mf", "mp4")
+TURNTABLE_S = 4.0  # the length of the exported MP4: one turn about the scene
 """The formats the page's export buttons ask for."""
 PARAMETRIC_TIMEOUT_S = 20.0  # the longest a parametric surface of the primitives panel may take to implicitize
 
@@ -133,7 +134,8 @@ class Workspace:
     def export(self, fmt: str) -> tuple[str, bytes]:
         """The current scene as a file of format ``fmt`` through the existing exporters: ``png``
         (``sg.render`` at the page's size, camera and settings), ``html`` (the one-file WebGL2
-        page), ``stl`` or ``3mf`` (``sg.mesh``, the ``mesh`` extra). Returns (file name, bytes);
+        page), ``stl`` or ``3mf`` (``sg.mesh``, the ``mesh`` extra), ``mp4`` (``sg.animate``:
+        a turntable of TURNTABLE_S seconds, the ``video`` extra). Returns (file name, bytes);
         the file is made in a temporary folder, never beside the document."""
         if fmt not in EXPORTS:
             raise ParameterError(f"studio export: format must be one of {', '.join(EXPORTS)}, got {fmt!r}")
@@ -147,9 +149,16 @@ class Workspace:
             from ..web.html import to_html
             data = to_html(document.scene, document.camera, self.size, **document.settings).encode("utf-8")
         else:
-            from ..mesh import mesh
             with tempfile.TemporaryDirectory(prefix="sdfgl-studio-") as tmp:
                 target = Path(tmp) / f"{stem}.{fmt}"
-                mesh(document.scene).save(target)
+                if fmt == "mp4":
+                    from ..animate import animate, turntable
+                    cam = document.camera
+                    spin = turntable(getattr(cam, "distance", None), getattr(cam, "pitch", 20.0),
+                                     getattr(cam, "target", None), getattr(cam, "fov", 45.0), getattr(cam, "yaw", 30.0))
+                    animate(document.scene, target, TURNTABLE_S, camera=spin, size=self.size, **document.settings)
+                else:
+                    from ..mesh import mesh
+                    mesh(document.scene).save(target)
                 data = target.read_bytes()
         return f"{stem}.{fmt}", data

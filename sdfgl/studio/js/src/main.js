@@ -503,6 +503,7 @@ function buildToolbar() {
   button("HTML", () => exportAs("html"), "export: the one-file WebGL2 page");
   button("STL", () => exportAs("stl"), "export: a mesh by sg.mesh (the mesh extra)");
   button("3MF", () => exportAs("3mf"), "export: a mesh by sg.mesh (the mesh extra)");
+  button("MP4", () => exportAs("mp4"), "export: a turntable clip by sg.animate (the video extra)");
 }
 document.addEventListener("keydown", (e) => {
   if (e.target.tagName === "INPUT") return;
