@@ -43,10 +43,17 @@ def load_mesh(path: str | os.PathLike, scale: float = 1.0, units: str | None = N
     non-finite vertices, no triangles or more than
     :data:`~sdfgl.nodes.mesh_field.MAX_TRIANGLES` raises :class:`~sdfgl.errors.MeshError`
     naming the file.
+
+    Example:
+        >>> import os, tempfile, trimesh
+        >>> path = os.path.join(tempfile.mkdtemp(), "ball.stl")
+        >>> _ = trimesh.creation.icosphere().export(path)
+        >>> sg.load_mesh(path, units="cm").bounds[1].round(1)  # a unit sphere in cm, in mm
+        array([10., 10., 10.])
     """
+    name = os.fspath(v.file_path("load_mesh", "path", path))
     require_extra("meshin", "trimesh", purpose="sg.load_mesh")
     import trimesh
-    name = os.fspath(path)
     file = Path(name)
     if not file.is_file():
         raise MeshError(f"mesh file '{name}': no such file")
@@ -65,8 +72,22 @@ def load_mesh(path: str | os.PathLike, scale: float = 1.0, units: str | None = N
 
 def from_mesh(mesh: Any, scale: float = 1.0, units: str | None = None, scene_units: str = "mm",
               name: str = "mesh") -> MeshField:
-    """The exact signed distance to a closed ``trimesh.Trimesh`` (repaired as in :func:`load_mesh`;
-    ``mesh`` itself is not changed); ``name`` is what errors call it."""
+    """The exact signed distance to a closed ``trimesh.Trimesh``, repaired as in
+    :func:`load_mesh` (``mesh`` itself is not changed).
+
+    Args:
+        mesh: the triangle mesh (``trimesh.Trimesh``).
+        scale: a factor applied to the vertices (after the unit conversion).
+        units: the mesh's length unit ("mm", "cm", "inch", ...); None: its numbers are
+            taken as scene units.
+        scene_units: what one scene unit is, when ``units`` is given (default "mm").
+        name: what errors call the mesh.
+
+    Example:
+        >>> import trimesh
+        >>> sg.from_mesh(trimesh.creation.icosphere()).exactness
+        'exact'
+    """
     require_extra("meshin", "trimesh", purpose="sg.from_mesh")
     import trimesh
     if not isinstance(mesh, trimesh.Trimesh):
