@@ -20,6 +20,9 @@
 // surfaces, the rounds that start within the hit threshold counted apart (2 MAX_STEPS in all).
 // One loop and one map() call a loop round, as in march_relaxed.glsl: a loop round samples
 // f at t, the derivative's second point, or the next point of a settling (settleUpdate).
+#define STEP_GROWTH 2.0   // implicit fields: a Newton step at most this many times the last one
+#define FIRST_STEP 0.01   // ... and the first at most this share of the scene size times STEP_GROWTH
+
 float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
     float roLen = length(ro);
 #ifdef FORWARD_NEWTON
@@ -27,6 +30,9 @@ float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
     float t0 = tmin - 1e-4 * SCENE_SCALE;
 #endif
     float t = tmin;
+#ifdef IMPLICIT_FIELD
+    float lastStep = FIRST_STEP * SCENE_SCALE;  // the last Newton step (a first one of this share of the scene)
+#endif
     float tOut = t;
     float fOut = -1.0;  // < 0: no sample outside yet
     int rounds = 0;
@@ -68,9 +74,19 @@ float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
                 return -1.0;
             }
 #else
-            t += df < 0.0 ? min(-f / df, NEWTON_CAP * f) : f;
+            float step = df < 0.0 ? min(-f / df, NEWTON_CAP * f) : f;
+#ifdef IMPLICIT_FIELD
+            // f / |grad f| grows without bound near a critical point outside the solid (grad f = 0
+            // where f > 0: between the lobes of a quartic, the centre of a shell): a step is at
+            // most STEP_GROWTH times the last one, so a ray that meets such a point goes on in
+            // steps that grow from the ones before it and does not leap whatever lies behind
+            step = min(step, STEP_GROWTH * lastStep);
+            lastStep = step;
+#endif
+            t += step;
             if (t > tmax) {
-                return -1.0;
+                if (tOut >= tmax) return -1.0;
+                t = tmax;  // the step left the range: f at the exit shows a sign change before it
             }
 #endif
             continue;
@@ -122,6 +138,9 @@ float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
             phase = 2;
             continue;
         }
+#ifndef FORWARD_NEWTON
+        if (t >= tmax) return -1.0;  // outside at the exit: nothing in the range
+#endif
         h = rayDerivativeStep(ro + rd * t);
         phase = 1;
     }
