@@ -82,6 +82,9 @@ def _implicit(expr: str, lo: tuple[float, float, float], hi: tuple[float, float,
     return build
 
 
+_AUTO = {"method": "auto"}  # auto: newton (implicit); the distance methods refuse an implicit field
+
+
 # the clip box cuts these solids: its faces are no sign change of the field, so the hit-to-surface
 # figure (the nearest sign change of the twin) says nothing there
 _CUT = Expect(surface_px_max=float("inf"))
@@ -90,30 +93,30 @@ _CUT = Expect(surface_px_max=float("inf"))
 EXIT_CASES: tuple[HardCase, ...] = (
     HardCase("implicit_cone_far_side", "implicit cone x^2 + y^2 - z^2 whose vertex lies near the box's far side",
              _implicit("x**2 + y**2 - z**2", (-1.5, -1.5, -1.5), (1.5, 1.5, 0.3), (0.4, 0.3, 6.0), (0, 0, -1), 30),
-             expect=_CUT),
+             settings=_AUTO, expect=_CUT),
     HardCase("implicit_cone_far_side_tilted", "implicit cone seen from the side, its nappe ending at the box",
              _implicit("x**2 + z**2 - 0.5*y**2", (-1.0, -1.0, -1.0), (1.0, 0.2, 1.0), (3.5, 2.5, 3.0), (0, -0.3, 0),
                        40),
-             expect=_CUT),
+             settings=_AUTO, expect=_CUT),
     HardCase("whitney_far_side", "Whitney umbrella x^2 - y^2 z with its solid near the box's far side",
              _implicit("x**2 - y**2*z", (-1.0, -1.0, -0.5), (1.0, 1.0, 1.0), (0.3, 0.5, -5.0), (0, 0, 0.5), 35),
-             expect=_CUT),
+             settings=_AUTO, expect=_CUT),
     HardCase("whitney_far_side_oblique", "Whitney umbrella seen obliquely, clipped near its handle",
              _implicit("x**2 - y**2*z", (-1.2, -1.2, -1.2), (1.2, 1.2, 0.4), (2.5, -3.0, 4.0), (0, 0, 0), 40),
-             expect=_CUT),
+             settings=_AUTO, expect=_CUT),
 )
 
 # critical points of f outside the solid (grad f = 0 where f > 0): f / |grad f| is huge there
 CRITICAL_CASES: tuple[HardCase, ...] = (
     HardCase("quartic_lobes_eye_between", "two lobes of a quartic, the eye near the critical point between them",
              _implicit("((x-1)**2 + y**2 + z**2 - 0.5)*((x+1)**2 + y**2 + z**2 - 0.5) - 0.01",
-                       (-2.0, -1.0, -1.0), (2.0, 1.0, 1.0), (0.05, 0.02, 0.4), (1, 0, 0), 70)),
+                       (-2.0, -1.0, -1.0), (2.0, 1.0, 1.0), (0.05, 0.02, 0.4), (1, 0, 0), 70), settings=_AUTO),
     HardCase("implicit_shell_eye_centre", "a thin implicit spherical shell, the eye near its centre",
              _implicit("(x**2 + y**2 + z**2 - 1)**2 - 0.0004", (-1.2, -1.2, -1.2), (1.2, 1.2, 1.2),
-                       (0.02, 0.01, 0.03), (0.3, 0.2, -1), 90)),
+                       (0.02, 0.01, 0.03), (0.3, 0.2, -1), 90), settings=_AUTO),
     HardCase("implicit_shell_eye_off", "a thin implicit shell of radius 2, the eye 0.3 from its centre",
              _implicit("(x**2 + y**2 + z**2 - 4)**2 - 0.01", (-2.5, -2.5, -2.5), (2.5, 2.5, 2.5),
-                       (0.3, 0.0, 0.0), (-1, -0.4, 0.3), 80)),
+                       (0.3, 0.0, 0.0), (-1, -0.4, 0.3), 80), settings=_AUTO),
 )
 
 

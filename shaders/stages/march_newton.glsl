@@ -16,8 +16,10 @@
 // product of SDFs); can take a far root when a step jumps a whole object. NEWTON_CAP (a
 // setting, 2 by default) caps a Newton step at that many times the field value, which
 // keeps it from jumping thin parts of fields that are near-distances (an implicit
-// surface's f / |grad f|). Budget as in march_relaxed.glsl: MAX_STEPS rounds away from
-// surfaces, the rounds that start within the hit threshold counted apart (2 MAX_STEPS in all).
+// surface's f / |grad f|); on an implicit field a step is also at most STEP_GROWTH times the
+// last, since f / |grad f| is huge near a critical point outside the solid. A step past the
+// box exit samples the exit first, so a sign change before it is found. Budget as in
+// march_relaxed.glsl: MAX_STEPS rounds away from surfaces, the rounds that start within the hit threshold counted apart (2 MAX_STEPS in all).
 // One loop and one map() call a loop round, as in march_relaxed.glsl: a loop round samples
 // f at t, the derivative's second point, or the next point of a settling (settleUpdate).
 #define STEP_GROWTH 2.0   // implicit fields: a Newton step at most this many times the last one
@@ -30,7 +32,7 @@ float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
     float t0 = tmin - 1e-4 * SCENE_SCALE;
 #endif
     float t = tmin;
-#ifdef IMPLICIT_FIELD
+#if defined(IMPLICIT_FIELD) && !defined(FORWARD_NEWTON)
     float lastStep = FIRST_STEP * SCENE_SCALE;  // the last Newton step (a first one of this share of the scene)
 #endif
     float tOut = t;

@@ -13,7 +13,10 @@
 // The hit test (refine.glsl): a sample within the hit threshold (hitEpsilon) of a
 // surface probes past the root the slope predicts and needs a sign change; a near miss
 // goes on marching. A sample below 0 brackets the root. Far from the surface, a ray
-// closing in at a shallow angle probes the predicted root every fourth step.
+// closing in at a shallow angle probes the predicted root every fourth step; a probe that
+// lands inside past a gap the spheres do not cover proves nothing of the gap (an object
+// standing on a ground plane may fill it), so the ray marches on where the budget left
+// affords the way to the surface (roundsToNear), and settles the probe only where not.
 // Budget: at most MAX_STEPS loop rounds away from surfaces and 2 MAX_STEPS in all; the
 // rounds that start within the hit threshold (near misses, probes from closer in) are
 // counted apart, so a ray that passes near many surfaces (a repetition seen at a low
