@@ -131,6 +131,10 @@ def _bumpy(amplitude: float, frequency: float, distance: float) -> Build:
 NOISE_CASES: tuple[HardCase, ...] = (
     HardCase("noise_fine_bumps", "a sphere displaced by fine noise (amplitude 0.03, frequency 8)",
              _bumpy(0.03, 8.0, 3.5)),
+    # bumps half a footprint wide at 64x48: rays clip their tips a footprint before the surface behind;
+    # the normal varies across a pixel there (the stencil and the reference's point normal part)
+    HardCase("noise_tiny_bumps", "a sphere displaced by noise finer than a pixel (amplitude 0.02, frequency 40)",
+             _bumpy(0.02, 40.0, 3.5), expect=Expect(depth_px_p99=0.5, normal_deg_median=2.0, normal_deg_p99=90.0)),
     HardCase("noise_finer_bumps", "a sphere displaced by finer noise (amplitude 0.015, frequency 14)",
              _bumpy(0.015, 14.0, 3.0), expect=Expect(surface_px_max=0.6)),  # one silhouette pixel 0.52
     HardCase("noise_bumps_far", "fine noise on a sphere seen from afar (amplitude 0.06, frequency 6)",
