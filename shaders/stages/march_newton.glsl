@@ -19,7 +19,8 @@
 // surface's f / |grad f|); on an implicit field a step is also at most STEP_GROWTH times the
 // last, since f / |grad f| is huge near a critical point outside the solid. A step past the
 // box exit samples the exit first, so a sign change before it is found. Budget as in
-// march_relaxed.glsl: MAX_STEPS rounds away from surfaces, the rounds that start within the hit threshold counted apart (2 MAX_STEPS in all).
+// march_relaxed.glsl: MAX_STEPS rounds away from surfaces, the rounds that start within
+// the hit threshold counted apart (2 MAX_STEPS in all).
 // One loop and one map() call a loop round, as in march_relaxed.glsl: a loop round samples
 // f at t, the derivative's second point, or the next point of a settling (settleUpdate).
 #define STEP_GROWTH 2.0   // implicit fields: a Newton step at most this many times the last one
