@@ -16,10 +16,16 @@
 // product of SDFs); can take a far root when a step jumps a whole object. NEWTON_CAP (a
 // setting, 2 by default) caps a Newton step at that many times the field value, which
 // keeps it from jumping thin parts of fields that are near-distances (an implicit
-// surface's f / |grad f|). Budget as in march_relaxed.glsl: MAX_STEPS rounds away from
-// surfaces, the rounds that start within the hit threshold counted apart (2 MAX_STEPS in all).
+// surface's f / |grad f|); on an implicit field a step is also at most STEP_GROWTH times the
+// last, since f / |grad f| is huge near a critical point outside the solid. A step past the
+// box exit samples the exit first, so a sign change before it is found. Budget as in
+// march_relaxed.glsl: MAX_STEPS rounds away from surfaces, the rounds that start within
+// the hit threshold counted apart (2 MAX_STEPS in all).
 // One loop and one map() call a loop round, as in march_relaxed.glsl: a loop round samples
 // f at t, the derivative's second point, or the next point of a settling (settleUpdate).
+#define STEP_GROWTH 2.0   // implicit fields: a Newton step at most this many times the last one
+#define FIRST_STEP 0.01   // ... and the first at most this share of the scene size times STEP_GROWTH
+
 float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
     float roLen = length(ro);
 #ifdef FORWARD_NEWTON
@@ -27,6 +33,9 @@ float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
     float t0 = tmin - 1e-4 * SCENE_SCALE;
 #endif
     float t = tmin;
+#if defined(IMPLICIT_FIELD) && !defined(FORWARD_NEWTON)
+    float lastStep = FIRST_STEP * SCENE_SCALE;  // the last Newton step (a first one of this share of the scene)
+#endif
     float tOut = t;
     float fOut = -1.0;  // < 0: no sample outside yet
     int rounds = 0;
@@ -68,9 +77,19 @@ float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
                 return -1.0;
             }
 #else
-            t += df < 0.0 ? min(-f / df, NEWTON_CAP * f) : f;
+            float step = df < 0.0 ? min(-f / df, NEWTON_CAP * f) : f;
+#ifdef IMPLICIT_FIELD
+            // f / |grad f| grows without bound near a critical point outside the solid (grad f = 0
+            // where f > 0: between the lobes of a quartic, the centre of a shell): a step is at
+            // most STEP_GROWTH times the last one, so a ray that meets such a point goes on in
+            // steps that grow from the ones before it and does not leap whatever lies behind
+            step = min(step, STEP_GROWTH * lastStep);
+            lastStep = step;
+#endif
+            t += step;
             if (t > tmax) {
-                return -1.0;
+                if (tOut >= tmax) return -1.0;
+                t = tmax;  // the step left the range: f at the exit shows a sign change before it
             }
 #endif
             continue;
@@ -122,6 +141,9 @@ float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
             phase = 2;
             continue;
         }
+#ifndef FORWARD_NEWTON
+        if (t >= tmax) return -1.0;  // outside at the exit: nothing in the range
+#endif
         h = rayDerivativeStep(ro + rd * t);
         phase = 1;
     }

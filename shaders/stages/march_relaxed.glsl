@@ -13,7 +13,10 @@
 // The hit test (refine.glsl): a sample within the hit threshold (hitEpsilon) of a
 // surface probes past the root the slope predicts and needs a sign change; a near miss
 // goes on marching. A sample below 0 brackets the root. Far from the surface, a ray
-// closing in at a shallow angle probes the predicted root every fourth step.
+// closing in at a shallow angle probes the predicted root every fourth step; a probe that
+// lands inside past a gap the spheres do not cover proves nothing of the gap (an object
+// standing on a ground plane may fill it), so the ray marches on where the budget left
+// affords the way to the surface (roundsToNear), and settles the probe only where not.
 // Budget: at most MAX_STEPS loop rounds away from surfaces and 2 MAX_STEPS in all; the
 // rounds that start within the hit threshold (near misses, probes from closer in) are
 // counted apart, so a ray that passes near many surfaces (a repetition seen at a low
@@ -25,6 +28,21 @@
 // marching round at once, with no sample of its own. On llvmpipe the lanes of a block then
 // share every round whether they march or settle, where a nested settle() loop made the
 // marching lanes wait and each call site added a copy of map().
+#if defined(ENHANCED)
+#define STEP_FALL 2.0    // enhanced: tangent spheres along a straight surface
+#elif defined(OMEGA)
+#define STEP_FALL OMEGA
+#else
+#define STEP_FALL 1.0
+#endif
+
+// The marching rounds from a sample (t, r), the field falling at slope s along the ray as
+// towards a straight surface, to where that surface's root is within the hit threshold:
+// each round shrinks r by about STEP_FALL s of itself.
+float roundsToNear(float t, float r, float s) {
+    return log(max(r / hitEpsilon(t + r / s), 1.0)) / (STEP_FALL * s);
+}
+
 float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
     float roLen = length(ro);
     float t = tmin;
@@ -36,6 +54,7 @@ float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
     int rounds = 0;          // probes from closer in while r stopped shrinking
     float rRound = 3.0e38;   // r when rounds last restarted
     int sinceProbe = 0;      // steps since the last shallow-angle probe
+    bool farProbes = true;   // false once a shallow-angle probe landed inside unproven
     int nearSteps = 0;
     int marchRounds = 0;
     int nearRounds = 0;      // rounds that started within the hit threshold
@@ -61,6 +80,18 @@ float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
         steps++;
         float s = 0.0;
         bool stepOnly = false;  // the shallow-angle probe found no way on: the round's usual step
+        if (settling == 3 && r < 0.0 && S.fa0 - r < 0.999 * (c - S.a0) &&
+            roundsToNear(S.a0, S.fa0, sProbe) < 0.5 * float(MAX_STEPS - (marchRounds - nearRounds))) {
+            // the shallow-angle probe landed inside past a gap that its ball and f(t)'s do not
+            // cover: a near object may stand in the gap (a box on a ground plane), so the way
+            // there is marched where the budget affords it; a root lies before the probe, so
+            // the ray probes from afar only once the way left costs more than the budget left
+            settling = 0;
+            farProbes = false;
+            r = S.fa0;
+            s = sProbe;
+            stepOnly = true;
+        }
         if (settling != 0) {
             float th = settleUpdate(S, c, r);
             if (th < -3.5) continue;
@@ -133,7 +164,8 @@ float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
             // far from the surface, closing in at a shallow angle: every fourth step, probe
             // past the root the slope predicts (a plane seen at 0.5 degrees would take
             // hundreds of steps)
-            bool shallow = !inside && !near && s > 1e-3 && s < 0.5 && ++sinceProbe >= 4;
+            bool shallow = !inside && !near && s > 1e-3 && s < 0.5 && ++sinceProbe >= 4 &&
+                (farProbes || roundsToNear(t, r, s) >= 0.5 * float(MAX_STEPS - (marchRounds - nearRounds)));
             if (inside || (near && !stepNear) || shallow) {
                 if (shallow) sinceProbe = 0;
                 ms = minProbe(t, roLen);

@@ -19,8 +19,10 @@
 #define UNSAMPLED 3.0e38
 #define SETTLE_CALLS 24
 #define SETTLE_TOL 0.01
-#define SCAN_POINTS 3      // samples across a long uncovered probe bracket
-#define SCAN_SPACING 4.0   // ... at least this many hit thresholds apart (a footprint by default)
+#define SCAN_POINTS 16     // samples across a long uncovered probe bracket (the near zone of a
+                           // plane seen low may hold objects standing on it)
+#define SCAN_SPACING 2.0   // ... at least this many hit thresholds apart (half a footprint by default:
+                           // a bump that the ray clips a footprint before the far root dips below the line)
 #define SCAN_DIP 0.7       // a scan sample below this share of the straight line, or above 1/SCAN_DIP of it: the line fails
 
 // Where marching goes on after settle() returns -3.0: the last scan sample and f there.
