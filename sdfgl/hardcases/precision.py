@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from typing import Callable
 
+import numpy as np
+
 from ..camera import Camera, OrbitCamera
 from ..nodes import box, difference, implicit, sphere
 from ..nodes.base import Node
@@ -39,6 +41,29 @@ def _thin_plate(thickness: float, tilt: float) -> Build:
     return build
 
 
+def _far_repeat(at: float, period: float, yaw: float, turn: float = 0.0) -> Build:
+    # endless rows of spheres on the ground (turned ``turn`` degrees about the vertical), seen
+    # from a camera ``at`` from the world origin
+    def build() -> tuple[Node, Camera]:
+        scene = sphere(0.3 * period).repeat((period, 0.0, period))
+        if turn:
+            scene = scene.rotate(turn, (0, 1, 0))
+        target = np.array([at * 0.7071, 0.0, -at * 0.7071]) + 0.123 * period
+        return scene, OrbitCamera(target=tuple(target), distance=4 * period, yaw=yaw, pitch=30)
+    return build
+
+
+def _far_lattice(at: float, angle: float, axis: tuple[float, float, float]) -> Build:
+    # an endless 3D lattice of small spheres, turned, seen from a camera ``at`` from the origin
+    # (rays end at max_dist: a ray that grazes sphere after sphere of an endless lattice runs
+    # out of steps wherever it is)
+    def build() -> tuple[Node, Camera]:
+        scene = sphere(0.22).repeat(1.0).rotate(angle, axis)
+        target = at * np.array([0.48, -0.6, 0.64]) + 0.37
+        return scene, OrbitCamera(target=tuple(target), distance=2.5, yaw=30, pitch=20)
+    return build
+
+
 PRECISION_CASES: tuple[HardCase, ...] = (
     HardCase("shell_sdf_1e-3", "a spherical SDF shell 1e-3 thick, cut open: the normal stencil must not straddle "
              "the wall", _sdf_shell(1e-3, 1.0, 35, 25)),
@@ -51,4 +76,13 @@ PRECISION_CASES: tuple[HardCase, ...] = (
     HardCase("shell_sdf_1e-3_r5", "an SDF shell 1e-3 thick of radius 5", _sdf_shell(1e-3, 5.0, 10, 35)),
     HardCase("plate_1e-4", "a tilted square plate 1e-4 thick", _thin_plate(1e-4, 12)),
     HardCase("plate_5e-4", "a tilted square plate 5e-4 thick", _thin_plate(5e-4, -35)),
+    HardCase("repeat_1e5", "endless rows of spheres seen 1e5 from the origin", _far_repeat(1e5, 1.0, 20)),
+    HardCase("repeat_1e6", "endless rows of spheres seen 1e6 from the origin", _far_repeat(1e6, 2.0, -65)),
+    HardCase("repeat_1e6_turned", "endless rows of spheres turned 33 degrees, seen 1e6 from the origin",
+             _far_repeat(1e6, 1.5, 75, turn=33)),
+    HardCase("repeat_3e6", "endless rows of spheres seen 3e6 from the origin", _far_repeat(3e6, 0.5, 140)),
+    HardCase("lattice_1e5_rot", "an endless turned lattice of spheres 1e5 from the origin",
+             _far_lattice(1e5, 25, (0.2, 1.0, 0.1)), max_dist=12.0),
+    HardCase("lattice_1e6_rot", "an endless turned lattice of spheres 1e6 from the origin",
+             _far_lattice(1e6, 40, (1.0, 0.3, -0.5)), max_dist=12.0),
 )
