@@ -7,7 +7,7 @@ from typing import Callable
 import numpy as np
 
 from ..camera import Camera, OrbitCamera
-from ..nodes import box, difference, implicit, sphere
+from ..nodes import box, difference, implicit, sphere, union
 from ..nodes.base import Node
 from .spec import HardCase
 
@@ -64,6 +64,18 @@ def _far_lattice(at: float, angle: float, axis: tuple[float, float, float]) -> B
     return build
 
 
+def _near_tiny(size: float, eye_gap: float, wall: float) -> Build:
+    # a cube ``size`` across, ``eye_gap`` ahead of the eye, and a wall ``wall`` beyond it
+    def build() -> tuple[Node, Camera]:
+        eye = np.array([0.0, 0.0, 0.0])
+        c = np.array([0.0, 0.0, -eye_gap])
+        near = (box(size) - sphere(0.62 * size)).rotate(30, (1, 1, 0)).translate(tuple(c))
+        back = box((4 * wall, 4 * wall, 1.0)).translate((0, 0, -wall))
+        fov = float(np.degrees(2 * np.arctan(0.9 * size / eye_gap)))
+        return union(near, back), Camera.look_at(tuple(eye), tuple(c), fov=fov)
+    return build
+
+
 PRECISION_CASES: tuple[HardCase, ...] = (
     HardCase("shell_sdf_1e-3", "a spherical SDF shell 1e-3 thick, cut open: the normal stencil must not straddle "
              "the wall", _sdf_shell(1e-3, 1.0, 35, 25)),
@@ -85,4 +97,8 @@ PRECISION_CASES: tuple[HardCase, ...] = (
              _far_lattice(1e5, 25, (0.2, 1.0, 0.1)), max_dist=12.0),
     HardCase("lattice_1e6_rot", "an endless turned lattice of spheres 1e6 from the origin",
              _far_lattice(1e6, 40, (1.0, 0.3, -0.5)), max_dist=12.0),
+    HardCase("near_tiny_3mm", "a 3 mm object 5 mm from the eye before a wall 1000 away", _near_tiny(3e-3, 5e-3, 1000)),
+    HardCase("near_tiny_1mm", "a 1 mm object 2 mm from the eye before a wall 500 away", _near_tiny(1e-3, 2e-3, 500)),
+    HardCase("near_tiny_1cm", "a 1 cm object 3 cm from the eye before a wall 2000 away",
+             _near_tiny(1e-2, 3e-2, 2000), max_dist=4000.0),
 )
