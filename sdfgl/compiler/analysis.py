@@ -36,6 +36,7 @@ def scene_frame(scene: Node) -> tuple[np.ndarray, np.ndarray, float]:
 
 # nodes whose children's boxes are in the node's own frame (their surfaces lie in those boxes)
 SAME_FRAME_KINDS = frozenset({"union", "intersection", "difference"})
+NEAR_WORK_NODES = 4096  # near_work looks at no more parts than this
 SPAN_OF_SCALES = 1e3  # a scene box this many times as large as how far a part near the eye reaches
 
 
@@ -53,7 +54,7 @@ def near_work(scene: Node, eye: np.ndarray) -> float | None:
     if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi))):
         return None
     size = float(np.linalg.norm(hi - lo)) / 2
-    near, stack = np.inf, [scene]
+    near, stack, seen = np.inf, [scene], {id(scene)}
     while stack:
         node = stack.pop()
         lo, hi = node.bounds
@@ -61,7 +62,11 @@ def near_work(scene: Node, eye: np.ndarray) -> float | None:
         if gap >= near:
             continue
         if node.kind in SAME_FRAME_KINDS:
-            stack.extend(node.children)
+            if len(seen) + len(node.children) > NEAR_WORK_NODES:
+                return None  # a scene of many parts keeps its box centre (the walk stays cheap)
+            fresh = [c for c in node.children if id(c) not in seen]  # a shared subtree once (DAGs)
+            seen.update(id(c) for c in fresh)
+            stack.extend(fresh)
         else:
             near = min(near, float(np.linalg.norm(np.maximum(np.abs(lo - eye), np.abs(hi - eye)))))
     return near if near * SPAN_OF_SCALES < size else None
