@@ -19,13 +19,14 @@ faces coincide is no surface: drawing it is a false hit).
 from __future__ import annotations
 
 from dataclasses import asdict, dataclass
+from typing import Callable
 
 import numpy as np
 
 from .camera import Camera
 from .compiler.analysis import scene_frame
 from .nodes.base import Node
-from .render import RenderResult
+from .render import RenderResult, shader_origin
 
 MAX_ITERATIONS = 200_000
 ROUNDING = 2.0 ** -21   # the float32 band below f = 0: 8 unit roundoffs of |o - centre| + t (the
@@ -79,13 +80,14 @@ def trace_rays(scene: Node, o: np.ndarray, d: np.ndarray, max_dist: float = 1000
     t_hit = np.full(n, np.inf)
     undecided = np.zeros(n, dtype=bool)
     lip = scene.lipschitz
-    near = 1e-7 * scale
     fixed = step if step is not None else scale / 2000.0
     bounded = np.isfinite(lip)
-    # positions the shader evaluates are relative to an origin at the scene's centre, or, for an
-    # unbounded scene, one that moves with the camera
-    reach = np.linalg.norm(o - 0.5 * (lo + hi), axis=-1) if np.all(np.isfinite(scene.bounds)) \
+    # positions the shader evaluates are relative to its origin (sdfgl.render.shader_origin: the
+    # scene's centre, or near the eye where the scene spans scales, or, for an unbounded scene,
+    # the moving eye)
+    reach = np.linalg.norm(o - shader_origin(scene, o[0]), axis=-1) if np.all(np.isfinite(scene.bounds)) and n \
         else np.zeros(n)
+    near = near_step(scale, reach)
 
     idx = np.nonzero(tmin <= tmax)[0]
     t = tmin[idx].copy()
@@ -98,7 +100,7 @@ def trace_rays(scene: Node, o: np.ndarray, d: np.ndarray, max_dist: float = 1000
     for _ in range(MAX_ITERATIONS):
         if idx.size == 0:
             break
-        h = np.maximum(f / lip, near) if bounded else np.full_like(t, fixed)
+        h = np.maximum(f / lip, near(idx, t)) if bounded else np.full_like(t, fixed)
         t_new = t + h
         f_new = scene.distance(o[idx] + d[idx] * t_new[:, None])
         crossed = f_new < 0
@@ -109,12 +111,24 @@ def trace_rays(scene: Node, o: np.ndarray, d: np.ndarray, max_dist: float = 1000
         idx, t, f = idx[~gone], t_new[~gone], f_new[~gone]
     undecided[idx] = True
     if bounded:
-        undecided |= _shallow(scene, o, d, t_hit, ROUNDING * max(lip, 1.0) * (reach + t_hit), lip, near)
+        hit = np.isfinite(t_hit)
+        floor = np.full(n, np.inf)
+        floor[hit] = near(np.nonzero(hit)[0], t_hit[hit])
+        undecided |= _shallow(scene, o, d, t_hit, ROUNDING * max(lip, 1.0) * (reach + t_hit), lip, floor)
     return t_hit, undecided
 
 
+def near_step(scale: float, reach: np.ndarray) -> Callable[[np.ndarray, np.ndarray], np.ndarray]:
+    """The smallest step of the march for rays ``idx`` at ``t``: 1e-7 of the scene size, or of
+    the distance from the shader origin where that is less (a part a few millimetres from
+    the eye, the origin there, in a scene a thousand wide keeps its float64 detail)."""
+    def near(idx: np.ndarray, t: np.ndarray) -> np.ndarray:
+        return 1e-7 * np.clip(reach[idx] + t, 1e-3 * scale, scale)
+    return near
+
+
 def _shallow(scene: Node, o: np.ndarray, d: np.ndarray, t_hit: np.ndarray, band: np.ndarray,
-             lip: float, near: float, limit: int = 2048) -> np.ndarray:
+             lip: float, near: np.ndarray, limit: int = 2048) -> np.ndarray:
     """True for hits whose dip below f = 0 stays shallower than ``band`` until the ray leaves
     the solid again (a graze within float32 rounding). Only rays that start shallow are followed,
     in steps of at least ``band / lip``: between two samples above -band the field cannot fall
@@ -122,7 +136,7 @@ def _shallow(scene: Node, o: np.ndarray, d: np.ndarray, t_hit: np.ndarray, band:
     is followed to its end within ``limit`` steps."""
     out = np.zeros(t_hit.shape, dtype=bool)
     idx = np.nonzero(np.isfinite(t_hit))[0]
-    t = t_hit[idx] + near
+    t = t_hit[idx] + near[idx]
     for _ in range(limit):
         if idx.size == 0:
             break
@@ -132,14 +146,21 @@ def _shallow(scene: Node, o: np.ndarray, d: np.ndarray, t_hit: np.ndarray, band:
         left = f >= 0
         out[idx[left]] = True  # out again without going deeper than the band
         idx, t, f = idx[~left], t[~left], f[~left]
-        t = t + np.maximum(np.maximum(np.abs(f), band[idx]) / lip, near)
+        t = t + np.maximum(np.maximum(np.abs(f), band[idx]) / lip, near[idx])
     return out
 
 
-def normals(scene: Node, p: np.ndarray) -> np.ndarray:
-    """Unit gradients of the float64 twin at (N, 3) points by central differences (0 where it vanishes)."""
+def normals(scene: Node, p: np.ndarray, reach: np.ndarray | None = None) -> np.ndarray:
+    """Unit gradients of the float64 twin at (N, 3) points by central differences (0 where it vanishes).
+
+    The offset is 1e-6 of the scene size, or of ``reach`` (per point: its distance from
+    the shader origin) where that is less, so a part far smaller than the scene near the
+    origin is not straddled, but at least 1e-12 of the point's distance from the world origin."""
     _, _, scale = scene_frame(scene)
-    h = 1e-6 * scale
+    if reach is None:
+        h = 1e-6 * scale
+    else:  # at least 1e-12 of the point's own magnitude: float64 differences stay well above rounding
+        h = np.maximum(1e-6 * np.clip(reach, 1e-6 * scale, scale), 1e-12 * np.linalg.norm(p, axis=-1))[:, None]
     g = np.stack([scene.distance(p + h * e) - scene.distance(p - h * e) for e in np.eye(3)], axis=-1)
     n = np.linalg.norm(g, axis=-1, keepdims=True)
     return np.where(n > 1e-12 * h, g / np.where(n > 0, n, 1.0), 0.0)
@@ -154,7 +175,8 @@ def trace(scene: Node, camera: Camera, size: tuple[int, int], max_dist: float = 
     nrm = np.zeros((w * h, 3))
     hit = np.isfinite(t)
     if hit.any():
-        nrm[hit] = normals(scene, o.reshape(-1, 3)[hit] + d.reshape(-1, 3)[hit] * t[hit, None])
+        p = o.reshape(-1, 3)[hit] + d.reshape(-1, 3)[hit] * t[hit, None]
+        nrm[hit] = normals(scene, p, np.linalg.norm(p - shader_origin(scene, camera.eye), axis=-1))
     return Reference(t.reshape(h, w), nrm.reshape(h, w, 3), undecided.reshape(h, w), camera.pixel_angle(h),
                      float(camera.footprint(0.0, h)) if camera.orthographic else 0.0)
 

@@ -15,7 +15,7 @@ import numpy as np
 from .camera import Camera, OrbitCamera
 from .compiler.generate import generate
 from .compiler.source import ShaderSource
-from .compiler.analysis import (BOUNDS_PAD, GLSL_FAR, analytic_relative, analytic_shape, moving_origin,
+from .compiler.analysis import (BOUNDS_PAD, GLSL_FAR, analytic_relative, analytic_shape, moving_origin, near_work,
                                 scene_frame)
 from .compiler.tables import origin_values
 from .errors import ParameterError, SdfglError
@@ -40,10 +40,20 @@ def shader_origin(scene: Node, eye: np.ndarray) -> np.ndarray:
     folded into its constants (it never moves); elsewhere (:func:`sdfgl.compiler.analysis.moving_origin`)
     the shader reads it through uniforms summed in float64 at every draw
     (:func:`origin_uniforms`), so a moving camera or parameter never changes the source.
+
+    A scene that spans scales around the eye (a part near the eye far smaller than the whole
+    box, :func:`sdfgl.compiler.analysis.near_work`) takes the point at the eye instead,
+    rounded to a grid of the near part's distance (so nearby eyes share it): float32 then
+    resolves the near part as finely as its own size asks.
     """
     lo, hi = scene.bounds
-    bounded = np.all(np.isfinite(lo)) and np.all(np.isfinite(hi))
-    return np.asarray((lo + hi) / 2 if bounded else eye, dtype=np.float64)
+    if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi))):
+        return np.asarray(eye, dtype=np.float64)
+    near = near_work(scene, eye)
+    if near is not None and near > 0:
+        cell = 2.0 ** np.floor(np.log2(near))
+        return np.round(np.asarray(eye, dtype=np.float64) / cell) * cell
+    return np.asarray((lo + hi) / 2, dtype=np.float64)
 
 
 def origin_key(scene: Node, origin: np.ndarray) -> bytes | None:

@@ -34,6 +34,44 @@ def scene_frame(scene: Node) -> tuple[np.ndarray, np.ndarray, float]:
     return np.where(np.isfinite(lo), lo, -GLSL_FAR), np.where(np.isfinite(hi), hi, GLSL_FAR), scale
 
 
+# nodes whose children's boxes are in the node's own frame (their surfaces lie in those boxes)
+SAME_FRAME_KINDS = frozenset({"union", "intersection", "difference"})
+NEAR_WORK_NODES = 4096  # near_work looks at no more parts than this
+SPAN_OF_SCALES = 1e3  # a scene box this many times as large as how far a part near the eye reaches
+
+
+def near_work(scene: Node, eye: np.ndarray) -> float | None:
+    """For a scene that spans scales around the eye (a part near the eye, and small, far
+    smaller than the scene's finite box: SPAN_OF_SCALES), how far that part reaches from
+    the eye (the distance to the far side of its box): the float32 origin belongs near the
+    eye then, where the part's own coordinates stay as small as it is, not at the box's
+    centre. None elsewhere.
+
+    The booleans are entered (their children's boxes are in their frame, and their surfaces
+    lie in those boxes); any other node is a part, reaching as far as its box."""
+    eye = np.asarray(eye, dtype=np.float64)
+    lo, hi = scene.bounds
+    if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi))):
+        return None
+    size = float(np.linalg.norm(hi - lo)) / 2
+    near, stack, seen = np.inf, [scene], {id(scene)}
+    while stack:
+        node = stack.pop()
+        lo, hi = node.bounds
+        gap = float(np.linalg.norm(np.maximum(np.maximum(lo - eye, eye - hi), 0.0)))
+        if gap >= near:
+            continue
+        if node.kind in SAME_FRAME_KINDS:
+            if len(seen) + len(node.children) > NEAR_WORK_NODES:
+                return None  # a scene of many parts keeps its box centre (the walk stays cheap)
+            fresh = [c for c in node.children if id(c) not in seen]  # a shared subtree once (DAGs)
+            seen.update(id(c) for c in fresh)
+            stack.extend(fresh)
+        else:
+            near = min(near, float(np.linalg.norm(np.maximum(np.abs(lo - eye), np.abs(hi - eye)))))
+    return near if near * SPAN_OF_SCALES < size else None
+
+
 def unbounded(scene: Node) -> bool:
     """True where the scene box is infinite on some side: only then does max_dist limit a ray."""
     lo, hi = scene.bounds

@@ -15,7 +15,7 @@ from .. import shaderlib
 from ..errors import ParameterError
 from ..params import Live, Param
 from .source import comment_text, glsl_float
-from .tables import DataPool, OriginOffsets
+from .tables import DataPool, OriginOffsets, reduce_modulo
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..nodes.base import Node
@@ -55,8 +55,10 @@ class Emitter:
         # the materials (dicts of the fields they set) of the nodes around the current one
         self._colors: list[dict[str, Any]] = list(parent._colors) if parent else [DEFAULT_SURFACE]
         self._count = 0
-        # point name -> (base point, pending float64 offset, live offsets still to subtract)
-        self._shifts: dict[str, tuple[str, np.ndarray, tuple[Live, ...]]] = {}
+        # point name -> (base point, pending float64 offset, live offsets still to subtract,
+        # the rotation the offset is turned by: point = base + frame @ (offset - lives), None: I)
+        self._shifts: dict[str, tuple[str, np.ndarray, tuple[Live, ...], np.ndarray | None]] = {}
+        self._turned_origins: set[str] = set()  # turned copies of origin_base (see rotate())
         self._materialized: dict[Any, str] = {}
         # the point that carries a moving shader origin (the root of map() when the origin is a
         # uniform, see OriginOffsets); None: the origin, if any, is folded into constants
@@ -202,38 +204,65 @@ class Emitter:
     # -- points with a pending float64 offset ------------------------------------------
     def shift(self, p: str, delta: np.ndarray) -> str:
         """A point name standing for ``p + delta``; nothing is emitted yet."""
-        base, off, lives = self._shifts.get(p, (p, np.zeros(3), ()))
+        base, off, lives, frame = self._shifts.get(p, (p, np.zeros(3), (), None))
+        step = np.asarray(delta, dtype=np.float64)
         name = f"{base}@{len(self._shifts)}"
-        self._shifts[name] = (base, off + np.asarray(delta, dtype=np.float64), lives)
+        self._shifts[name] = (base, off + (step if frame is None else frame.T @ step), lives, frame)
         return name
 
     def shift_live(self, p: str, offset: Live) -> str | None:
         """A point name standing for ``p - offset`` (a live offset) when ``p`` carries the
         moving shader origin: origin, constant and live parts are then summed in float64 on
         the CPU each frame into one uniform. None elsewhere (the caller writes the sum)."""
-        base, off, lives = self._shifts.get(p, (p, np.zeros(3), ()))
-        if self.origins is None or base != self.origin_base:
+        base, off, lives, frame = self._shifts.get(p, (p, np.zeros(3), (), None))
+        if self.origins is None or not self._carries_origin(base) or frame is not None:
             return None
         name = f"{base}@{len(self._shifts)}"
-        self._shifts[name] = (base, off, (*lives, offset))
+        self._shifts[name] = (base, off, (*lives, offset), frame)
         return name
 
-    def point(self, p: str, along: np.ndarray | None = None) -> str:
+    def rotate(self, p: str, m: np.ndarray) -> str | None:
+        """A point name standing for ``m^T p`` (a rotation, world = m @ local) when ``p`` has a
+        pending offset: the small base point is turned in GLSL, the offset in float64 (it
+        stays pending, so a fold or a translation below still meets it exactly). None where
+        ``p`` has no pending offset or carries live ones (the caller turns the point)."""
+        if p not in self._shifts or self._shifts[p][2]:
+            return None
+        base, off, _, frame = self._shifts[p]
+        m = np.asarray(m, dtype=np.float64)
+        # GLSL's mat3 constructor is column-major, so the row-major entries of m build m^T
+        turned = self.assign("vec3", f"mat3({', '.join(self.num(x) for x in m.ravel())}) * {base}")
+        if self._carries_origin(base):
+            self._turned_origins.add(turned)
+        name = f"{turned}@{len(self._shifts)}"
+        self._shifts[name] = (turned, off, (), m.T if frame is None else m.T @ frame)
+        return name
+
+    def _carries_origin(self, base: str) -> bool:
+        return base == self.origin_base or base in self._turned_origins
+
+    def point(self, p: str, along: np.ndarray | None = None, period: np.ndarray | None = None) -> str:
         """A GLSL expression for point ``p``, writing out a pending offset once.
 
         ``along`` (a unit axis): the caller reads only dot(point, along) (a plane), so only the
         offset's component along it is added; the point stays small however far the plane's
-        anchor and the origin lie apart, and so does its float32 rounding."""
+        anchor and the origin lie apart, and so does its float32 rounding. ``period`` (per
+        axis, 0 for none): the caller reads the point only modulo these periods (endless
+        repetition), so the offset is reduced modulo them in float64 first: the fold then
+        runs at the size of a cell, not at the distance from the world origin."""
         if p not in self._shifts:
             return p
-        key = p if along is None else (p, np.asarray(along, dtype=np.float64).tobytes())
+        axis = None if along is None else np.asarray(along, dtype=np.float64)
+        cells = None if period is None or not np.any(period) else np.asarray(period, dtype=np.float64)
+        key = (p, None if axis is None else axis.tobytes(), None if cells is None else cells.tobytes())
         if key not in self._materialized:
-            base, off, lives = self._shifts[p]
-            axis = None if along is None else np.asarray(along, dtype=np.float64)
-            if self.origins is not None and base == self.origin_base:
-                code = self.assign("vec3", f"{base} + {self.origins.uniform(off, lives, axis)}")
+            base, off, lives, frame = self._shifts[p]
+            if self.origins is not None and self._carries_origin(base):
+                code = self.assign("vec3", f"{base} + {self.origins.uniform(off, lives, axis, cells, frame)}")
             else:
+                off = off if frame is None else frame @ off
                 off = off if axis is None else (off @ axis) * axis
+                off = off if cells is None else reduce_modulo(off, cells)
                 code = base if not off.any() else self.assign("vec3", f"{base} + {self.vec(off)}")
             self._materialized[key] = code
         return self._materialized[key]

@@ -13,8 +13,9 @@ import numpy as np
 from ..params import Param
 
 # one offset behind a uOrgN uniform of a moving origin (see sdfgl.compiler.tables.OriginOffsets):
-# (float64 offset, live offsets to subtract, unit axis to project on or None)
-OriginEntry = tuple[np.ndarray, tuple[Any, ...], "np.ndarray | None"]
+# (float64 offset, live offsets to subtract, unit axis to project on, periods to reduce by,
+# rotation to turn by; each None where unused): see OriginOffsets.uniform
+OriginEntry = tuple[np.ndarray, tuple[Any, ...], "np.ndarray | None", "np.ndarray | None", "np.ndarray | None"]
 
 
 def glsl_float(x: float) -> str:

@@ -57,14 +57,17 @@ class OriginOffsets:
         self.entries: list[OriginEntry] = []
         self._index: dict[tuple, int] = {}
 
-    def uniform(self, offset: np.ndarray, lives: tuple[Live, ...], along: np.ndarray | None = None) -> str:
-        """The uniform's name for this offset (one per distinct offset); ``along``: only its
-        component along this unit axis is kept (see Emitter.point)."""
+    def uniform(self, offset: np.ndarray, lives: tuple[Live, ...], along: np.ndarray | None = None,
+                period: np.ndarray | None = None, frame: np.ndarray | None = None) -> str:
+        """The uniform's name for this offset (one per distinct offset); ``frame``: the sum is
+        turned by this rotation; ``along``: only its component along this unit axis is kept;
+        ``period``: reduced modulo these periods on the axes where they are > 0 (see
+        Emitter.point and Emitter.rotate)."""
         key = (np.asarray(offset, dtype=np.float64).tobytes(), tuple(id(x) for x in lives),
-               None if along is None else along.tobytes())
+               *(None if a is None else a.tobytes() for a in (along, period, frame)))
         if key not in self._index:
             self._index[key] = len(self.entries)
-            self.entries.append((np.array(offset, dtype=np.float64), lives, along))
+            self.entries.append((np.array(offset, dtype=np.float64), lives, along, period, frame))
         return f"uOrg{self._index[key]}"
 
 
@@ -72,11 +75,24 @@ def origin_values(entries: Sequence[OriginEntry], origin: np.ndarray) -> dict[st
     """The uOrgN uniform values for the shader origin ``origin`` (float64), at the current
     parameter values."""
     out = {}
-    for i, (off, lives, along) in enumerate(entries):
+    for i, (off, lives, along, period, frame) in enumerate(entries):
         v = np.asarray(origin, dtype=np.float64) + off
         for live in lives:
             v = v - np.broadcast_to(np.asarray(live.value, dtype=np.float64), (3,))
+        if frame is not None:
+            v = frame @ v
         if along is not None:
             v = (v @ along) * along
+        if period is not None:
+            v = reduce_modulo(v, period)
         out[f"uOrg{i}"] = tuple(float(x) for x in v)
     return out
+
+
+def reduce_modulo(v: np.ndarray, period: np.ndarray) -> np.ndarray:
+    """``v`` (float64) less the nearest whole number of periods on each axis whose period is
+    > 0 (the others unchanged): in -period/2..period/2 there, so float32 holds it as finely
+    as the cell it falls in, wherever the point lies."""
+    v, s = np.asarray(v, dtype=np.float64), np.asarray(period, dtype=np.float64)
+    safe = np.where(s > 0, s, 1.0)
+    return np.where(s > 0, v - safe * np.round(v / safe), v)

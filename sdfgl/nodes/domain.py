@@ -106,7 +106,9 @@ class Repeat(Unary):
         return picks
 
     def _emit(self, em: "Emitter", p: str) -> str:
-        pt = em.point(p)
+        # an endless axis reads the point only modulo its period: the pending offset (the
+        # shader origin, translations) is reduced modulo it in float64 before float32
+        pt = em.point(p, period=np.where(self.n < 0, self.s, 0.0))
         inv = np.where(self.s > 0, 1.0 / np.where(self.s > 0, self.s, 1.0), 0.0)
         lim = em.vec(self._limit())
         period = em.vec(self.s)

@@ -122,6 +122,9 @@ class Rotate(Unary):
             rad = em.num(self.angle * (math.pi / 180.0))
             q = em.assign("vec3", f"opRotateInverse({em.point(p)}, {em.vec(self.axis)}, {rad})")
             return self.child.emit(em, q)
+        turned = em.rotate(p, self.m)  # a pending float64 offset is turned in float64
+        if turned is not None:
+            return self.child.emit(em, turned)
         # GLSL's mat3 constructor is column-major, so the row-major entries of m build m^T.
         entries = ", ".join(em.num(x) for x in self.m.ravel())
         q = em.assign("vec3", f"mat3({entries}) * {em.point(p)}")
