@@ -28,6 +28,7 @@ from .params import Param, param, time
 from .functions import (abs, clamp, cos, exp, floor, fract, log, max, min, mix, mod, pow, radians, sign, sin,
                         smoothstep, sqrt, step, tan)
 from .animate import animate, camera_path, keyframes, turntable
+from .raster import RasterMesh, raster
 from .render import RenderResult, Renderer, render
 from .version import __version__
 
@@ -218,7 +219,7 @@ __all__ = [
     "EXACT", "BOUND", "IMPLICIT", "SdfglError", "ParameterError", "MeshError", "ShaderCompileError", "ContextError",
     "render_pbr", "to_mitsuba",
     "SceneFileError", "SceneDocumentError", "save_scene", "load_scene", "from_dict",
-    "load_mesh", "from_mesh",
+    "load_mesh", "from_mesh", "raster", "RasterMesh",
     "Shape2D", "arc", "capsule2", "ellipse", "regular_polygon", "star", "triangle", "slice", "text",
     "bezier_tube", "capped_torus", "dodecahedron", "gyroid", "icosahedron", "pyramid", "slab", "tetrahedron", "tube",
     "morph", "taper", "glsl",

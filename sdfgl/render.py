@@ -24,9 +24,11 @@ from .gl.context import CurrentContext, GLThread, describe, gl_thread
 from .gl.buffer_texture import BufferTexture
 from .gl.data import DataTextures
 from .gl.programs import ProgramCache
+from .gl.raster_pass import draw_meshes, view_range
 from .gl.targets import TargetCache
 from .nodes.base import Node
-from .settings import Settings
+from .raster import RasterMesh
+from .settings import OUTPUTS, Settings
 
 T = TypeVar("T")
 
@@ -301,10 +303,11 @@ class Renderer:
         return self.programs.vao(prog)
 
     def render(self, scene: Node, camera: Camera | None = None, size: Sequence[int] = (640, 480),
-               **settings: object) -> RenderResult:
+               meshes: Sequence[RasterMesh] = (), **settings: object) -> RenderResult:
         """Render ``scene``; see :func:`sdfgl.render`. Safe to call from any thread."""
         if not isinstance(scene, Node):
             raise ParameterError(f"render: 'scene' must be an sdfgl node, got {type(scene).__name__} {scene!r}")
+        meshes = checked_meshes(meshes)
         st = Settings.build(**settings).resolved(scene.exactness)
         wh = checked_size(size)
         cam = camera if camera is not None else OrbitCamera.framing(*scene.bounds, aspect=wh[0] / wh[1])
@@ -314,6 +317,8 @@ class Renderer:
         check_float32_camera(cam, origin)
 
         t0 = time.perf_counter()
+        if meshes:
+            return self._render_meshes(scene, cam, wh, st, origin, meshes, t0)
         key = (id(scene), st, origin_key(scene, origin), cam.projection)  # nodes are immutable, params are uniforms:
         last = self._last_source                  # the same scene, settings and origin give the same source
         if last is not None and last[0] == key and last[1] is scene:
@@ -328,8 +333,52 @@ class Renderer:
         res.timings["total_s"] = time.perf_counter() - t0
         return res
 
+    def _render_meshes(self, scene: Node, cam: Camera, wh: tuple[int, int], st: Settings, origin: np.ndarray,
+                       meshes: tuple[RasterMesh, ...], t0: float) -> RenderResult:
+        """The raster meshes drawn first, then the scene marched up to their depth, composited."""
+        wanted = st.outputs
+        # the march writes depth (and normals when asked) for the compositing
+        st_draw = dataclasses.replace(st, outputs=tuple(o for o in OUTPUTS if o in wanted or o == "depth"))
+        source = generate(scene, st_draw, origin, target="render_over_mesh", projection=cam.projection)
+        mesh_source = generate(scene, st_draw, origin, target="raster_mesh", projection=cam.projection)
+        origin_uniforms(source, scene, origin)
+        t1 = time.perf_counter()
+        res = self.run(self._draw_with_meshes, scene, cam, wh, st_draw, source, mesh_source, origin, meshes)
+        if "depth" not in wanted:
+            res.depth = None
+        res.settings = dataclasses.replace(res.settings, outputs=wanted)
+        res.timings["codegen_s"] = t1 - t0
+        res.timings["total_s"] = time.perf_counter() - t0
+        return res
+
+    def _draw_with_meshes(self, scene: Node, cam: Camera, wh: tuple[int, int], st: Settings, source: ShaderSource,
+                          mesh_source: ShaderSource, origin: np.ndarray,
+                          meshes: tuple[RasterMesh, ...]) -> RenderResult:
+        ctx = self.ctx
+        check_size(ctx, wh)
+        prog, _ = self.programs.entry(mesh_source, "mains/raster_mesh.vert")
+        camera_uniforms(prog, cam, wh, origin)
+        scene_uniforms(prog, mesh_source, scene, origin, self.data)
+        eye_rel = cam.eye - origin
+        _set_uniform(prog, "uOrtho", 1.0 if cam.orthographic else 0.0)
+        _set_uniform(prog, "uNearFar", view_range(cam, meshes, eye_rel, origin))
+        t2 = time.perf_counter()
+        raster = draw_meshes(ctx, prog, meshes, wh, origin)
+        raster_s = time.perf_counter() - t2
+        try:
+            res = self._draw(scene, cam, wh, st, source, origin, mesh_depth=raster.depth_texture)
+        finally:
+            raster.release()
+        mesh = (raster.t >= 0) & ~(res.depth < np.inf)  # the march stops at the mesh: any hit lies in front
+        res.color[mesh] = raster.color[mesh][:, :res.color.shape[-1]]
+        res.depth[mesh] = raster.t[mesh]
+        if res.normal is not None:
+            res.normal[mesh] = raster.normal[mesh]
+        res.timings["raster_s"] = raster_s
+        return res
+
     def _draw(self, scene: Node, cam: Camera, wh: tuple[int, int], st: Settings, source: ShaderSource,
-              origin: np.ndarray) -> RenderResult:
+              origin: np.ndarray, mesh_depth: moderngl.Texture | None = None) -> RenderResult:
         ctx = self.ctx
         check_size(ctx, wh)
         prog, vao = self.programs.entry(source)
@@ -341,6 +390,10 @@ class Renderer:
                              f"{exc}") from None
         camera_uniforms(prog, cam, wh, origin)
         scene_uniforms(prog, source, scene, origin, self.data)
+        if mesh_depth is not None:
+            unit = DATA_UNIT + len(source.data)  # the unit after the scene's data
+            mesh_depth.use(unit)
+            _set_uniform(prog, "uMeshDepth", unit)
         targets.fbo.use()
         ctx.viewport = (0, 0, *wh)
         t2 = time.perf_counter()
@@ -375,8 +428,21 @@ def default_renderer() -> Renderer:
     return _default
 
 
+def checked_meshes(meshes: object) -> tuple[RasterMesh, ...]:
+    """The raster meshes of a render as a tuple, refused (by position) unless each is a :class:`RasterMesh`."""
+    if isinstance(meshes, RasterMesh):
+        return (meshes,)
+    if not isinstance(meshes, (list, tuple)):
+        raise ParameterError(f"render: 'meshes' must be a list of sg.raster(...) meshes, got {type(meshes).__name__}")
+    for i, m in enumerate(meshes):
+        if not isinstance(m, RasterMesh):
+            raise ParameterError(f"render: meshes[{i}] must be an sg.raster(...) mesh, got {type(m).__name__}; "
+                                 f"wrap a trimesh or a file path in sg.raster()")
+    return tuple(meshes)
+
+
 def render(scene: Node, camera: Camera | None = None, size: Sequence[int] = (640, 480),
-           **settings: object) -> RenderResult:
+           meshes: Sequence[RasterMesh] = (), **settings: object) -> RenderResult:
     """Render ``scene`` headless (EGL) and return its images.
 
     Args:
@@ -388,6 +454,10 @@ def render(scene: Node, camera: Camera | None = None, size: Sequence[int] = (640
             pixel), ``shadows`` False/"hard"/"soft", ``ao``, ``ground``, ``method``,
             ``max_steps``, ``hit``, ``hit_scale``, ``max_dist``, ``debug`` and ``outputs``
             (any of "color", "depth", "normal", "steps").
+        meshes: triangle meshes made by :func:`sdfgl.raster` to draw by rasterisation in the
+            same frame: drawn first with the same camera and lights, they end the march at
+            their depth, so mesh and scene hide each other per pixel; the scene's shadows
+            and AO fall on them. ``depth`` and ``normal`` include them.
 
     Returns a :class:`RenderResult`: ``color`` uint8 (H, W, 3), and as asked ``depth``
     (float32 ray parameter t along the unit direction, inf on a miss), ``normal`` and
@@ -401,4 +471,4 @@ def render(scene: Node, camera: Camera | None = None, size: Sequence[int] = (640
         >>> res.color.shape, bool(res.depth.min() < 4)
         ((24, 32, 3), True)
     """
-    return default_renderer().render(scene, camera, size, **settings)
+    return default_renderer().render(scene, camera, size, meshes, **settings)

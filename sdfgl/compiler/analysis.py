@@ -116,12 +116,16 @@ def ref_step(settings: Settings, scale: float) -> float:
     return settings.ref_step if settings.ref_step is not None else scale / 512.0
 
 
+IMAGE_TARGETS = ("render", "render_over_mesh", "raster_mesh")
+"""The targets that draw one image together (the march and the raster meshes): they share a shader origin."""
+
+
 def moving_origin(scene: Node, target: str = "render", dialect: str = "desktop") -> bool:
     """Whether the shader origin of ``scene`` is a uniform (uOrgN offsets, bounds as
     uniforms): rendering on the desktop an unbounded scene (the origin follows the eye) or
     one with live parameters (it follows the box's centre). Elsewhere the origin is folded
     into constants (a bounded scene is anchored at its fixed centre)."""
-    if target != "render" or dialect != "desktop":
+    if target not in IMAGE_TARGETS or dialect != "desktop":
         return False
     lo, hi = scene.bounds
     return not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi))) or bool(scene.live_params())

@@ -107,11 +107,11 @@ def _generate(scene: Node, settings: Settings, origin: Sequence[float], target: 
               projection: str, highlight: Node | None = None, moving: bool = False) -> ShaderSource:
     """generate(), within the code-size budget."""
     settings = settings.resolved(scene.exactness)
-    if scene.exactness == IMPLICIT and target == "render" and settings.method in DISTANCE_METHODS:
+    if scene.exactness == IMPLICIT and TARGETS[target].image and settings.method in DISTANCE_METHODS:
         raise ParameterError(
             f"{scene.label()} is an implicit field, not a distance bound: method {settings.method!r} would step "
             f"through surfaces. Use method='auto' (the default), 'newton', 'forward_newton' or 'reference'.")
-    if (settings.debug == "select") != (highlight is not None and target == "render"):
+    if (settings.debug == "select") != (highlight is not None and TARGETS[target].image):
         raise ParameterError("debug view 'select' needs a highlighted subtree (generate(..., highlight=node)), "
                              "and a highlight needs debug='select'")
     org = np.zeros(3) if moving else np.asarray(origin, dtype=np.float64)

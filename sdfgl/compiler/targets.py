@@ -140,14 +140,24 @@ def _mesh(name: str) -> Target:
     return Target(main=(add_file("stages/mesh_clip"), add_file(f"mains/{name}_main")))
 
 
+def raster_mesh_main(job: Job) -> None:
+    """The raster mesh's fragment main(): a triangle point shaded with the scene's lights."""
+    job.b.add_file("mains/raster_mesh_main")
+
+
 # target -> its row: "render" (the image), "evaluate" (map() at given points), "evaluate_color" /
 # "evaluate_surface" / "evaluate_emission" (a material channel and map() at given points: mesh
 # colours and path-traced materials), the mesh exporter's samplers "mesh_grid" (a lattice of
 # blocks), "mesh_gradient" (value and gradient at points), "mesh_project" (points moved onto the
-# surface by Newton steps). The "webgl2" dialect writes the same targets under another header.
+# surface by Newton steps), "render_over_mesh" (the image marched only up to the raster meshes'
+# depth) and "raster_mesh" (the fragments of raster meshes, shaded and shadowed by the scene). The "webgl2" dialect writes the same targets under another header.
 TARGETS: dict[str, Target] = {
     "render": Target(image=True, color=True, scene=(color_functions, detail_function),
                      main=(march, shading, render_main)),
+    "render_over_mesh": Target(image=True, color=True, scene=(color_functions, detail_function),
+                               main=(add_file("stages/mesh_depth"), march, shading, render_main)),
+    "raster_mesh": Target(image=True, color=True, scene=(color_functions, detail_function),
+                          main=(shading, raster_mesh_main)),
     "evaluate": Target(main=(add_file("mains/evaluate_main"),)),
     "evaluate_color": _evaluate_channel("mapColor"),
     "evaluate_surface": _evaluate_channel("mapSurface"),

@@ -35,6 +35,10 @@ def explain_compile_error(source: ShaderSource, message: str) -> str:
     return f"the GL driver rejected the generated shader:\n{message.strip()}\nat:\n{where}"
 
 
+FULLSCREEN = "mains/fullscreen.vert"
+"""The vertex shader of the full-screen triangle most programs draw."""
+
+
 class ProgramCache:
     """Compiled programs (with their full-screen vertex arrays) of one context, keyed by the full
     fragment source; the least recently used are released beyond ``budget().programs``.
@@ -59,9 +63,10 @@ class ProgramCache:
         """The program for ``source``, compiling it only if this exact source is not cached."""
         return self.gl.call(self._get, source)[0]
 
-    def entry(self, source: ShaderSource) -> tuple[moderngl.Program, moderngl.VertexArray]:
-        """(program, vertex array) for ``source``; call on the context's thread."""
-        return self._get(source)
+    def entry(self, source: ShaderSource, vertex: str = FULLSCREEN) -> tuple[moderngl.Program, moderngl.VertexArray]:
+        """(program, vertex array) for ``source`` under the vertex shader ``shaders/<vertex>.glsl``
+        (default: the full-screen triangle, which the vertex array draws); call on the context's thread."""
+        return self._get(source, vertex)
 
     def vao(self, prog: moderngl.Program) -> moderngl.VertexArray:
         """The buffer-less vertex array that draws the full-screen triangle with cached ``prog``."""
@@ -83,23 +88,24 @@ class ProgramCache:
             self._vaos.clear()
             self._epoch = self.gl.epoch
 
-    def _get(self, source: ShaderSource) -> tuple[moderngl.Program, moderngl.VertexArray]:
+    def _get(self, source: ShaderSource, vertex: str = FULLSCREEN) -> tuple[moderngl.Program, moderngl.VertexArray]:
         ctx = self.gl.ctx
         self.sync()
-        entry = self._lru.get(source.text)
+        key = source.text if vertex == FULLSCREEN else f"{vertex}\n{source.text}"
+        entry = self._lru.get(key)
         if entry is not None:
             self.last_compile_s = 0.0
             return entry
         t0 = time.perf_counter()
         try:
-            vertex = of_source(source.text).convert(shaderlib.read("mains/fullscreen.vert"))
-            prog = ctx.program(vertex_shader=vertex, fragment_shader=source.text)
+            vert = of_source(source.text).convert(shaderlib.read(vertex))
+            prog = ctx.program(vertex_shader=vert, fragment_shader=source.text)
         except moderngl.Error as exc:
             raise ShaderCompileError(explain_compile_error(source, str(exc))) from None
         self.last_compile_s = time.perf_counter() - t0
         self.compiles += 1
         entry = (prog, ctx.vertex_array(prog, []))
-        self._lru.put(source.text, entry)
+        self._lru.put(key, entry)
         self._vaos[id(prog)] = entry[1]
         before = len(self._lru)
         self._lru.trim(max_items=self._budget().programs)

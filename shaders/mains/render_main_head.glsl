@@ -20,8 +20,15 @@ struct Hit {
 Hit tracePrimary(vec3 ro, vec3 rd) {
     Hit h = Hit(-1.0, 0, false);
     vec2 range = sceneRange(ro, rd);
+#ifdef MESH_DEPTH
+    float tm = meshDepth();  // a raster mesh in front ends the march
+    range.y = min(range.y, tm);
+#endif
 #ifdef GROUND
     float tg = groundHit(ro, rd);
+#ifdef MESH_DEPTH
+    if (tg >= tm) tg = -1.0;
+#endif
     if (tg > 0.0) range.y = min(range.y, tg);
 #endif
     if (range.x <= range.y) {

@@ -1,0 +1,84 @@
+"""The raster pass of a render: triangle meshes drawn with the march's camera into colour,
+ray-parameter and normal textures (and a depth buffer for their own hiding)."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, Callable, Sequence
+
+import moderngl
+import numpy as np
+
+NO_HIT = -1.0  # what the t and normal textures hold where no mesh is drawn
+
+
+@dataclass
+class RasterImages:
+    """What the raster pass drew: the t texture (the march reads it), and read back as
+    numpy (row 0 on top) the gamma-encoded RGBA colour, t (-1: no mesh) and normals."""
+
+    depth_texture: moderngl.Texture
+    color: np.ndarray
+    t: np.ndarray
+    normal: np.ndarray
+    release: Callable[[], None]
+
+
+def view_range(camera: Any, meshes: Sequence[Any], eye_rel: np.ndarray, origin: np.ndarray) -> tuple[float, float]:
+    """(near, far) along the view direction holding every mesh vertex (near > 0 for a perspective
+    camera: what lies behind the eye is clipped)."""
+    f = camera.basis()[2]
+    z = np.concatenate([(m.vertices - origin - eye_rel) @ f for m in meshes])
+    lo, hi = float(z.min()), float(z.max())
+    far = max(hi, 0.0) * 1.01 + 1e-6 * max(abs(hi), abs(lo), 1.0)
+    near = max(lo * 0.99, far * 1e-5) if not camera.orthographic else max(lo, 0.0) - 1e-3 * (far - lo)
+    return near, far
+
+
+def draw_meshes(ctx: moderngl.Context, prog: moderngl.Program, meshes: Sequence[Any], size: tuple[int, int],
+                origin: np.ndarray) -> RasterImages:
+    """Draw ``meshes`` with ``prog`` (its uniforms but the mesh's own already set) into fresh
+    textures of ``size``; vertices are taken relative to ``origin``."""
+    color = ctx.texture(size, 4, dtype="f1")
+    t_tex = ctx.texture(size, 1, dtype="f4")
+    nor = ctx.texture(size, 4, dtype="f4")
+    depth = ctx.depth_renderbuffer(size)
+    for tex in (t_tex, nor):
+        tex.filter = (moderngl.NEAREST, moderngl.NEAREST)
+    fbo = ctx.framebuffer(color_attachments=[color, t_tex, nor], depth_attachment=depth)
+    fbo.use()
+    ctx.viewport = (0, 0, *size)
+    fbo.clear(NO_HIT, NO_HIT, NO_HIT, NO_HIT, depth=1.0)
+    ctx.enable(moderngl.DEPTH_TEST)
+    try:
+        for mesh in meshes:
+            data = np.hstack([mesh.vertices - origin, mesh.normals]).astype(np.float32)
+            vbo = ctx.buffer(data.tobytes())
+            ibo = ctx.buffer(np.ascontiguousarray(mesh.faces, dtype=np.int32).tobytes())
+            vao = ctx.vertex_array(prog, [(vbo, "3f 3f", "inPos", "inNormal")], index_buffer=ibo, index_element_size=4)
+            mat = mesh.material
+            for name, value in (("uMeshAlbedo", mesh.color), ("uMeshEmission", mat["emission"]),
+                                ("uMeshSurface", (mat["specular"], mat["shininess"], mat["metallic"], 0.0))):
+                if name in prog:
+                    prog[name].value = tuple(float(x) for x in value)
+            vao.render(moderngl.TRIANGLES)
+            vao.release()
+            vbo.release()
+            ibo.release()
+    finally:
+        ctx.disable(moderngl.DEPTH_TEST)
+    w, h = size
+
+    def read(att: int, comps: int, dtype: str) -> np.ndarray:
+        raw = np.empty((h, w, comps), dtype=np.uint8 if dtype == "f1" else np.float32)
+        fbo.read_into(raw, components=comps, attachment=att, alignment=1, dtype=dtype)
+        return raw[::-1].copy()
+
+    images = RasterImages(t_tex, read(0, 4, "f1"), read(1, 1, "f4")[..., 0], read(2, 3, "f4"), lambda: None)
+
+    def release() -> None:
+        fbo.release()
+        depth.release()
+        for tex in (color, t_tex, nor):
+            tex.release()
+    images.release = release
+    return images
