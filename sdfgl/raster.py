@@ -24,7 +24,7 @@ MATERIAL_FIELDS = ("specular", "shininess", "metallic", "emission")
 @dataclass(frozen=True, eq=False)
 class RasterMesh:
     """A triangle mesh to rasterise: float64 ``vertices`` (N, 3), int32 ``faces`` (M, 3),
-    float32 unit vertex ``normals`` (N, 3), a linear RGB ``color`` and material fields
+    float32 unit vertex ``normals`` (N, 3) (vertices split at sharp edges, so flat faces shade flat), a linear RGB ``color`` and material fields
     (``specular``, ``shininess``, ``metallic``, ``emission``) shaded by the scene's lights."""
 
     vertices: np.ndarray
@@ -95,6 +95,9 @@ def raster(mesh: Any, color: object = "#cccccc", material: Mapping[str, Any] | N
         raise MeshError(f"{name}: the mesh holds no triangles")
     if not np.isfinite(verts).all():
         raise MeshError(f"{name}: {int((~np.isfinite(verts).all(axis=1)).sum())} vertices are not finite (NaN or inf)")
-    normals = np.asarray(trimesh.Trimesh(verts, faces, process=False).vertex_normals, dtype=np.float32)
+    # vertices are split where faces meet at a sharp angle: a box keeps its flat faces, a sphere stays smooth
+    shaded = trimesh.Trimesh(verts, faces, process=False).smooth_shaded
+    verts, faces = np.asarray(shaded.vertices, dtype=np.float64), np.asarray(shaded.faces, dtype=np.int64)
+    normals = np.asarray(shaded.vertex_normals, dtype=np.float32)
     rgb = v.color("raster", color)
     return RasterMesh(verts, faces.astype(np.int32), normals, tuple(float(c) for c in rgb), _material("raster", material))
