@@ -88,7 +88,10 @@ def generate(scene: Node, settings: Settings, origin: Sequence[float] = (0.0, 0.
     points: mesh colours and path-traced materials use them), or one of the mesh exporter's
     samplers (sdfgl.mesh: same map(), other main()s): ``"mesh_grid"`` (a lattice of
     blocks), ``"mesh_gradient"`` (value and gradient at points), ``"mesh_project"`` (points
-    moved onto the surface by Newton steps); ``dialect`` is ``"desktop"`` (GLSL 3.30) or
+    moved onto the surface by Newton steps), or a render with raster meshes
+    (:mod:`sdfgl.raster`): ``"render_over_mesh"`` (the image, marched only up to the meshes'
+    depth) and ``"raster_mesh"`` (the meshes' fragment shader: the scene's lights, shadows and
+    AO at a triangle point); ``dialect`` is ``"desktop"`` (GLSL 3.30) or
     ``"webgl2"`` (GLSL ES 3.00): the same code under another header (see
     :mod:`sdfgl.gl.dialect`); ``projection`` is the camera's ("perspective" or
     "orthographic": it shapes the rays). ``highlight`` is the subtree the "select" debug

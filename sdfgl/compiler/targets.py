@@ -150,14 +150,11 @@ def raster_mesh_main(job: Job) -> None:
 # colours and path-traced materials), the mesh exporter's samplers "mesh_grid" (a lattice of
 # blocks), "mesh_gradient" (value and gradient at points), "mesh_project" (points moved onto the
 # surface by Newton steps), "render_over_mesh" (the image marched only up to the raster meshes'
-# depth) and "raster_mesh" (the fragments of raster meshes, shaded and shadowed by the scene). The "webgl2" dialect writes the same targets under another header.
+# depth) and "raster_mesh" (the fragments of raster meshes, shaded and shadowed by the scene).
+# The "webgl2" dialect writes the same targets under another header.
 TARGETS: dict[str, Target] = {
     "render": Target(image=True, color=True, scene=(color_functions, detail_function),
                      main=(march, shading, render_main)),
-    "render_over_mesh": Target(image=True, color=True, scene=(color_functions, detail_function),
-                               main=(add_file("stages/mesh_depth"), march, shading, render_main)),
-    "raster_mesh": Target(image=True, color=True, scene=(color_functions, detail_function),
-                          main=(shading, raster_mesh_main)),
     "evaluate": Target(main=(add_file("mains/evaluate_main"),)),
     "evaluate_color": _evaluate_channel("mapColor"),
     "evaluate_surface": _evaluate_channel("mapSurface"),
@@ -165,6 +162,10 @@ TARGETS: dict[str, Target] = {
     "mesh_grid": _mesh("mesh_grid"),
     "mesh_gradient": _mesh("mesh_gradient"),
     "mesh_project": _mesh("mesh_project"),
+    "render_over_mesh": Target(image=True, color=True, scene=(color_functions, detail_function),
+                               main=(add_file("stages/mesh_depth"), march, shading, render_main)),
+    "raster_mesh": Target(image=True, color=True, scene=(color_functions, detail_function),
+                          main=(shading, raster_mesh_main)),
 }
 # evaluate targets: the material channel function each runs at given points (with map())
 EVALUATE_CHANNELS = {name: t.channel for name, t in TARGETS.items() if t.channel is not None}
