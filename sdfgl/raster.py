@@ -25,7 +25,15 @@ MATERIAL_FIELDS = ("specular", "shininess", "metallic", "emission")
 class RasterMesh:
     """A triangle mesh to rasterise: float64 ``vertices`` (N, 3), int32 ``faces`` (M, 3),
     float32 unit vertex ``normals`` (N, 3) (vertices split at sharp edges, so flat faces shade flat), a linear RGB ``color`` and material fields
-    (``specular``, ``shininess``, ``metallic``, ``emission``) shaded by the scene's lights."""
+    (``specular``, ``shininess``, ``metallic``, ``emission``) shaded by the scene's lights.
+    Made by :func:`raster`.
+
+    Example:
+        >>> import trimesh
+        >>> m = sg.raster(trimesh.creation.icosphere(), color="red")
+        >>> m.color, m.bounds[1].round(3).tolist()
+        ((1.0, 0.0, 0.0), [1.0, 1.0, 1.0])
+    """
 
     vertices: np.ndarray
     faces: np.ndarray
