@@ -19,7 +19,7 @@ NAMES = {  # wrappers that sdfgl/__init__.py itself defines, by the guide page t
     "render_pbr": "pbr", "to_mitsuba": "pbr",
 }
 GROUPS = [  # (title, module prefixes under sdfgl), in page order
-    ("Rendering", ("render", "compiler", "evaluate", "gl", "settings")),
+    ("Rendering", ("render", "raster", "compiler", "evaluate", "gl", "settings")),
     ("Cameras", ("camera",)),
     ("The look", ("look",)),
     ("Modelling", ("nodes",)),
