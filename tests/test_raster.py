@@ -2,6 +2,11 @@
 shadowed by the scene (sg.raster, render(meshes=...))."""
 from __future__ import annotations
 
+import os
+import subprocess
+import sys
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -108,3 +113,23 @@ def test_bad_input_is_refused_by_name(tmp_path):
     nan = trimesh.Trimesh([[0, 0, 0], [1, 0, 0], [np.nan, 1, 0]], [[0, 1, 2]], process=False)
     with pytest.raises(sg.MeshError, match="not finite"):
         sg.raster(nan)
+
+
+def test_cli_render_draws_a_mesh_file(tmp_path):
+    trimesh.creation.box((3.0, 3.0, 3.0)).export(tmp_path / "box.stl")  # holds the sphere scene inside
+    (tmp_path / "s.py").write_text("import sdfgl as sg\nscene = sg.sphere(1)\n")
+    env = {**os.environ, "PYTHONPATH": str(Path(sg.__file__).parents[1])}
+    out = tmp_path / "out.npz"
+    args = [sys.executable, "-m", "sdfgl", "render", str(tmp_path / "s.py"), "--size", "40x30", "-o", str(out)]
+    plain = tmp_path / "plain.npz"
+    assert subprocess.run(args[:-1] + [str(plain)], env=env, capture_output=True).returncode == 0
+    r = subprocess.run(args + ["--mesh", str(tmp_path / "box.stl"), "--mesh-color", "red"], env=env,
+                       capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    with np.load(out) as meshed, np.load(plain) as alone:
+        hit = np.isfinite(alone["depth"])
+        assert hit.any() and np.all(meshed["depth"][hit] < alone["depth"][hit])  # the box hides the sphere
+        red = meshed["color"][hit].astype(int)
+        assert np.all(red[:, 0] > red[:, 1] + 40)
+    r = subprocess.run(args + ["--mesh", str(tmp_path / "nope.stl")], env=env, capture_output=True, text=True)
+    assert r.returncode != 0 and "nope.stl" in r.stderr and "no such file" in r.stderr
