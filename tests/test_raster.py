@@ -42,6 +42,15 @@ def test_depth_is_the_minimum_of_mesh_and_scene(camera):
     assert np.all(np.isfinite(both.normal)) and not np.isnan(both.depth).any()
 
 
+def test_an_unbounded_scene_shares_its_moving_origin_with_the_mesh():
+    plane = sg.plane((0.0, 1.0, 0.0), 0.3)  # unbounded: the shader origin follows the eye
+    both = sg.render(plane, CAM, SIZE, meshes=[box_mesh()], outputs=("depth",)).depth
+    scene_only = sg.render(plane, CAM, SIZE, outputs=("depth",)).depth
+    mesh_only = sg.render(FAR, CAM, SIZE, meshes=[box_mesh()], outputs=("depth",)).depth
+    assert (np.isfinite(mesh_only) & (mesh_only < scene_only)).mean() > 0.02
+    assert same_depth(both, np.minimum(scene_only, mesh_only)).mean() >= 0.999
+
+
 def test_mesh_depth_is_the_ray_parameter():
     # a face of the box facing the camera straight on: t = distance from the eye to the face
     cam = sg.Camera((0.0, 0.0, 5.0), (0.0, 0.0, 0.0), fov=30)
