@@ -31,13 +31,13 @@ def same_depth(a: np.ndarray, b: np.ndarray) -> np.ndarray:
                                                    ortho_height=3.0)], ids=["perspective", "orthographic"])
 def test_depth_is_the_minimum_of_mesh_and_scene(camera):
     box = box_mesh()
-    sphere = sg.sphere(0.8).translate((0.5, 0.3, 0.2))  # cuts through the box's faces
+    sphere = sg.sphere(0.8).translate((0.0, 0.3, -0.5))  # cuts through the box's faces
     both = sg.render(sphere, camera, SIZE, meshes=[box], outputs=("depth", "normal"))
     scene_only = sg.render(sphere, camera, SIZE, outputs=("depth",)).depth
     mesh_only = sg.render(FAR, camera, SIZE, meshes=[box], outputs=("depth",)).depth
     covered = np.isfinite(mesh_only) & np.isfinite(scene_only)
-    assert covered.mean() > 0.02 and (np.isfinite(mesh_only) & ~np.isfinite(scene_only)).mean() > 0.02
-    assert (np.isfinite(scene_only) & (scene_only < mesh_only)).any() and (mesh_only < scene_only).any()
+    # each is in front of the other on some pixels
+    assert (covered & (mesh_only < scene_only)).mean() > 0.01 and (covered & (scene_only < mesh_only)).mean() > 0.01
     assert same_depth(both.depth, np.minimum(scene_only, mesh_only)).mean() >= 0.999
     assert np.all(np.isfinite(both.normal)) and not np.isnan(both.depth).any()
 
