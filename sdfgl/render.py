@@ -359,9 +359,8 @@ class Renderer:
         prog, _ = self.programs.entry(mesh_source, "mains/raster_mesh.vert")
         camera_uniforms(prog, cam, wh, origin)
         scene_uniforms(prog, mesh_source, scene, origin, self.data)
-        eye_rel = cam.eye - origin
         _set_uniform(prog, "uOrtho", 1.0 if cam.orthographic else 0.0)
-        _set_uniform(prog, "uNearFar", view_range(cam, meshes, eye_rel, origin))
+        _set_uniform(prog, "uNearFar", view_range(cam, meshes))
         t2 = time.perf_counter()
         raster = draw_meshes(ctx, prog, meshes, wh, origin)
         raster_s = time.perf_counter() - t2

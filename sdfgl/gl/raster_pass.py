@@ -3,7 +3,7 @@ ray-parameter and normal textures (and a depth buffer for their own hiding)."""
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any, Callable, Sequence
+from typing import Any, Sequence
 
 import moderngl
 import numpy as np
@@ -14,23 +14,31 @@ NO_HIT = -1.0  # what the t and normal textures hold where no mesh is drawn
 @dataclass
 class RasterImages:
     """What the raster pass drew: the t texture (the march reads it), and read back as
-    numpy (row 0 on top) the gamma-encoded RGBA colour, t (-1: no mesh) and normals."""
+    numpy (row 0 on top) the gamma-encoded RGBA colour (alpha 0: no mesh), t (-1: no mesh)
+    and normals. ``release()`` frees the GL objects."""
 
     depth_texture: moderngl.Texture
     color: np.ndarray
     t: np.ndarray
     normal: np.ndarray
-    release: Callable[[], None]
+    gl_objects: tuple[Any, ...]
+
+    def release(self) -> None:
+        """Release the framebuffer and its textures (on the context's thread)."""
+        for obj in self.gl_objects:
+            obj.release()
 
 
-def view_range(camera: Any, meshes: Sequence[Any], eye_rel: np.ndarray, origin: np.ndarray) -> tuple[float, float]:
-    """(near, far) along the view direction holding every mesh vertex (near > 0 for a perspective
-    camera: what lies behind the eye is clipped)."""
+def view_range(camera: Any, meshes: Sequence[Any]) -> tuple[float, float]:
+    """(near, far) along the view direction holding every mesh vertex; what lies behind the eye
+    (perspective: near > 0) or behind the image plane through it (orthographic) is clipped."""
     f = camera.basis()[2]
-    z = np.concatenate([(m.vertices - origin - eye_rel) @ f for m in meshes])
+    z = np.concatenate([(m.vertices - camera.eye) @ f for m in meshes])
     lo, hi = float(z.min()), float(z.max())
     far = max(hi, 0.0) * 1.01 + 1e-6 * max(abs(hi), abs(lo), 1.0)
-    near = max(lo * 0.99, far * 1e-5) if not camera.orthographic else max(lo, 0.0) - 1e-3 * (far - lo)
+    if camera.orthographic:  # rays start on the image plane through the eye: nothing behind it
+        return max(lo - 1e-3 * (far - lo), 0.0), far
+    near = max(lo * 0.99, far * 1e-5)
     return near, far
 
 
@@ -73,12 +81,5 @@ def draw_meshes(ctx: moderngl.Context, prog: moderngl.Program, meshes: Sequence[
         fbo.read_into(raw, components=comps, attachment=att, alignment=1, dtype=dtype)
         return raw[::-1].copy()
 
-    images = RasterImages(t_tex, read(0, 4, "f1"), read(1, 1, "f4")[..., 0], read(2, 3, "f4"), lambda: None)
-
-    def release() -> None:
-        fbo.release()
-        depth.release()
-        for tex in (color, t_tex, nor):
-            tex.release()
-    images.release = release
-    return images
+    return RasterImages(t_tex, read(0, 4, "f1"), read(1, 1, "f4")[..., 0], read(2, 3, "f4"),
+                        (fbo, depth, color, t_tex, nor))
