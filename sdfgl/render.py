@@ -365,11 +365,11 @@ class Renderer:
         raster = draw_meshes(ctx, prog, meshes, wh, origin)
         raster_s = time.perf_counter() - t2
         try:
-            res = self._draw(scene, cam, wh, st, source, origin, mesh_depth=raster.depth_texture)
+            res = self._draw(scene, cam, wh, st, source, origin, (raster.depth_texture, raster.color_texture))
         finally:
             raster.release()
-        mesh = (raster.t >= 0) & ~(res.depth < np.inf)  # the march stops at the mesh: any hit lies in front
-        res.color[mesh] = raster.color[mesh][:, :res.color.shape[-1]]
+        # the march stops at the mesh (where the shader took the mesh's colour): any hit lies in front
+        mesh = (raster.t >= 0) & ~(res.depth < np.inf)
         res.depth[mesh] = raster.t[mesh]
         if res.normal is not None:
             res.normal[mesh] = raster.normal[mesh]
@@ -377,7 +377,7 @@ class Renderer:
         return res
 
     def _draw(self, scene: Node, cam: Camera, wh: tuple[int, int], st: Settings, source: ShaderSource,
-              origin: np.ndarray, mesh_depth: moderngl.Texture | None = None) -> RenderResult:
+              origin: np.ndarray, meshes: tuple[moderngl.Texture, moderngl.Texture] | None = None) -> RenderResult:
         ctx = self.ctx
         check_size(ctx, wh)
         prog, vao = self.programs.entry(source)
@@ -389,10 +389,11 @@ class Renderer:
                              f"{exc}") from None
         camera_uniforms(prog, cam, wh, origin)
         scene_uniforms(prog, source, scene, origin, self.data)
-        if mesh_depth is not None:
-            unit = DATA_UNIT + len(source.data)  # the unit after the scene's data
-            mesh_depth.use(unit)
-            _set_uniform(prog, "uMeshDepth", unit)
+        if meshes is not None:  # the raster meshes' t and colour, on the units after the scene's data
+            first = DATA_UNIT + len(source.data)
+            for unit, (name, tex) in enumerate(zip(("uMeshDepth", "uMeshColor"), meshes), start=first):
+                tex.use(unit)
+                _set_uniform(prog, name, unit)
         targets.fbo.use()
         ctx.viewport = (0, 0, *wh)
         t2 = time.perf_counter()

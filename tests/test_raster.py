@@ -142,3 +142,18 @@ def test_cli_render_draws_a_mesh_file(tmp_path):
         assert np.all(red[:, 0] > red[:, 1] + 40)
     r = subprocess.run(args + ["--mesh", str(tmp_path / "nope.stl")], env=env, capture_output=True, text=True)
     assert r.returncode != 0 and "nope.stl" in r.stderr and "no such file" in r.stderr
+
+
+def test_antialiased_edges_of_the_scene_blend_with_the_mesh_behind():
+    # an unlit pure-red wall behind the sphere looks like a red background: the sphere's
+    # anti-aliased edge must blend with it, not with the sky
+    wall = sg.raster(trimesh.creation.box((40.0, 40.0, 0.1), trimesh.transformations.translation_matrix((0, 0, -3))),
+                     color=(0.0, 0.0, 0.0), material={"emission": (1.0, 0.0, 0.0), "specular": 0.0})
+    cam = sg.Camera((0.0, 0.0, 5.0), (0.0, 0.0, 0.0), fov=30)
+    kw = dict(aa=3, ao=False, shadows=False)
+    over_wall = sg.render(sg.sphere(1.0), cam, SIZE, meshes=[wall], **kw).color.astype(int)
+    over_red = sg.render(sg.sphere(1.0), cam, SIZE, background="red", **kw).color.astype(int)
+    sky = sg.render(sg.sphere(1.0), cam, SIZE, **kw).color.astype(int)
+    edge = (np.abs(sky - over_red).max(-1) > 0) & (np.abs(over_red - [255, 0, 0]).max(-1) > 0)
+    assert edge.sum() > 50  # the partly covered pixels of the silhouette
+    assert np.abs(over_wall - over_red).max() <= 1

@@ -163,7 +163,7 @@ TARGETS: dict[str, Target] = {
     "mesh_gradient": _mesh("mesh_gradient"),
     "mesh_project": _mesh("mesh_project"),
     "render_over_mesh": Target(image=True, color=True, scene=(color_functions, detail_function),
-                               main=(add_file("stages/mesh_depth"), march, shading, render_main)),
+                               main=(add_file("stages/raster_composite"), march, shading, render_main)),
     "raster_mesh": Target(image=True, color=True, scene=(color_functions, detail_function),
                           main=(shading, raster_mesh_main)),
 }

@@ -13,12 +13,12 @@ NO_HIT = -1.0  # what the t and normal textures hold where no mesh is drawn
 
 @dataclass
 class RasterImages:
-    """What the raster pass drew: the t texture (the march reads it), and read back as
-    numpy (row 0 on top) the gamma-encoded RGBA colour (alpha 0: no mesh), t (-1: no mesh)
-    and normals. ``release()`` frees the GL objects."""
+    """What the raster pass drew: the t and gamma-encoded colour textures (the march reads them;
+    no mesh: t -1, alpha 0), and read back as numpy (row 0 on top) t and the normals.
+    ``release()`` frees the GL objects."""
 
     depth_texture: moderngl.Texture
-    color: np.ndarray
+    color_texture: moderngl.Texture
     t: np.ndarray
     normal: np.ndarray
     gl_objects: tuple[Any, ...]
@@ -53,6 +53,23 @@ def draw_meshes(ctx: moderngl.Context, prog: moderngl.Program, meshes: Sequence[
     for tex in (t_tex, nor):
         tex.filter = (moderngl.NEAREST, moderngl.NEAREST)
     fbo = ctx.framebuffer(color_attachments=[color, t_tex, nor], depth_attachment=depth)
+    images = RasterImages(t_tex, color, np.empty(0), np.empty(0), (fbo, depth, color, t_tex, nor))
+    try:
+        _draw(ctx, prog, meshes, fbo, size, origin)
+        w, h = size
+        for att, comps, name in ((1, 1, "t"), (2, 3, "normal")):
+            raw = np.empty((h, w, comps), dtype=np.float32)
+            fbo.read_into(raw, components=comps, attachment=att, alignment=1, dtype="f4")
+            setattr(images, name, raw[::-1, :, 0].copy() if comps == 1 else raw[::-1].copy())
+    except BaseException:
+        images.release()
+        raise
+    return images
+
+
+def _draw(ctx: moderngl.Context, prog: moderngl.Program, meshes: Sequence[Any], fbo: moderngl.Framebuffer,
+          size: tuple[int, int], origin: np.ndarray) -> None:
+    """Clear ``fbo`` to no mesh and draw each mesh into it, depth-tested, with its own material."""
     fbo.use()
     ctx.viewport = (0, 0, *size)
     fbo.clear(NO_HIT, NO_HIT, NO_HIT, NO_HIT, depth=1.0)
@@ -74,12 +91,3 @@ def draw_meshes(ctx: moderngl.Context, prog: moderngl.Program, meshes: Sequence[
             ibo.release()
     finally:
         ctx.disable(moderngl.DEPTH_TEST)
-    w, h = size
-
-    def read(att: int, comps: int, dtype: str) -> np.ndarray:
-        raw = np.empty((h, w, comps), dtype=np.uint8 if dtype == "f1" else np.float32)
-        fbo.read_into(raw, components=comps, attachment=att, alignment=1, dtype=dtype)
-        return raw[::-1].copy()
-
-    return RasterImages(t_tex, read(0, 4, "f1"), read(1, 1, "f4")[..., 0], read(2, 3, "f4"),
-                        (fbo, depth, color, t_tex, nor))

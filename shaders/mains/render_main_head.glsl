@@ -68,6 +68,12 @@ vec3 radiance(vec3 ro, vec3 rd, Hit h) {
 // One sample as (linear colour, coverage). With ALPHA a miss is transparent and the
 // colour is premultiplied by coverage, so averaging samples gives coverage-weighted colour.
 vec4 sampleColor(vec3 ro, vec3 rd, Hit h) {
+#ifdef MESH_DEPTH
+    if (h.t < 0.0) {  // the march stopped at a raster mesh, or missed everything
+        vec4 mesh = meshColor();
+        if (mesh.a > 0.0) return vec4(mesh.rgb, 1.0);
+    }
+#endif
 #ifdef ALPHA
     if (h.t < 0.0) return vec4(0.0);
     float cover = 1.0;
