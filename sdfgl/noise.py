@@ -30,25 +30,26 @@ def _pcg3d_x(c: np.ndarray) -> np.ndarray:
     return x
 
 
+CORNERS = np.array([[dx, dy, dz] for dx in (0, 1) for dy in (0, 1) for dz in (0, 1)], dtype=np.float64)
+
+
 def noise3(p: np.ndarray) -> np.ndarray:
-    """Gradient noise at (..., 3) points."""
+    """Gradient noise at (..., 3) points (the eight corners hashed in one array)."""
     i = np.floor(p)
     f = p - i
     u = f * f * f * (f * (f * 6.0 - 15.0) + 10.0)
-    vals = {}
-    for dx in (0, 1):
-        for dy in (0, 1):
-            for dz in (0, 1):
-                o = np.array([dx, dy, dz], dtype=np.float64)
-                h = _pcg3d_x(i + o)
-                g = np.stack([(h & 1), (h >> 1) & 1, (h >> 2) & 1], axis=-1).astype(np.float64) * 2.0 - 1.0
-                vals[dx, dy, dz] = np.sum(g * (f - o), axis=-1)
+    h = _pcg3d_x(i[..., None, :] + CORNERS)  # (..., 8)
+    g = np.stack([(h & 1), (h >> 1) & 1, (h >> 2) & 1], axis=-1).astype(np.float64) * 2.0 - 1.0
+    vals = np.sum(g * (f[..., None, :] - CORNERS), axis=-1)  # (..., 8), corner (dx, dy, dz) at 4 dx + 2 dy + dz
     ux, uy, uz = u[..., 0], u[..., 1], u[..., 2]
 
     def lerp(a: np.ndarray, b: np.ndarray, t: np.ndarray) -> np.ndarray:
         return a + (b - a) * t
-    x00, x10 = lerp(vals[0, 0, 0], vals[1, 0, 0], ux), lerp(vals[0, 1, 0], vals[1, 1, 0], ux)
-    x01, x11 = lerp(vals[0, 0, 1], vals[1, 0, 1], ux), lerp(vals[0, 1, 1], vals[1, 1, 1], ux)
+
+    def v(dx: int, dy: int, dz: int) -> np.ndarray:
+        return vals[..., 4 * dx + 2 * dy + dz]
+    x00, x10 = lerp(v(0, 0, 0), v(1, 0, 0), ux), lerp(v(0, 1, 0), v(1, 1, 0), ux)
+    x01, x11 = lerp(v(0, 0, 1), v(1, 0, 1), ux), lerp(v(0, 1, 1), v(1, 1, 1), ux)
     return lerp(lerp(x00, x10, uy), lerp(x01, x11, uy), uz)
 
 

@@ -90,14 +90,19 @@ class Grid:
         flat = p.reshape(-1, 3)
         cell = np.clip(np.floor((flat - self.lo) / self.cell), 0, self.dims - 1).astype(np.int64)
         d = self.cap(flat)
-        a, b = self._ranges()
-        for i, c in enumerate(self.children):
-            m = np.all((cell >= a[i]) & (cell <= b[i]), axis=1)
-            if m.any() and self._ball_at is not None:
-                at = cell[m]
-                m[m] = self._near_ball(at[:, 0], at[:, 1], at[:, 2], np.full(len(at), i))
-            if m.any():
-                d[m] = np.minimum(d[m], c._distance(flat[m]))
+        # each point's list, as (point, instance) pairs grouped by instance: one call of each
+        # listed instance's twin on its points (a Python loop over the instances present)
+        listed, child = self.entries()
+        index = (cell[:, 2] * self.dims[1] + cell[:, 1]) * self.dims[0] + cell[:, 0]
+        first = np.searchsorted(listed, index, "left")
+        count = np.searchsorted(listed, index, "right") - first
+        point = np.repeat(np.arange(len(flat)), count)
+        kid = child[np.repeat(first, count) + (np.arange(int(count.sum())) - np.repeat(np.cumsum(count) - count, count))]
+        order = np.argsort(kid, kind="stable")
+        point, kid = point[order], kid[order]
+        kinds, starts = np.unique(kid, return_index=True)
+        for i, sel in zip(kinds, np.split(point, starts[1:])):
+            d[sel] = np.minimum(d[sel], self.children[int(i)]._distance(flat[sel]))
         return d.reshape(p.shape[:-1])
 
     def _ranges(self) -> tuple[np.ndarray, np.ndarray]:
@@ -110,11 +115,9 @@ class Grid:
     def entries(self) -> tuple[np.ndarray, np.ndarray]:
         """(cell index, child index) of every list entry, sorted by cell (then, for a
         blend, by child: the union's order; built once)."""
-        if self.blend is None:
-            return self._entries()
         found = self.__dict__.get("_found")
         if found is None:
-            found = self.__dict__["_found"] = blend_lists.entries(self)
+            found = self.__dict__["_found"] = self._entries() if self.blend is None else blend_lists.entries(self)
         return found
 
     def _entries(self) -> tuple[np.ndarray, np.ndarray]:
