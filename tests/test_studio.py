@@ -273,6 +273,8 @@ def test_csg_part_built_in_the_page_renders_like_sg_render(page):
       return s.editor.getNodeFromId(c).data.fields.rgb; })()""")
     assert tinted == [1, 0.502, 0]
     b.evaluate("window.studio.undo()")
+    settle(b)  # adding and taking back a node may have recompiled in between, as any structure edit
+    compiles = st.workspace.compiles
 
     # a node's own preview: its subtree rendered by sg.render
     b.evaluate(f"window.studio.setPreview({built['ball']}, true)")

@@ -33,8 +33,10 @@ def case(name: str) -> HardCase:
     raise KeyError(f"no hard case '{name}'; known: {', '.join(c.name for c in CASES)}")
 
 
-def run_case(c: HardCase, size: tuple[int, int] = (64, 48), **settings: object) -> tuple[ErrorReport, "RenderResult"]:
-    """Render ``c`` (shadows and AO off: only primary rays matter) and compare with the reference."""
+def run_case(c: HardCase, size: tuple[int, int] = (64, 48), surface: bool = True,
+             **settings: object) -> tuple[ErrorReport, "RenderResult"]:
+    """Render ``c`` (shadows and AO off: only primary rays matter) and compare with the reference;
+    ``surface=False`` leaves out the hit-to-surface offsets (they search the twin along every hit ray)."""
     from dataclasses import replace
 
     from ..reference import compare, surface_offsets, trace
@@ -47,6 +49,8 @@ def run_case(c: HardCase, size: tuple[int, int] = (64, 48), **settings: object) 
     if ref is None:  # the reference does not depend on the render's settings: traced once a size
         ref = _REFERENCES[key] = trace(scene, cam, size, max_dist=c.max_dist)
     err = compare(res, ref)
+    if not surface:
+        return err, res
     off = surface_offsets(scene, cam, res)
     if off.size:
         err = replace(err, surface_px_p99=float(np.percentile(off, 99)), surface_px_max=float(off.max()))
