@@ -109,29 +109,10 @@ class Decoder:
             raise fail("nodes", f"expected an object of named nodes, got {_what(table)}")
         if len(table) > MAX_NODES:
             raise fail("nodes", f"{len(table)} entries (limit {MAX_NODES})")
-        state: dict[str, int] = {}  # 1: in progress, 2: built
-        for start in table:
-            stack = [start]
-            while stack:
-                name = stack[-1]
-                if state.get(name) == 2:
-                    stack.pop()
-                    continue
-                pending = [r for r in _refs(table[name]) if state.get(r) != 2]
-                for r in pending:
-                    if r not in table:
-                        raise fail(f"nodes.{name}", f"refers to {r!r}, which is not in 'nodes'")
-                    if state.get(r) == 1:
-                        raise fail(f"nodes.{name}", f"the references through {r!r} form a cycle")
-                if pending:
-                    state[name] = 1
-                    stack.extend(pending)
-                    continue
-                self.shared[name] = self.value(table[name], f"nodes.{name}")
-                if not isinstance(self.shared[name], Recorded):
-                    raise fail(f"nodes.{name}", f"expected a node (an object with 'kind'), got {_what(table[name])}")
-                state[name] = 2
-                stack.pop()
+        for name in table_order(table):
+            self.shared[name] = self.value(table[name], f"nodes.{name}")
+            if not isinstance(self.shared[name], Recorded):
+                raise fail(f"nodes.{name}", f"expected a node (an object with 'kind'), got {_what(table[name])}")
 
     # -- values (iterative) ---------------------------------------------------------------
     def value(self, root: Any, path: str) -> Any:
@@ -334,6 +315,35 @@ def _number_text(v: float) -> str:
     """A number for a message (an integer of hundreds of digits is shown by its length)."""
     text = repr(v)
     return text if len(text) <= 24 else f"an integer of {len(text.lstrip('-'))} digits"
+
+
+def table_order(table: dict[str, Any]) -> list[str]:
+    """The names of a document's shared-node table (``nodes``), each after the names its entry
+    refers to; a reference to a missing name or a cycle of references is an error naming the
+    entry's JSON path."""
+    order: list[str] = []
+    state: dict[str, int] = {}  # 1: in progress, 2: placed
+    for start in table:
+        stack = [start]
+        while stack:
+            name = stack[-1]
+            if state.get(name) == 2:
+                stack.pop()
+                continue
+            pending = [r for r in _refs(table[name]) if state.get(r) != 2]
+            for r in pending:
+                if r not in table:
+                    raise fail(f"nodes.{name}", f"refers to {r!r}, which is not in 'nodes'")
+                if state.get(r) == 1:
+                    raise fail(f"nodes.{name}", f"the references through {r!r} form a cycle")
+            if pending:
+                state[name] = 1
+                stack.extend(pending)
+                continue
+            order.append(name)
+            state[name] = 2
+            stack.pop()
+    return order
 
 
 def _refs(value: Any) -> list[str]:

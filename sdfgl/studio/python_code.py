@@ -14,7 +14,7 @@ from typing import Any
 
 from ..errors import ParameterError
 from ..nodes.record import registry
-from ..scene_io.decode import from_document
+from ..scene_io.decode import from_document, table_order
 from ..scene_io.encode import signature
 
 _WORD = re.compile(r"[^0-9a-zA-Z_]")
@@ -59,7 +59,7 @@ class _Writer:
                     rng = f", ({lo}, {hi})"
                 self.lines.append(f"{var} = Param({self.value(entry['value'])}, {name!r}{rng})")
             self.lines.append("params = {" + ", ".join(f"{k!r}: {v}" for k, v in self.params.items()) + "}")
-        for name in _table_order(d.get("nodes", {})):
+        for name in table_order(d.get("nodes", {})):
             self.refs[name] = self.node(d["nodes"][name])
         root = self.value(d["scene"])
         self.lines.append(f"scene = {root}")
@@ -128,42 +128,6 @@ class _Writer:
         if isinstance(v, float) and not math.isfinite(v):  # pragma: no cover - the decoder refuses these
             raise ParameterError(f"copy as Python: {v!r} is not a document value")
         return repr(v)
-
-
-def _table_order(table: dict[str, Any]) -> list[str]:
-    """The shared-node table's names, each after the names it refers to."""
-    order: list[str] = []
-    state: dict[str, int] = {}
-    for start in table:
-        stack = [start]
-        while stack:
-            name = stack[-1]
-            if state.get(name) == 2:
-                stack.pop()
-                continue
-            pending = [r for r in _refs(table[name]) if state.get(r) != 2]
-            if pending and state.get(name) != 1:
-                state[name] = 1
-                stack.extend(pending)
-                continue
-            state[name] = 2
-            order.append(name)
-            stack.pop()
-    return order
-
-
-def _refs(value: Any) -> list[str]:
-    out, stack = [], [value]
-    while stack:
-        v = stack.pop()
-        if isinstance(v, dict):
-            if set(v) == {"ref"}:
-                out.append(v["ref"])
-            else:
-                stack.extend(v.values())
-        elif isinstance(v, list):
-            stack.extend(v)
-    return out
 
 
 def to_python(doc: dict[str, Any]) -> str:
