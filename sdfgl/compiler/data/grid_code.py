@@ -48,20 +48,24 @@ def emit(grid: Grid, em: "Emitter", p: str) -> str:
     return em.assign("vec4" if em.mode == "color" else "float", f"{fn}({pt})")
 
 
+def _grid_defines(grid: Grid, em: "Emitter", gid: str, extra: list[str]) -> str:
+    """The grid's tables added to the data texture, and its #defines (``extra`` after the cell size)."""
+    tex = grid.textures(em.grids[id(grid)][2])
+    em.require("data_table")
+    cells, lists = em.data.add(tex["Cells"]), em.data.add(tex["List"])
+    return "\n".join([f"#define {gid}_LO vec3({', '.join(em.num(x) for x in grid.lo - grid.centre)})",
+                      f"#define {gid}_CELL {em.num(grid.cell)}", *extra,
+                      f"#define {gid}_DIMS ivec3({', '.join(str(int(x)) for x in grid.dims)})",
+                      f"#define {gid}_PER_CELL {-(-len(grid.types) // 2)}",
+                      f"#define {gid}_CELLS {cells}", f"#define {gid}_LIST {lists}"])
+
+
 def _cell_function(grid: Grid, em: "Emitter", fn: str, color: bool, loops: list[tuple[str, str]],
                    owner: str) -> list[tuple[str, str]]:
     """The union function ``fn``: find p's cell, then run the per-type ``loops`` over its lists."""
     gid = em.grid_name(grid)
-    tex = grid.textures(em.grids[id(grid)][2])
-    em.require("data_table")
-    cells, lists = em.data.add(tex["Cells"]), em.data.add(tex["List"])
     head = shaderlib.read("templates/grid_union").replace("GRIDID", gid)
-    defs = (f"#define {gid}_LO vec3({', '.join(em.num(x) for x in grid.lo - grid.centre)})\n"
-            f"#define {gid}_CELL {em.num(grid.cell)}\n"
-            f"#define {gid}_MARGIN {em.num(grid.margin)}\n"
-            f"#define {gid}_DIMS ivec3({', '.join(str(int(x)) for x in grid.dims)})\n"
-            f"#define {gid}_PER_CELL {-(-len(grid.types) // 2)}\n"
-            f"#define {gid}_CELLS {cells}\n#define {gid}_LIST {lists}")
+    defs = _grid_defines(grid, em, gid, [f"#define {gid}_MARGIN {em.num(grid.margin)}"])
     ray = _ray_free(grid, em, color)
     if ray:
         head += "\n" + shaderlib.read("templates/grid_ray").replace("GRIDID", gid)
@@ -89,17 +93,9 @@ def _blend_function(grid: Grid, em: "Emitter", fn: str, color: bool, loops: list
     gid = em.grid_name(grid)
     blend = grid.blend
     assert blend is not None
-    tex = grid.textures(em.grids[id(grid)][2])
-    em.require("data_table")
-    cells, lists = em.data.add(tex["Cells"]), em.data.add(tex["List"])
     head = shaderlib.read("templates/grid_blend").replace("GRIDID", gid)
-    defs = (f"#define {gid}_LO vec3({', '.join(em.num(x) for x in grid.lo - grid.centre)})\n"
-            f"#define {gid}_CELL {em.num(grid.cell)}\n"
-            f"#define {gid}_OUTSIDE {em.num(blend.pad - blend.support)}\n"
-            f"#define {gid}_CAP {em.num(blend_lists.cap(grid))}\n"
-            f"#define {gid}_DIMS ivec3({', '.join(str(int(x)) for x in grid.dims)})\n"
-            f"#define {gid}_PER_CELL {-(-len(grid.types) // 2)}\n"
-            f"#define {gid}_CELLS {cells}\n#define {gid}_LIST {lists}")
+    defs = _grid_defines(grid, em, gid, [f"#define {gid}_OUTSIDE {em.num(blend.pad - blend.support)}",
+                                         f"#define {gid}_CAP {em.num(blend_lists.cap(grid))}"])
     em.helper(f"{gid}_grid", defs + "\n" + head)
     rtype = "vec4" if color else "float"
     outside = f"vec4(0.0, 0.0, 0.0, away + {gid}_OUTSIDE)" if color else f"away + {gid}_OUTSIDE"
