@@ -96,12 +96,15 @@ class Chromium:
                 raise SdfglError("Chromium did not answer in time")
             chunk = os.read(self._read, 1 << 20)
             if not chunk:
-                self._log.seek(0)
-                err = self._log.read().decode(errors="replace")[-2000:]
-                raise SdfglError(f"Chromium exited (status {self.proc.wait()}): {err}")
+                raise SdfglError(f"Chromium exited (status {self.proc.wait()}): {self._log_tail()}")
             self._buffer += chunk
         raw, _, self._buffer = self._buffer.partition(b"\0")
         return json.loads(raw)
+
+    def _log_tail(self) -> str:
+        """The last lines the browser wrote to its log."""
+        self._log.seek(0)
+        return self._log.read().decode(errors="replace")[-2000:]
 
     def send(self, method: str, params: dict[str, Any] | None = None, session: bool = False) -> dict[str, Any]:
         """Call a DevTools method (on the page's session if ``session``) and return its result."""
@@ -109,7 +112,10 @@ class Chromium:
         msg: dict[str, Any] = {"id": self._next_id, "method": method, "params": params or {}}
         if session:
             msg["sessionId"] = self.session
-        os.write(self._write, json.dumps(msg).encode() + b"\0")
+        try:
+            os.write(self._write, json.dumps(msg).encode() + b"\0")
+        except BrokenPipeError:
+            raise SdfglError(f"Chromium exited (status {self.proc.wait()}): {self._log_tail()}") from None
         deadline = time.monotonic() + self.timeout
         while True:
             reply = self._message(deadline)
