@@ -272,8 +272,10 @@ def test_csg_part_built_in_the_page_renders_like_sg_render(page):
       pick.value = "#ff8000"; pick.dispatchEvent(new Event("change", { bubbles: true }));
       return s.editor.getNodeFromId(c).data.fields.rgb; })()""")
     assert tinted == [1, 0.502, 0]
-    b.evaluate("window.studio.undo()")
-    settle(b)  # adding and taking back a node may have recompiled in between, as any structure edit
+    # adding and taking back a node may recompile, as any structure edit: the debounced compile
+    # is run now and awaited, so that none is still pending when the count is taken
+    b.evaluate("(() => { window.studio.undo(); return window.studio.compileNow(); })()")
+    settle(b)
     compiles = st.workspace.compiles
 
     # a node's own preview: its subtree rendered by sg.render
