@@ -96,15 +96,16 @@ class Chromium:
                 raise SdfglError("Chromium did not answer in time")
             chunk = os.read(self._read, 1 << 20)
             if not chunk:
-                raise SdfglError(f"Chromium exited (status {self.proc.wait()}): {self._log_tail()}")
+                raise self._exited()
             self._buffer += chunk
         raw, _, self._buffer = self._buffer.partition(b"\0")
         return json.loads(raw)
 
-    def _log_tail(self) -> str:
-        """The last lines the browser wrote to its log."""
+    def _exited(self) -> SdfglError:
+        """The error for a browser that has gone: its exit status and the end of its log."""
         self._log.seek(0)
-        return self._log.read().decode(errors="replace")[-2000:]
+        log = self._log.read().decode(errors="replace")[-2000:]
+        return SdfglError(f"Chromium exited (status {self.proc.wait()}): {log}")
 
     def send(self, method: str, params: dict[str, Any] | None = None, session: bool = False) -> dict[str, Any]:
         """Call a DevTools method (on the page's session if ``session``) and return its result."""
@@ -115,7 +116,7 @@ class Chromium:
         try:
             os.write(self._write, json.dumps(msg).encode() + b"\0")
         except BrokenPipeError:
-            raise SdfglError(f"Chromium exited (status {self.proc.wait()}): {self._log_tail()}") from None
+            raise self._exited() from None
         deadline = time.monotonic() + self.timeout
         while True:
             reply = self._message(deadline)
