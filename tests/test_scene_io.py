@@ -8,6 +8,7 @@ import sys
 import time
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 import sdfgl as sg
@@ -22,7 +23,7 @@ GALLERY = sorted((ROOT / "examples" / "gallery").glob("*.py")) + [ROOT / "exampl
 @pytest.mark.parametrize("path", GALLERY, ids=[p.stem for p in GALLERY])
 def test_gallery_scene_round_trips_to_identical_glsl(path, tmp_path):
     sf = load_scene_file(path)
-    if "// sg.glsl:" in sg.compile(sf.scene, **sf.settings):  # user GLSL: a document never carries code
+    if "// sg.glsl:" in sg.compile(sf.scene, **sf.settings):  # user GLSL with a float64 twin (a Python function)
         with pytest.raises(sg.ParameterError, match=r"glsl\('.*'\): a 'glsl' node cannot be saved"):
             sg.save_scene(sf.scene, tmp_path / "s.json", camera=sf.camera, settings=sf.settings)
         return
@@ -36,17 +37,47 @@ def test_gallery_scene_round_trips_to_identical_glsl(path, tmp_path):
     assert dumps(doc.scene, doc.camera, doc.settings) == dumps(sf.scene, sf.camera, sf.settings)
 
 
-def test_user_glsl_is_never_saved_nor_loaded_but_pickles():
-    node = sg.glsl("length(p) - 1.0", lipschitz=1.0)
+def test_user_glsl_with_a_twin_is_never_saved_but_pickles():
+    node = sg.glsl("length(p) - 1.0", twin=lambda p: np.linalg.norm(p, axis=-1) - 1.0)
     scene = sg.box(0.5) | node.translate((2, 0, 0))
     with pytest.raises(sg.ParameterError, match=r"glsl\('length\(p\) - 1.0'\): a 'glsl' node cannot be saved in a "
-                                                r"scene document: a scene document never carries code"):
+                                                r"scene document: its float64 twin is a Python function"):
         sg.save_scene(scene, "never.json")
     assert not Path("never.json").exists()
-    doc = {"format": "sdfgl-scene", "version": 1, "scene": {"kind": "glsl", "code": "return length(p) - 1.0;"}}
-    with pytest.raises(sg.SceneDocumentError, match="scene.kind: unknown node kind 'glsl'"):
-        loads(json.dumps(doc))
-    assert sg.compile(pickle.loads(pickle.dumps(scene))) == sg.compile(scene)
+    plain = sg.box(0.5) | sg.glsl("length(p) - 1.0").translate((2, 0, 0))
+    assert sg.compile(pickle.loads(pickle.dumps(plain))) == sg.compile(plain)
+
+
+def test_user_glsl_without_a_twin_round_trips_with_named_parameters(tmp_path):
+    r = sg.param(0.6, "r", range=(0.1, 2.0))
+    code = "float q = length(p.xz) - r;\nreturn length(vec2(q, p.y)) - k;"
+    node = sg.glsl(code, bounds=((-3, -1, -3), (3, 1, 3)), params={"r": r, "k": 0.2})
+    scene = sg.box(0.5) | node.translate((2, 0, 0))
+    doc = sg.load_scene(sg.save_scene(scene, tmp_path / "g.json"))
+    assert sg.compile(doc.scene) == sg.compile(scene)
+    assert dumps(doc.scene) == dumps(scene)  # save -> load -> the same document
+    saved = json.loads((tmp_path / "g.json").read_text())
+    glsl_node = saved["scene"]["children"][1]["child"]
+    assert glsl_node["code"] == code and glsl_node["params"] == [["r", {"param": "r"}], ["k", 0.2]]
+    assert "twin" not in glsl_node and saved["params"]["r"] == {"value": 0.6, "min": 0.1, "max": 2.0}
+    # a live parameter is an argument of the node's function: a new value, the same source
+    src = sg.compile(doc.scene)
+    doc.params["r"].value = 1.5
+    assert sg.compile(doc.scene) == src and "uP0" in src
+    with pytest.raises(sg.SdfglError, match="no float64 twin"):
+        doc.scene.distance((0, 0, 0))
+    # the code is checked on load as sg.glsl checks it, with the JSON path
+    for bad, msg in (("#define R 1.0\nreturn length(p) - R;", "uses '#'"),
+                     ("return 1.0; } float g(vec3 p) { return 0.0;", "closes a brace it did not open"),
+                     ("uniform float u; return 1.0;", "uses 'uniform'")):
+        with pytest.raises(sg.SceneDocumentError, match=f"^scene: glsl: line 1 of the code {msg}"):
+            sg.from_dict({"format": "sdfgl-scene", "version": 1, "scene": {"kind": "glsl", "code": bad}})
+    with pytest.raises(sg.SceneDocumentError, match="^scene: glsl: 'twin' must be a function"):
+        sg.from_dict({"format": "sdfgl-scene", "version": 1,
+                      "scene": {"kind": "glsl", "code": "length(p) - 1.0", "twin": "__import__('os')"}})
+    with pytest.raises(sg.SceneDocumentError, match="^scene: glsl: parameter name 'length' is taken"):
+        sg.from_dict({"format": "sdfgl-scene", "version": 1,
+                      "scene": {"kind": "glsl", "code": "length(p) - 1.0", "params": [["length", 1.0]]}})
 
 
 def test_lights_and_orthographic_cameras_round_trip():
@@ -92,7 +123,7 @@ def test_every_registered_kind_round_trips_and_pickles():
             kinds.add(n.kind)
             saveable &= n.serializable
             stack.extend(c for v in bound_arguments(n).values() for c in recorded_in(v))
-        if not saveable:  # user GLSL (test_user_glsl_is_never_saved_nor_loaded_but_pickles)
+        if not saveable:  # user GLSL with a twin (test_user_glsl_with_a_twin_is_never_saved_but_pickles)
             continue
         st = {"method": "newton", "ao": False} if node.exactness == sg.IMPLICIT else {}
         want = sg.compile(node, **st)

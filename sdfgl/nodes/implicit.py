@@ -113,20 +113,29 @@ def _stable_name(prefix: str, key: tuple) -> str:
     return f"{prefix}{zlib.crc32(repr(key).encode()) % 10**8}"
 
 
-def _parse(expr: Any, what: str = "implicit") -> Any:
+def _param_symbols(names: Sequence[str]) -> dict[str, Any]:
+    """The sympy symbols of named parameters (by name; distinct from x, y, z)."""
+    import sympy as sp
+    return {n: sp.Symbol(n, real=True, finite=True) for n in names}
+
+
+def _parse(expr: Any, what: str = "implicit", params: dict[str, Any] | None = None) -> Any:
     X, Y, Z = _xyz()
     import sympy as sp
-    names = {"x": X, "y": Y, "z": Z}
+    names = {"x": X, "y": Y, "z": Z, **(params or {})}
     if isinstance(expr, str):
         e = ex.parse_sympy(expr, names, what)
     elif isinstance(expr, sp.Expr):
         ex.check_sympy(expr, what)
         e = expr.subs({s: names[s.name] for s in expr.free_symbols if s.name in names})
+        if params:  # a saved parametric's equation names its parameters as plain symbols
+            e = e.subs({s: params[s.name] for s in e.free_symbols if s.name in params and s not in params.values()})
     else:
         raise ParameterError(f"{what}: expected a string or a sympy expression, got {type(expr).__name__}")
-    extra = sorted(s.name for s in e.free_symbols if s not in (X, Y, Z))
+    extra = sorted(s.name for s in e.free_symbols if s not in (X, Y, Z, *(params or {}).values()))
     if extra:
-        raise ParameterError(f"{what}: unknown symbol(s) {', '.join(extra)} in {expr!r}; use x, y and z")
+        named = f" and the named parameters {', '.join(params)}" if params else ""
+        raise ParameterError(f"{what}: unknown symbol(s) {', '.join(extra)} in {expr!r}; use x, y and z{named}")
     ex.check_derivative_size(e, what)
     return e
 
@@ -136,21 +145,30 @@ class Implicit(Node):
 
     kind = "implicit"
 
-    def __init__(self, expr: Any, bounds: tuple[Sequence[float], Sequence[float]] | None = None) -> None:
+    def __init__(self, expr: Any, bounds: tuple[Sequence[float], Sequence[float]] | None = None,
+                 params: Any = None) -> None:
         X, Y, Z = _xyz()
         import sympy as sp
-        f = _parse(expr)
+        from .named_params import named_params
+        named = named_params(self.kind, params)
+        syms = _param_symbols([n for n, _ in named])
+        f = _parse(expr, params=syms)
         grad = [sp.diff(f, s) for s in (X, Y, Z)]
         if all(g == 0 for g in grad):
             raise ParameterError(f"implicit: {f} does not depend on x, y or z")
         lo, hi = _box("implicit", bounds)
-        self._glsl = (glsl(f, "implicit"), [glsl(g, "implicit: the gradient") for g in grad])
-        super().__init__((), expr=str(f))
+        # in the GLSL a named parameter is an argument of the node's function: par0, par1, ...
+        glsl_names = {syms[n]: sp.Symbol(f"par{i}", real=True) for i, (n, _) in enumerate(named)}
+        fg = f.subs(glsl_names) if named else f
+        gradg = [g.subs(glsl_names) for g in grad] if named else grad
+        self._glsl = (glsl(fg, "implicit"), [glsl(g, "implicit: the gradient") for g in gradg])
+        super().__init__((), expr=str(f), **{f"param {n}": val for n, val in named})
         self.f, self.grad, self.lo, self.hi = f, grad, lo, hi
-        self._np = sp.lambdify((X, Y, Z), [f, *grad], "numpy")
+        self.named = named
+        self._np = sp.lambdify((X, Y, Z, *syms.values()), [f, *grad], "numpy")
         # written with extended-range floats where f or grad f may overflow float32
         self.extended = xfloat.needs_extended(f, grad)
-        self._xglsl = _extended_glsl([f, *grad]) if self.extended else None
+        self._xglsl = _extended_glsl([fg, *gradg]) if self.extended else None
 
     @property
     def exactness(self) -> str:
@@ -161,22 +179,29 @@ class Implicit(Node):
         return f"implicit({text if len(text) < 60 else text[:57] + '...'})"
 
     def _emit(self, em: "Emitter", p: str) -> str:
-        name = _stable_name("implicit", self.key)
+        # with named parameters the function is the same for every value (live or not): its
+        # name follows the expression and the names, not the values
+        names = [n for n, _ in self.named]
+        name = _stable_name("implicit", (str(self.f), tuple(names))) if names else _stable_name("implicit", self.key)
+        args = "".join(f", float par{i}" for i in range(len(names)))
+        what_params = f"; {', '.join(f'par{i} = {n}' for i, n in enumerate(names))}" if names else ""
         if self.extended:
             em.require("xfloat")
             f, gx, gy, gz = self._xglsl
-            body = (f"float {name}(vec3 p) {{\n    vec2 X = xfNorm(p.x, 0.0);\n    vec2 Y = xfNorm(p.y, 0.0);\n"
-                    f"    vec2 Z = xfNorm(p.z, 0.0);\n    return xfRatio({f},\n        {gx},\n        {gy},\n"
+            pars = "".join(f"    vec2 PAR{i} = xfNorm(par{i}, 0.0);\n" for i in range(len(names)))
+            body = (f"float {name}(vec3 p{args}) {{\n    vec2 X = xfNorm(p.x, 0.0);\n    vec2 Y = xfNorm(p.y, 0.0);\n"
+                    f"    vec2 Z = xfNorm(p.z, 0.0);\n{pars}    return xfRatio({f},\n        {gx},\n        {gy},\n"
                     f"        {gz});\n}}")
             what = "in extended range: its values overflow float32"
         else:
-            body = (f"float {name}(vec3 p) {{\n    float x = p.x;\n    float y = p.y;\n    float z = p.z;\n"
+            body = (f"float {name}(vec3 p{args}) {{\n    float x = p.x;\n    float y = p.y;\n    float z = p.z;\n"
                     f"    float f = {self._glsl[0]};\n"
                     f"    vec3 g = vec3({', '.join(self._glsl[1])});\n"
                     f"    return f / max(length(g), 1e-12);\n}}")
             what = "an implicit surface"
-        em.helper(name, f"// f = {em.comment(self.f)}  ({what}, as f / |grad f|)\n{body}")
-        return em.with_color(em.assign("float", f"{name}({em.point(p)})"))
+        em.helper(name, f"// f = {em.comment(self.f)}  ({what}, as f / |grad f|{what_params})\n{body}")
+        values = "".join(f", {em.num(val)}" for _, val in self.named)
+        return em.with_color(em.assign("float", f"{name}({em.point(p)}{values})"))
 
     def _distance(self, p: np.ndarray) -> np.ndarray:
         with np.errstate(over="ignore", invalid="ignore"):
@@ -188,8 +213,9 @@ class Implicit(Node):
 
     def _ratio(self, p: np.ndarray, dtype: type) -> np.ndarray:
         """f / |grad f| at ``p`` computed in ``dtype``, as float64."""
+        named = [dtype(float(val)) for _, val in self.named]
         vals = [np.array(np.broadcast_to(np.asarray(v, dtype=dtype), p.shape[:-1]))
-                for v in self._np(p[..., 0], p[..., 1], p[..., 2])]
+                for v in self._np(p[..., 0], p[..., 1], p[..., 2], *named)]
         big = np.maximum(np.maximum(np.abs(vals[1]), np.abs(vals[2])), np.abs(vals[3]))
         unit = np.where(big > 0, big, 1.0)  # |grad f| without squaring it (no overflow)
         g = big * np.sqrt((vals[1] / unit) ** 2 + (vals[2] / unit) ** 2 + (vals[3] / unit) ** 2)
@@ -200,7 +226,8 @@ class Implicit(Node):
         return self.lo, self.hi
 
 
-def implicit(expr: Any, bounds: tuple[Sequence[float], Sequence[float]] | None = None) -> Implicit:
+def implicit(expr: Any, bounds: tuple[Sequence[float], Sequence[float]] | None = None,
+             params: Any = None) -> Implicit:
     """The surface ``expr`` = 0 in x, y, z (solid where ``expr`` < 0), rendered as f / |grad f|.
 
     Args:
@@ -208,6 +235,10 @@ def implicit(expr: Any, bounds: tuple[Sequence[float], Sequence[float]] | None =
             pi, E, + - * / ** ^ and sin cos tan asin acos atan sinh cosh tanh exp log sqrt abs)
             or a sympy expression over those. Nothing in it is run as code.
         bounds: (lo, hi) corners of a box that clips the rays (strongly advised), or None.
+        params: named parameters the expression may use besides x, y, z: (name, value)
+            pairs or a dict, each value a number or a live scalar (``sg.param``: moving it
+            needs no recompile). Names are identifiers other than x, y, z, s, t, u, p, pi,
+            E and the function names (:mod:`sdfgl.nodes.named_params`).
 
     Implicit: no distance guarantee; the default method ("auto") renders it with
     ``"newton"`` (or pass ``"forward_newton"``). A field that may overflow float32 (a high
@@ -218,8 +249,20 @@ def implicit(expr: Any, bounds: tuple[Sequence[float], Sequence[float]] | None =
         >>> s = sg.implicit("x**2 + y**2 + z**2 - 1", bounds=((-1, -1, -1), (1, 1, 1)))
         >>> float(s.distance((2, 0, 0)))
         0.75
+        >>> r = sg.param(1.0, "r", range=(0.5, 2.0))
+        >>> ball = sg.implicit("x^2 + y^2 + z^2 - r^2", params={"r": r})
+        >>> r.value = 2.0
+        >>> float(ball.distance((3, 0, 0)))
+        0.8333333333333334
     """
-    return Implicit(expr, bounds)
+    if params is None:
+        return Implicit(expr, bounds)
+    return Implicit(expr, bounds, _pairs(params))
+
+
+def _pairs(params: Any) -> Any:
+    """A dict of named parameters as [name, value] pairs (what a scene document holds)."""
+    return [[k, val] for k, val in params.items()] if isinstance(params, dict) else params
 
 
 def _box(what: str, bounds: Any) -> tuple[np.ndarray, np.ndarray]:
@@ -244,23 +287,25 @@ def _groebner_worker(gens: list, syms: tuple, out: Any) -> None:
     out.put([g for g in basis.exprs if not (elim & g.free_symbols)])
 
 
-def implicitize(x: Any, y: Any, z: Any, timeout: float = 20.0) -> tuple[Any, float]:
+def implicitize(x: Any, y: Any, z: Any, timeout: float = 20.0, params: Sequence[str] = ()) -> tuple[Any, float]:
     """The implicit equation F(x, y, z) = 0 of the rational surface (x(s, t), y(s, t), z(s, t)).
 
     Eliminates s and t from <D x - Nx, D y - Ny, D z - Nz, 1 - u D> (D the common
     denominator) with a lex Groebner basis. Returns (F, seconds). Raises ParameterError
     if it does not finish within ``timeout`` seconds, finds no surface equation, or the
-    equation has more than MAX_TERMS terms."""
+    equation has more than MAX_TERMS terms. ``params`` names parameters the components may
+    use (kept as symbols: the equation holds for their values)."""
     X, Y, Z = _xyz()
     import sympy as sp
     s, t, u = sp.symbols("s t u")
+    syms = _param_symbols(list(params))
     if isinstance(timeout, bool) or not isinstance(timeout, (int, float)) or not 0 < timeout <= 3600:
         raise ParameterError(f"parametric: 'timeout' must be a number of seconds in (0, 3600], got {timeout!r}")
     comps = []
     for name, e in (("x", x), ("y", y), ("z", z)):
         what = f"parametric: {name}"
         if isinstance(e, str):
-            c = ex.parse_sympy(e, {"s": s, "t": t}, what)
+            c = ex.parse_sympy(e, {"s": s, "t": t, **syms}, what)
         elif isinstance(e, (int, float)) and not isinstance(e, bool):
             c = sp.Float(e) if isinstance(e, float) else sp.Integer(e)
         elif isinstance(e, sp.Expr):
@@ -268,10 +313,11 @@ def implicitize(x: Any, y: Any, z: Any, timeout: float = 20.0) -> tuple[Any, flo
             c = e
         else:
             raise ParameterError(f"{what}: expected a string, number or sympy expression, got {type(e).__name__}")
-        extra = sorted(v.name for v in c.free_symbols if v.name not in ("s", "t"))
+        extra = sorted(v.name for v in c.free_symbols if v.name not in ("s", "t", *syms))
         if extra:
-            raise ParameterError(f"parametric: {name} uses unknown symbol(s) {', '.join(extra)}; use s and t")
-        c = c.subs({v: {"s": s, "t": t}[v.name] for v in c.free_symbols})
+            named = f" and the named parameters {', '.join(syms)}" if syms else ""
+            raise ParameterError(f"parametric: {name} uses unknown symbol(s) {', '.join(extra)}; use s and t{named}")
+        c = c.subs({v: {"s": s, "t": t, **syms}[v.name] for v in c.free_symbols})
         num, den = sp.fraction(sp.together(c))
         if not (num.is_polynomial(s, t) and den.is_polynomial(s, t)):
             raise ParameterError(f"parametric: {name} = {c} is not a rational function of s and t")
@@ -284,7 +330,7 @@ def implicitize(x: Any, y: Any, z: Any, timeout: float = 20.0) -> tuple[Any, flo
     import multiprocessing as mp
     ctx = mp.get_context("fork")
     out = ctx.Queue()
-    proc = ctx.Process(target=_groebner_worker, args=(gens, (u, s, t, X, Y, Z), out), daemon=True)
+    proc = ctx.Process(target=_groebner_worker, args=(gens, (u, s, t, X, Y, Z, *syms.values()), out), daemon=True)
     t0 = time.perf_counter()
     proc.start()
     proc.join(timeout)
@@ -302,6 +348,10 @@ def implicitize(x: Any, y: Any, z: Any, timeout: float = 20.0) -> tuple[Any, flo
         # none) mean the image is a curve or a point
         raise ParameterError(f"parametric: the elimination gave {len(found)} equations in x, y, z, not one: "
                              f"the parametrization does not describe a surface (a curve or a point?)")
+    found = [g for g in found if g.free_symbols & {X, Y, Z}]  # none holds of the parameters alone
+    if len(found) != 1:
+        raise ParameterError(f"parametric: the elimination gave {len(found)} equations in x, y, z, not one: "
+                             f"the parametrization does not describe a surface for every parameter value")
     eq = found[0]
     if ex.expansion_terms(eq) > MAX_TERMS or len(sp.Add.make_args(sp.expand(eq))) > MAX_TERMS:
         raise ParameterError(f"parametric: the implicit equation has more than {MAX_TERMS} terms; too large to render")
@@ -309,7 +359,7 @@ def implicitize(x: Any, y: Any, z: Any, timeout: float = 20.0) -> tuple[Any, flo
 
 
 def parametric(x: Any, y: Any, z: Any, bounds: tuple[Sequence[float], Sequence[float]] | None = None,
-               timeout: float = 20.0) -> Implicit:
+               timeout: float = 20.0, params: Any = None) -> Implicit:
     """The rational parametric surface (x(s, t), y(s, t), z(s, t)), implicitized with a Groebner
     basis (in a subprocess, so a basis that blows up ends with an error after ``timeout``).
 
@@ -319,6 +369,9 @@ def parametric(x: Any, y: Any, z: Any, bounds: tuple[Sequence[float], Sequence[f
         z: likewise.
         bounds: (lo, hi) box that clips the rays, or None.
         timeout: seconds the implicitization may take, in (0, 3600].
+        params: named parameters the components may use besides s and t (as for
+            :func:`implicit`); they stay symbols in the implicit equation, so a live one
+            moves the surface without a new implicitization or recompile.
 
     Implicit (see :func:`implicit`). ``node.implicitization_s`` keeps the time it took.
 
@@ -326,8 +379,10 @@ def parametric(x: Any, y: Any, z: Any, bounds: tuple[Sequence[float], Sequence[f
         >>> sg.parametric("s", "t", "s**2 + t**2").label()
         'implicit(x**2 + y**2 - z)'
     """
-    eq, seconds = implicitize(x, y, z, timeout)
-    node = Implicit(eq, bounds)
+    from .named_params import named_params
+    names = [n for n, _ in named_params("parametric", params)]
+    eq, seconds = implicitize(x, y, z, timeout, names)
+    node = Implicit(eq, bounds) if params is None else Implicit(eq, bounds, _pairs(params))
     node.implicitization_s = seconds  # type: ignore[attr-defined]
     return node
 

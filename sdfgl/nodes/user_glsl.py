@@ -5,6 +5,13 @@ the node is built for what would break the shader around it (preprocessor lines,
 uniforms, unbalanced braces), and compiled with the scene: a driver error names the
 node and the line of the user's code. Without a twin the node renders, but the float64
 accuracy tools (``distance``, the reference tracer, parity) say they cannot check it.
+
+Named parameters (``params``) are arguments of the node's function, ``float f(vec3 p,
+float r, ...)``: a live one is passed its uniform, so moving it needs no recompile.
+
+Without a twin the node is a scene-document kind (``glsl``): the document holds the
+code, checked as above when it is loaded; the code runs only in the shader (GLSL, never
+Python or JavaScript). A node with a twin (a Python function) cannot be saved.
 """
 from __future__ import annotations
 
@@ -45,23 +52,25 @@ def _check_code(code: Any) -> str:
     return code
 
 
-class UserGLSL(Primitive, register=False):
-    """A field written in GLSL: ``float f(vec3 p) { <code> }``.
+class UserGLSL(Primitive):
+    """A field written in GLSL: ``float f(vec3 p) { <code> }`` (named parameters are more arguments).
 
-    Not registered as a document kind and not serializable: a scene document never
-    carries code, so a document naming ``glsl`` is refused on load and saving a scene
-    with this node names it. Pickle still works (it calls the class itself)."""
+    A document kind when it has no twin; with one (a Python function) it is not
+    serializable and saving a scene with it names it. Pickle works either way (it calls
+    the class itself)."""
 
     kind = "glsl"
-    serializable = False
-    unsaved_reason = ("a scene document never carries code (user GLSL would run on load); pickle the scene or "
-                      "keep it in a Python scene file")
+    unsaved_reason = ("its float64 twin is a Python function, which a scene document cannot hold; pickle the scene, "
+                      "keep it in a Python scene file, or save the node without its twin")
 
     def __init__(self, code: str, twin: Callable[[np.ndarray], Any] | None = None, lipschitz: float = 1.0,
-                 bounds: Sequence[Sequence[float]] | None = None, exact: bool = False, implicit: bool = False) -> None:
+                 bounds: Sequence[Sequence[float]] | None = None, exact: bool = False, implicit: bool = False,
+                 params: Any = None) -> None:
+        from .named_params import named_params
         code = _check_code(code)
         if twin is not None and not callable(twin):
             raise ParameterError(f"glsl: 'twin' must be a function of (N, 3) float64 points, got {type(twin).__name__}")
+        named = named_params(self.kind, params, glsl=True)
         lip = v.scalar(self.kind, "lipschitz", lipschitz, positive=True)
         v.fixed(self.kind, "it is compiled into the node's step factor", lipschitz=lip)
         if not isinstance(exact, bool) or not isinstance(implicit, bool):
@@ -77,18 +86,24 @@ class UserGLSL(Primitive, register=False):
             lo_hi = (v.vector(self.kind, "bounds[0]", lo), v.vector(self.kind, "bounds[1]", hi))
             if np.any(lo_hi[0] > lo_hi[1]):
                 raise ParameterError(f"glsl: 'bounds' lo {tuple(lo_hi[0])} exceeds hi {tuple(lo_hi[1])}")
-        params: dict[str, object] = {"code": code, "lipschitz": float(lip)}
+        fields: dict[str, object] = {"code": code, "lipschitz": float(lip)}
         if lo_hi is not None:
-            params["bounds"] = np.concatenate(lo_hi)
+            fields["bounds"] = np.concatenate(lo_hi)
         if exact or implicit:
-            params["class"] = EXACT if exact else IMPLICIT
-        super().__init__(**params)
+            fields["class"] = EXACT if exact else IMPLICIT
+        fields.update({f"param {n}": val for n, val in named})
+        super().__init__(**fields)
         self.code, self.twin, self.declared = code, twin, float(lip)
+        self.named = named
+        self.serializable = twin is None  # type: ignore[misc]  # a document holds no Python function
         self.box = lo_hi
         self.fclass = EXACT if exact else IMPLICIT if implicit else BOUND
         # divide by the declared factor (only this node's field) to make it a 1-Lipschitz bound
         self.divide = 1.0 if implicit else max(1.0, float(lip))
-        self.fn = f"userGlsl_{hashlib.sha1(code.encode()).hexdigest()[:10]}"
+        # the function depends on the code and the parameters' names, not their values
+        signature = "".join(f", float {n}" for n, _ in named)
+        digest = hashlib.sha1((code + signature).encode()).hexdigest()[:10]
+        self.fn, self.signature = f"userGlsl_{digest}", signature
 
     def label(self) -> str:
         lines = self.code.strip().split("\n")
@@ -105,11 +120,11 @@ class UserGLSL(Primitive, register=False):
 
     def _expr(self, em: "Emitter", p: str) -> str:
         body = self.code if re.search(r"\breturn\b", self.code) else f"return ({self.code.strip()});"
-        lines = [(f"float {self.fn}(vec3 p) {{  // sg.glsl: {self.label()}", "(codegen)")]
+        lines = [(f"float {self.fn}(vec3 p{self.signature}) {{  // sg.glsl: {self.label()}", "(codegen)")]
         lines += [(line, f"{self.label()}, line {i} of its code") for i, line in enumerate(body.split("\n"), 1)]
         lines.append(("}", "(codegen)"))
         em.helper(self.fn, lines)
-        call = f"{self.fn}({p})"
+        call = f"{self.fn}({p}{''.join(f', {em.num(val)}' for _, val in self.named)})"
         return call if self.divide == 1.0 else f"({call} * {em.num(1.0 / self.divide)})"
 
     def _distance(self, p: np.ndarray) -> np.ndarray:
@@ -133,7 +148,8 @@ class UserGLSL(Primitive, register=False):
 
 
 def glsl(code: str, twin: Callable[[np.ndarray], Any] | None = None, lipschitz: float = 1.0,
-         bounds: Sequence[Sequence[float]] | None = None, exact: bool = False, implicit: bool = False) -> UserGLSL:
+         bounds: Sequence[Sequence[float]] | None = None, exact: bool = False, implicit: bool = False,
+         params: Any = None) -> UserGLSL:
     """A node written in GLSL: ``code`` is the body of ``float f(vec3 p)`` (or one expression).
 
     Args:
@@ -144,14 +160,32 @@ def glsl(code: str, twin: Callable[[np.ndarray], Any] | None = None, lipschitz: 
         bounds: (lo, hi), two 3-vectors holding the solid (None: unbounded).
         exact: True if the field is the Euclidean distance.
         implicit: True if the field is no distance bound at all (render with a Newton method).
+        params: named parameters, (name, value) pairs or a dict: each is a ``float``
+            argument of the function (``float f(vec3 p, float r)``), a number or a live
+            scalar (``sg.param``: moving it needs no recompile). Names are GLSL identifiers
+            other than p, x, y, z, s, t, u and GLSL's keywords, types and functions.
 
-    Such a node cannot be saved in a JSON scene document (a document never carries
-    code); pickle or a Python scene file keeps it.
+    Without a twin the node can be saved in a JSON scene document (kind ``glsl``: the
+    document holds the code, checked again on load); with one it cannot (pickle or a
+    Python scene file keeps it).
 
     Example:
         >>> import numpy as np
         >>> ball = sg.glsl("length(p) - 1.0", twin=lambda p: np.linalg.norm(p, axis=-1) - 1.0)
         >>> float(ball.distance((2, 0, 0)))
         1.0
+        >>> r = sg.param(0.5, "r", range=(0.1, 2.0))
+        >>> from sdfgl.scene_io import to_dict
+        >>> to_dict(sg.glsl("length(p) - r", params={"r": r}))["scene"]["params"]
+        [['r', {'param': 'r'}]]
     """
-    return UserGLSL(code, twin, lipschitz, bounds, exact, implicit)
+    kw: dict[str, Any] = {}  # what was given: a document holds no twin, and no defaults it need not
+    if twin is not None:
+        kw["twin"] = twin
+    for name, value, default in (("lipschitz", lipschitz, 1.0), ("bounds", bounds, None), ("exact", exact, False),
+                                 ("implicit", implicit, False)):
+        if value is not default and not (isinstance(value, float) and value == default):
+            kw[name] = value
+    if params is not None:
+        kw["params"] = [[k, val] for k, val in params.items()] if isinstance(params, dict) else params
+    return UserGLSL(code, **kw)
