@@ -480,3 +480,176 @@ def test_an_osc_binding_moves_the_pages_slider_without_a_recompile(page):
     want = sg.render(sg.sphere(1.3), CAMERA, (W, H), shadows="soft", ao=True).color
     assert differing(canvas(b), want) < MAX_FRACTION
     assert st.workspace.compiles == compiles and st.workspace.doc["params"][name]["value"] == pytest.approx(1.3)
+
+
+def test_panel_primitives_declare_named_parameters_checked_by_name(tmp_path):
+    pytest.importorskip("sympy")
+    made = Workspace.primitive("implicit", {"expr": "x^2 + y^2 + z^2 - r^2", "bounds": [[-2] * 3, [2] * 3]},
+                               "r = 0.8 in [0.3, 1.5]\nk = 2")
+    assert made["node"]["params"] == [["r", {"param": "r"}], ["k", {"param": "k"}]]
+    assert made["params"]["r"] == {"value": 0.8, "min": 0.3, "max": 1.5}
+    assert made["params"]["k"]["min"] < 2 < made["params"]["k"]["max"]   # no range given: around the default
+    glsl = Workspace.primitive("glsl", {"code": "return length(p) - r;", "bounds": [[-2] * 3, [2] * 3]},
+                               "r = 0.5 in [0.1, 2]")
+    assert glsl["node"]["kind"] == "glsl" and glsl["node"]["code"] == "return length(p) - r;"
+    surface = Workspace.primitive("parametric", {"x": "a*s", "y": "t", "z": "s^2 - t^2"}, "a = 1 in [0.5, 2]")
+    assert surface["node"]["kind"] == "implicit" and surface["node"]["params"] == [["a", {"param": "a"}]]
+    for kind, fields, decl, msg in (
+            ("implicit", {"expr": "x - r"}, "r = 3 in [0.1, 2]", r"parameter 'r': its default 3 is outside its range"),
+            ("implicit", {"expr": "x - r"}, "r = 1 in [2, 1]", r"parameter 'r': its range \[2, 1\] must have low < high"),
+            ("implicit", {"expr": "x - y"}, "y = 1", r"parameter name 'y' is taken"),
+            ("implicit", {"expr": "x - s"}, "sin = 1", r"parameter name 'sin' is taken"),
+            ("implicit", {"expr": "x - r"}, "r = 1\nr = 2", r"parameter 'r' is declared twice"),
+            ("implicit", {"expr": "x - r"}, "r := 1", r"cannot read the parameter declaration 'r := 1'"),
+            ("implicit", {"expr": "x - q"}, "r = 1", r"unknown symbol"),
+            ("glsl", {"code": "return length(p) - dot;"}, "dot = 1", r"parameter name 'dot' is taken \(a GLSL"),
+            ("glsl", {"code": "#define R 1\nreturn 1.0;"}, "", r"line 1 of the code uses '#'"),
+            ("parametric", {"x": "s", "y": "t", "z": "t"}, "t = 1", r"parameter name 't' is taken")):
+        with pytest.raises(SdfglError, match=msg):
+            Workspace.primitive(kind, fields, decl)
+    # in a document the named parameters are live: a new value moves a uniform, no recompile
+    ws = Workspace(None, size=(W, H))
+    doc = {"format": "sdfgl-scene", "version": 1, "params": glsl["params"], "scene": glsl["node"]}
+    spec = ws.compile(doc)
+    assert ws.compiles == 1 and [p["label"] for p in spec["params"]] == ["r"]
+    ws.set_values({"r": 1.2})
+    assert ws.compiles == 1 and ws.document.params["r"].value == 1.2
+    doc["params"]["r"]["value"] = 1.2
+    assert sg.compile(from_dict(doc)) == sg.compile(from_dict({**doc, "params": glsl["params"]}))
+
+
+def _named_slider(b: Chromium, node: int, param: str, value: float) -> None:
+    """Move the named parameter's slider on node ``node`` as a user drags it (an input event)."""
+    b.evaluate(f"""(() => {{ const s = document.querySelector('#node-{node} input[data-named-param="{param}"]');
+      s.value = '{value}'; s.dispatchEvent(new Event('input', {{ bubbles: true }})); }})()""")
+
+
+@pytest.mark.browser
+@pytest.mark.slow
+@pytest.mark.skipif(find_chromium() is None, reason="needs Chromium (./install.sh --test installs it)")
+def test_named_parameters_of_the_panel_are_sliders_on_the_node_without_a_recompile(page):
+    pytest.importorskip("sympy")
+    st, b = page
+    box = [[-1.6] * 3, [1.6] * 3]
+    made = f"""window.studio.addPrimitive('implicit', {{ expr: 'x^2 + y^2 + z^2 - r^2', bounds: {json.dumps(box)} }},
+      'r = 0.8 in [0.3, 1.5]')"""
+    built = build_one(b, made)
+    assert built["err"] is None, built["err"]
+    settle(b)
+    node = built["doc"]["scene"]
+    name = node["params"][0][1]["param"]
+    assert node["params"][0][0] == "r" and built["doc"]["params"][name] == {"value": 0.8, "min": 0.3, "max": 1.5}
+    r = sg.param(0.8, "r", range=(0.3, 1.5))
+    want = sg.implicit("x^2 + y^2 + z^2 - r^2", box, params={"r": r})
+    assert differing(canvas(b), sg.render(want, CAMERA, (W, H), **IMPLICIT_SETTINGS).color) < MAX_FRACTION
+    node_id = b.evaluate("Number(Object.values(window.studio.editor.export().drawflow.Home.data)"
+                         ".find((n) => n.name === 'implicit').id)")
+    compiles, n = st.workspace.compiles, frames(b)
+    _named_slider(b, node_id, name, 1.2)
+    settle(b, n)
+    r.value = 1.2
+    assert differing(canvas(b), sg.render(want, CAMERA, (W, H), **IMPLICIT_SETTINGS).color) < MAX_FRACTION
+    assert st.workspace.compiles == compiles and st.workspace.doc["params"][name]["value"] == 1.2
+    assert b.evaluate("window.studio.document()")["params"][name]["value"] == 1.2
+
+    # a GLSL snippet of the panel: a node like the built-ins, its parameter a slider
+    made = f"""window.studio.addPrimitive('glsl', {{ code: 'float q = length(p.xz) - r;\\nreturn length(vec2(q, p.y)) - 0.3;',
+      bounds: {json.dumps(box)} }}, 'r = 0.7 in [0.3, 1.2]')"""
+    built = build_one(b, made)
+    assert built["err"] is None, built["err"]
+    settle(b)
+    assert built["doc"]["scene"]["kind"] == "glsl"
+    r = sg.param(0.7, "r", range=(0.3, 1.2))
+    torus = sg.glsl("float q = length(p.xz) - r;\nreturn length(vec2(q, p.y)) - 0.3;", bounds=box, params={"r": r})
+    assert differing(canvas(b), sg.render(torus, CAMERA, (W, H)).color) < MAX_FRACTION
+    node_id = b.evaluate("Number(Object.values(window.studio.editor.export().drawflow.Home.data)"
+                         ".find((n) => n.name === 'glsl').id)")
+    name = built["doc"]["scene"]["params"][0][1]["param"]
+    compiles, n = st.workspace.compiles, frames(b)
+    _named_slider(b, node_id, name, 1.0)
+    settle(b, n)
+    r.value = 1.0
+    assert differing(canvas(b), sg.render(torus, CAMERA, (W, H)).color) < MAX_FRACTION
+    assert st.workspace.compiles == compiles
+    # a bad declaration is refused by the server, naming the parameter; no node is added
+    err = b.evaluate("window.studio.addPrimitive('glsl', { code: 'return length(p) - r;' }, 'r = 5 in [0, 1]')"
+                     ".then(() => null, (e) => e.message)")
+    assert "parameter 'r': its default 5 is outside its range [0, 1]" in err
+
+
+@pytest.mark.browser
+@pytest.mark.slow
+@pytest.mark.skipif(find_chromium() is None, reason="needs Chromium (./install.sh --test installs it)")
+def test_node_positions_are_saved_in_the_document_and_restored_on_open(page):
+    st, b = page
+    b.evaluate("""(async () => { const s = window.studio; s.clear();
+      const ball = s.addNode("sphere", 37, 211, { radius: 0.6 });
+      const cube = s.addNode("box", 58, 433, { size: 0.9 });
+      const u = s.addNode("union", 402, 305);
+      s.connect(ball, u); s.connect(cube, u);
+      s.connect(u, s.addNode("output", 777, 123));
+      return await s.compileNow(); })()""")
+    settle(b)
+    assert b.evaluate("window.studio.save()") == "part.json"
+    saved = json.loads(st.workspace.path.read_text())
+    want = {"scene": [402, 305], "scene.children[0]": [37, 211], "scene.children[1]": [58, 433], "output": [777, 123]}
+    assert saved["metadata"]["studio"]["positions"] == want
+    assert sg.load_scene(st.workspace.path).settings == {}   # kept, never rendered
+    opened = Workspace(st.workspace.path)  # opening the file: the page builds its graph from it
+    b.evaluate(f"window.studio.load({json.dumps(opened.doc)})")
+    placed = b.evaluate("""Object.fromEntries(Object.values(window.studio.editor.export().drawflow.Home.data)
+      .map((n) => [n.name + (n.data.fields.radius ?? n.data.fields.size ?? ''), [n.pos_x, n.pos_y]]))""")
+    assert placed == {"sphere0.6": [37, 211], "box0.9": [58, 433], "union": [402, 305], "output": [777, 123]}
+    assert b.evaluate("window.studio.document()")["metadata"]["studio"]["positions"] == want
+
+
+@pytest.mark.browser
+@pytest.mark.slow
+@pytest.mark.skipif(find_chromium() is None, reason="needs Chromium (./install.sh --test installs it)")
+def test_output_node_controls_write_the_settings_and_re_render(page):
+    st, b = page
+    cam = json.dumps(to_dict(sg.sphere(1), CAMERA)["camera"])
+    out = b.evaluate("""(async () => { const s = window.studio; s.clear();
+      const ball = s.addNode("sphere", 40, 40, { radius: 0.7 });
+      const floor = s.addNode("box", 40, 260, { size: [3, 0.2, 3] });
+      const down = s.addNode("translate", 260, 260, { offset: [0, -0.9, 0] });
+      s.connect(floor, down);
+      const u = s.addNode("union", 480, 100);
+      s.connect(ball, u); s.connect(down, u);
+      const out = s.addNode("output", 700, 100, { camera: CAMERA, settings: { shadows: "soft" } });
+      s.connect(u, out);
+      await s.compileNow();
+      return out; })()""".replace("CAMERA", cam))
+    settle(b)
+    scene = sg.sphere(0.7) | sg.box((3, 0.2, 3)).translate((0, -0.9, 0))
+    shadowed = sg.render(scene, CAMERA, (W, H)).color
+    assert differing(canvas(b), shadowed) < MAX_FRACTION
+    assert b.evaluate(f"document.querySelector('#node-{out} [data-control=\"shadows\"]').checked") is True
+
+    def control(sel: str, js: str) -> None:
+        compiles = st.workspace.compiles
+        b.evaluate(f"""(() => {{ const c = document.querySelector('#node-{out} {sel}'); {js};
+          c.dispatchEvent(new Event('change', {{ bubbles: true }})); }})()""")
+        b.wait_for(f"window.studio.state.compiles > {compiles}", timeout=60)
+        settle(b)
+
+    control('[data-control="shadows"]', "c.checked = false")
+    assert b.evaluate("window.studio.document()")["settings"] == {"shadows": False}
+    plain = sg.render(scene, CAMERA, (W, H), shadows=False).color
+    assert differing(canvas(b), plain) < MAX_FRACTION and differing(canvas(b), shadowed) > 0.005
+    control('[data-control="ao"]', "c.checked = false")
+    control('[data-control="background"]', "c.value = '#336699'")
+    control('[data-light-on="0"]', "c.checked = true")
+    settings = b.evaluate("window.studio.document()")["settings"]
+    assert settings == {"shadows": False, "ao": False, "background": "#336699",
+                        "lights": [{"type": "directional", "direction": [0.5, 0.7, 0.4], "color": "#ffffff",
+                                    "intensity": 1}]}
+    from sdfgl.scene_io.decode import from_document
+    doc = from_document(b.evaluate("window.studio.document()"))
+    want = sg.render(doc.scene, doc.camera, (W, H), **doc.settings).color
+    assert differing(canvas(b), want) < MAX_FRACTION
+    control('[data-control="method"]', "c.value = 'sphere'")
+    control('[data-control="aa"]', "c.value = '2'")
+    assert b.evaluate("window.studio.document()")["settings"]["method"] == "sphere"
+    assert b.evaluate("window.studio.document()")["settings"]["aa"] == 2
+    assert b.evaluate("document.getElementById('studio-error').textContent") == ""

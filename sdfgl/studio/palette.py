@@ -16,6 +16,8 @@ from ..scene_io.encode import signature
 NODE_TYPES = ("Node", "Shape2D")
 NUMBER_TYPES = ("float", "int")
 COLOUR_FIELDS = ("rgb", "color", "emission")  # fields of colour nodes and materials: the page adds a colour picker
+NAMED_FIELD, NAMED_KINDS = "params", ("implicit", "glsl")  # named parameters: the page shows a slider for each
+MAX_LIGHTS = 4  # the lights the output node's controls offer (the renderer takes more)
 
 
 def slider_range(default: Any) -> tuple[float, float]:
@@ -43,9 +45,9 @@ def entry(kind: str, cls: type) -> dict[str, Any]:
     inputs: list[dict[str, Any]] = []
     fields: list[dict[str, Any]] = []
     for p in signature(cls).parameters.values():
-        if p.kind == p.VAR_KEYWORD:
-            continue
         annotation = str(p.annotation)
+        if p.kind == p.VAR_KEYWORD or "Callable" in annotation:  # a Python function: no document value
+            continue
         required = p.default is inspect.Parameter.empty
         if any(t in annotation for t in NODE_TYPES) and "|" not in annotation.replace("| None", ""):
             inputs.append({"name": p.name, "many": p.kind == p.VAR_POSITIONAL, "shape2d": "Shape2D" in annotation})
@@ -58,6 +60,8 @@ def entry(kind: str, cls: type) -> dict[str, Any]:
             field["min"], field["max"] = slider_range(default)
         if p.name in COLOUR_FIELDS:
             field["colour"] = True
+        if p.name == NAMED_FIELD and kind in NAMED_KINDS:
+            field["named"] = True
         fields.append(field)
     doc = inspect.cleandoc(cls.__doc__ or "").split("\n\n")[0]
     return {"kind": kind, "group": cls.__module__.rsplit(".", 1)[-1], "inputs": inputs, "fields": fields,
@@ -70,11 +74,17 @@ document's ``camera`` and ``settings`` (not a node kind: no document names it)."
 
 
 def output_entry() -> dict[str, Any]:
-    """The palette entry of the scene-output node."""
+    """The palette entry of the scene-output node; ``controls`` lists what its settings
+    controls offer (render methods, AA levels, how many lights), from :mod:`sdfgl.settings`."""
+    from ..settings import METHODS, Settings
     fields = [{"name": key, "required": False, "default": None, "number": False} for key in ("camera", "settings")]
+    start = Settings()
+    controls = {"methods": list(METHODS), "aa": [1, 2, 3, 4], "max_lights": MAX_LIGHTS,
+                "defaults": {"method": start.method, "aa": start.aa, "shadows": start.shadows, "ao": start.ao}}
     return {"kind": OUTPUT, "group": "scene", "inputs": [{"name": "scene", "many": False, "shape2d": False}],
-            "fields": fields, "doc": "The scene: the document's root, camera (an object) and render settings "
-                                     "(an object, e.g. {\"background\": \"#223\", \"method\": \"enhanced\"})."}
+            "fields": fields, "controls": controls,
+            "doc": "The scene: the document's root, camera (an object) and render settings "
+                   "(an object, e.g. {\"background\": \"#223\", \"method\": \"enhanced\"})."}
 
 
 def palette() -> list[dict[str, Any]]:

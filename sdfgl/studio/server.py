@@ -10,12 +10,14 @@ server's own. Messages are JSON data: the server decodes documents with
 Websocket messages, page -> server: ``{"type": "doc", "gen", "doc"}`` (compile),
 ``{"type": "values", "values": {name: value}}`` (a slider moved: no compile),
 ``{"type": "save", "doc"}``, ``{"type": "python"}``, ``{"type": "export", "format"}``,
-``{"type": "parametric", "x", "y", "z", "bounds"}`` (the primitives panel),
+``{"type": "parametric", "x", "y", "z", "bounds"}``, ``{"type": "primitive", "kind", "fields",
+"params"}`` (the primitives panel: an implicit, parametric or GLSL primitive with named parameters),
 ``{"type": "preview", "node", "doc"}`` (a node's own picture). Server -> page:
 ``hello`` (the document, the file name), ``spec`` (the view spec, ``gen``, ``compiles``),
 ``error`` (``path``, ``message``, ``gen``, ``request``), ``saved``, ``python``, ``export``
 (``file``, ``b64``),
-``parametric`` (an implicit node), ``preview`` (``node``, ``b64``), ``values`` (live
+``parametric`` (an implicit node), ``primitive`` (``node``, ``params``: a node and its
+parameter table), ``preview`` (``node``, ``b64``), ``values`` (live
 parameters moved by a MIDI or OSC controller, :mod:`sdfgl.live`), ``failed``.
 """
 from __future__ import annotations
@@ -279,6 +281,10 @@ def make_app(studio: Studio) -> Any:
                     node = await loop.run_in_executor(studio.worker, s.parametric, msg.get("x"), msg.get("y"),
                                                       msg.get("z"), msg.get("bounds"))
                     self.send({"type": "parametric", "node": node})
+                elif kind == "primitive":
+                    made = await loop.run_in_executor(studio.worker, s.primitive, msg.get("kind"), msg.get("fields"),
+                                                      msg.get("params"))
+                    self.send({"type": "primitive", **made})
                 elif kind == "preview":
                     data = await loop.run_in_executor(studio.worker, s.preview, msg.get("doc"))
                     self.send({"type": "preview", "node": msg.get("node"), "b64": base64.b64encode(data).decode("ascii")})

@@ -51,6 +51,14 @@ def error_of(exc: SdfglError) -> CompileError:
     return CompileError("", text)
 
 
+def _bounds(kind: str, bounds: Any) -> Any:
+    """The panel's bounds (two corners of 3 numbers, or None) as tuples."""
+    try:
+        return None if bounds is None else tuple(tuple(float(v) for v in corner) for corner in bounds)
+    except (TypeError, ValueError):
+        raise ParameterError(f"{kind}: bounds must be two corners of 3 numbers, got {bounds!r}") from None
+
+
 class Workspace:
     """One edited document: the last document that compiled, its view spec, the file it saves to."""
 
@@ -108,16 +116,42 @@ class Workspace:
         """The document node of the rational parametric surface (x, y, z)(s, t): implicitized by
         :func:`sdfgl.parametric` (a Groebner basis, in a subprocess with ``timeout``), so the
         page gets an ``implicit`` node like the built-ins."""
-        from ..nodes.implicit import parametric
+        return Workspace.primitive("parametric", {"x": x, "y": y, "z": z, "bounds": bounds}, None, timeout)["node"]
+
+    @staticmethod
+    def primitive(kind: str, fields: Any, declarations: Any = None,
+                  timeout: float = PARAMETRIC_TIMEOUT_S) -> dict[str, Any]:
+        """A primitive of the page's panel as a document node: ``kind`` "implicit" (fields
+        ``expr``, ``bounds``), "parametric" (``x``, ``y``, ``z``, ``bounds``: implicitized into an
+        ``implicit`` node) or "glsl" (``code``, ``bounds``, ``lipschitz``, ``exact``,
+        ``implicit``), with the named parameters ``declarations`` declares (one ``name =
+        default in [lo, hi]`` a line, :func:`sdfgl.nodes.named_params.parse_declarations`),
+        each a live parameter. The node is built, so everything is checked here. Returns
+        {"node": the node's document object, "params": its parameter table}."""
+        from ..nodes.implicit import implicit, parametric
+        from ..nodes.named_params import parse_declarations
+        from ..nodes.user_glsl import glsl
+        from ..params import Param
         from ..scene_io import to_dict
-        for name, e in (("x", x), ("y", y), ("z", z)):
-            if not isinstance(e, str):
-                raise ParameterError(f"parametric: {name} must be an expression string, got {type(e).__name__}")
-        try:
-            box = None if bounds is None else tuple(tuple(float(v) for v in corner) for corner in bounds)
-        except (TypeError, ValueError):
-            raise ParameterError(f"parametric: bounds must be two corners of 3 numbers, got {bounds!r}") from None
-        return to_dict(parametric(x, y, z, box, timeout=timeout))["scene"]
+        if kind not in ("implicit", "parametric", "glsl"):
+            raise ParameterError(f"primitive: kind must be implicit, parametric or glsl, got {kind!r}")
+        if not isinstance(fields, dict):
+            raise ParameterError(f"{kind}: the fields must be an object, got {type(fields).__name__}")
+        params = [[n, Param(value, n, rng)] for n, value, rng in parse_declarations(declarations, kind, kind == "glsl")]
+        text = {"implicit": ("expr",), "parametric": ("x", "y", "z"), "glsl": ("code",)}[kind]
+        for name in text:
+            if not isinstance(fields.get(name), str):
+                raise ParameterError(f"{kind}: {name} must be text, got {type(fields.get(name)).__name__}")
+        box = _bounds(kind, fields.get("bounds"))
+        if kind == "implicit":
+            node = implicit(fields["expr"], box, params or None)
+        elif kind == "parametric":
+            node = parametric(fields["x"], fields["y"], fields["z"], box, timeout=timeout, params=params or None)
+        else:
+            extra = {k: fields[k] for k in ("lipschitz", "exact", "implicit") if fields.get(k) is not None}
+            node = glsl(fields["code"], bounds=box, params=params or None, **extra)
+        doc = to_dict(node)
+        return {"node": doc["scene"], "params": doc.get("params", {})}
 
     @staticmethod
     def preview(doc: dict[str, Any]) -> bytes:

@@ -13,6 +13,30 @@ export function paramName(id, field) {
   return `n${id}_${field}`;
 }
 
+// The names of the live parameters that a field's value refers to ({"param": name} anywhere
+// inside it: a primitive's named parameters are [name, {"param": ...}] pairs).
+export function paramRefs(v, out = []) {
+  if (Array.isArray(v)) { for (const x of v) paramRefs(x, out); return out; }
+  if (v && typeof v === "object") {
+    if (typeof v.param === "string" && Object.keys(v).length === 1) out.push(v.param);
+    else for (const x of Object.values(v)) paramRefs(x, out);
+  }
+  return out;
+}
+
+// The editor positions of the graph's nodes by document path (see toDocument's `paths`), and
+// of the output node as "output": what the document keeps in metadata.studio.positions.
+export function positionsOf(data, paths) {
+  const out = {};
+  for (const [path, id] of Object.entries(paths)) {
+    const n = data[id];
+    if (n) out[path] = [Math.round(n.pos_x), Math.round(n.pos_y)];
+  }
+  const o = Object.values(data).find((n) => n.name === OUTPUT);
+  if (o) out[OUTPUT] = [Math.round(o.pos_x), Math.round(o.pos_y)];
+  return out;
+}
+
 // The document of the graph `data` (drawflow's export().drawflow.Home.data), the live
 // parameter table `params` and extra top-level keys `extra` (camera, settings). Returns
 // {doc, paths, error}: `paths` maps each node's JSON path to its drawflow id.
@@ -55,6 +79,7 @@ export function toDocument(data, palette, params, extra = {}, rootId = null) {
       if (p && params[p]) { obj[f.name] = { param: p }; usedParams[p] = params[p]; continue; }
       const v = n.data.fields[f.name];
       if (v !== undefined && v !== null && v !== "") obj[f.name] = v;
+      for (const name of paramRefs(v)) if (params[name]) usedParams[name] = params[name];
     }
     entry.inputs.forEach((slot, k) => {
       const conns = (n.inputs[`input_${k + 1}`] || { connections: [] }).connections;
@@ -96,20 +121,26 @@ function depthOf(doc) {
 }
 
 // Build the graph of document `doc` in `editor` (cleared first). Returns the parameter
-// table the graph's live fields use. Nodes are laid out by depth, right to left.
+// table the graph's live fields use. Nodes go where the document's metadata.studio.positions
+// puts them (by document path); the others are laid out by depth, right to left.
 export function fromDocument(editor, doc, palette, makeNode) {
   editor.clear();
   const params = {};
   const shared = {};
   const columns = [];
   const deepest = depthOf(doc);
-  function place(depth) {
+  const saved = (doc.metadata && doc.metadata.studio && doc.metadata.studio.positions) || {};
+  const at = (path) => {
+    const p = saved[path];
+    return Array.isArray(p) && p.length === 2 && p.every((x) => typeof x === "number" && Number.isFinite(x)) ? p : null;
+  };
+  function place(depth, path) {
     columns[depth] = (columns[depth] || 0) + 1;
-    return [30 + (deepest - depth) * COLUMN, 30 + (columns[depth] - 1) * ROW];
+    return at(path) || [30 + (deepest - depth) * COLUMN, 30 + (columns[depth] - 1) * ROW];
   }
-  function build(v, depth) {
+  function build(v, depth, path) {
     if (v && v.ref !== undefined) {
-      if (!shared[v.ref]) shared[v.ref] = build(doc.nodes[v.ref], depth);
+      if (!shared[v.ref]) shared[v.ref] = build(doc.nodes[v.ref], depth, `nodes.${v.ref}`);
       return shared[v.ref];
     }
     const entry = palette[v.kind];
@@ -126,21 +157,23 @@ export function fromDocument(editor, doc, palette, makeNode) {
         fields[f.name] = doc.params[x.param].value;
       } else {
         fields[f.name] = x;
+        for (const name of paramRefs(x)) if (doc.params && doc.params[name]) params[name] = { ...doc.params[name] };
       }
     }
-    const [px, py] = place(depth);
+    const [px, py] = place(depth, path);
     const id = makeNode(v.kind, px, py, fields, live);
     entry.inputs.forEach((slot, k) => {
       const kids = slot.many ? (v[slot.name] || []) : (v[slot.name] ? [v[slot.name]] : []);
-      for (const kid of kids) pending.push([build(kid, depth + 1), k]);
+      kids.forEach((kid, i) => pending.push([build(kid, depth + 1, slot.many ? `${path}.${slot.name}[${i}]` : `${path}.${slot.name}`), k]));
     });
     for (const [child, k] of pending) editor.addConnection(child, id, "output_1", `input_${k + 1}`);
     return id;
   }
-  const root = build(doc.scene, 1);
+  const root = build(doc.scene, 1, "scene");
   const top = {};
   for (const key of ["camera", "settings"]) if (doc[key] !== undefined) top[key] = doc[key];
-  const out = makeNode(OUTPUT, 30 + deepest * COLUMN, 30, top);
+  const [ox, oy] = at(OUTPUT) || [30 + deepest * COLUMN, 30];
+  const out = makeNode(OUTPUT, ox, oy, top);
   editor.addConnection(root, out, "output_1", "input_1");
   return params;
 }

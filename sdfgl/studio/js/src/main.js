@@ -4,9 +4,10 @@
 // Slider moves of live parameters only set uniforms; structure edits recompile on the server.
 import Drawflow from "drawflow";
 import { createViewer } from "./viewer.js";
-import { OUTPUT, fromDocument, paramName, toDocument } from "./graph.js";
+import { OUTPUT, fromDocument, paramName, paramRefs, positionsOf, toDocument } from "./graph.js";
 import { History } from "./history.js";
 import { MidiLearn } from "./midi.js";
+import { outputControlsHtml, settingsAfter, showOutputControls } from "./output.js";
 
 const COMPILE_DELAY_MS = 120;  // edits within this time are compiled together
 const boot = JSON.parse(document.getElementById("studio-boot").textContent);
@@ -30,6 +31,8 @@ const state = {
   paths: {},
   cameraKey: null,  // the document camera (JSON) of the spec on screen
   cameraKeys: {},   // that of each edit in flight
+  settingsKey: null,  // the document settings (JSON) of the spec on screen
+  settingsKeys: {},   // those of each edit in flight
   error: null,
   file: boot.file,
   loading: false,
@@ -54,6 +57,7 @@ function parseField(text) {
 function nodeHtml(kind) {
   const entry = palette[kind];
   const rows = entry.fields.map((f) => {
+    if (f.named) return `<div class="studio-named" data-named="${f.name}" title="named parameters: sliders, no recompile"></div>`;
     const live = f.number ? `<label class="studio-live" title="a live parameter: a slider, no recompile"><input type="checkbox" data-live="${f.name}">~</label>`
       : f.colour ? `<input type="color" class="studio-colour" data-colour="${f.name}">` : "";
     return `<label class="studio-field"><span>${f.name}${f.required ? "*" : ""}</span><input data-field="${f.name}" spellcheck="false">${live}</label>`;
@@ -61,7 +65,7 @@ function nodeHtml(kind) {
   const slots = entry.inputs.map((s) => s.name + (s.many ? " (many)" : "")).join(", ");
   return `<div class="studio-node-title" title="${entry.doc.replace(/"/g, "&quot;")}">${kind}</div>`
     + (slots ? `<div class="studio-slots">in: ${slots}</div>` : "") + rows
-    + (kind === OUTPUT ? "" : `<label class="studio-preview-toggle"><input type="checkbox" data-preview="1"> preview</label><img class="studio-preview" alt="" hidden>`)
+    + (kind === OUTPUT ? outputControlsHtml(entry.controls) : `<label class="studio-preview-toggle"><input type="checkbox" data-preview="1"> preview</label><img class="studio-preview" alt="" hidden>`)
     + `<div class="studio-node-error"></div>`;
 }
 
@@ -101,6 +105,54 @@ function showFields(id) {
     const v = node.data.fields[pick.dataset.colour];
     if (Array.isArray(v) && v.length === 3) pick.value = hexOf(v);
   }
+  for (const box of elem.querySelectorAll("[data-named]")) showNamed(box, node.data.fields[box.dataset.named]);
+  if (node.data.kind === OUTPUT) showOutputControls(elem, node.data.fields.settings, palette[OUTPUT].controls);
+}
+
+// A primitive's named parameters ([name, value] pairs; a live one {"param": p}): one slider
+// each for the live ones, moving its uniform (no recompile); a constant is shown as text.
+function showNamed(box, pairs) {
+  const list = Array.isArray(pairs) ? pairs : [];
+  const key = JSON.stringify(list);
+  if (box.dataset.key !== key) {
+    box.dataset.key = key;
+    box.replaceChildren();
+    for (const pair of list) {
+      if (!Array.isArray(pair) || pair.length !== 2) continue;
+      const [name, v] = pair;
+      const row = el("label", "studio-field studio-named-row");
+      const p = paramRefs(v)[0];
+      row.append(el("span", "", String(name)));
+      if (p) {
+        const slider = el("input");
+        slider.type = "range";
+        slider.dataset.namedParam = p;
+        const out = el("output", "studio-named-value");
+        out.dataset.namedValue = p;
+        row.append(slider, out);
+      } else {
+        row.append(el("span", "", fieldText(v)));
+      }
+      box.append(row);
+    }
+  }
+  for (const slider of box.querySelectorAll("input[data-named-param]")) {
+    const p = state.params[slider.dataset.namedParam];
+    if (!p) continue;
+    const [lo, hi] = rangeOf(p);
+    slider.min = String(lo);
+    slider.max = String(hi);
+    slider.step = String((hi - lo) / 1000);
+    slider.value = String(p.value);
+    box.querySelector(`output[data-named-value="${slider.dataset.namedParam}"]`).textContent = Number(p.value).toPrecision(4);
+  }
+}
+// a slider's range: the parameter's own, else around its value
+function rangeOf(p) {
+  const v = Number(p.value);
+  const lo = typeof p.min === "number" ? p.min : (v > 0 ? v / 8 : v < 0 ? 4 * v : -2);
+  const hi = typeof p.max === "number" ? p.max : (v > 0 ? 4 * v : v < 0 ? -4 * v : 2);
+  return [lo, hi];
 }
 
 function setField(id, name, value) {
@@ -137,11 +189,27 @@ $("studio-editor").addEventListener("change", (e) => {
   const nodeEl = t.closest(".drawflow-node");
   if (!nodeEl) return;
   const id = Number(nodeEl.id.slice(5));
+  if (t.dataset.namedParam) return;  // a named parameter's slider: see the input listener
+  if (t.closest(".studio-output-controls")) {
+    const node = editor.getNodeFromId(id);
+    const settings = settingsAfter(nodeEl, node.data.fields.settings, t, palette[OUTPUT].controls);
+    if (settings !== null) setField(id, "settings", Object.keys(settings).length ? settings : undefined);
+    return;
+  }
   if (t.dataset.field) setField(id, t.dataset.field, parseField(t.value));
   else if (t.dataset.live) setLive(id, t.dataset.live, t.checked);
   else if (t.dataset.preview) setPreview(id, t.checked);
   else if (t.dataset.colour) setField(id, t.dataset.colour, rgbOf(t.value));
 });
+// a named parameter's slider moves its uniform (no recompile)
+$("studio-editor").addEventListener("input", (e) => {
+  const p = e.target.dataset.namedParam;
+  if (p && state.spec && state.spec.params.some((x) => x.label === p)) setParam(p, Number(e.target.value));
+});
+// a slider or a control is dragged or clicked, not the node it is on
+$("studio-editor").addEventListener("mousedown", (e) => {
+  if (e.target.matches("input, select")) e.stopPropagation();
+}, true);
 // keys typed in a field are the field's, not the editor's (Delete would remove the node)
 $("studio-editor").addEventListener("keydown", (e) => { if (e.target.tagName === "INPUT") e.stopPropagation(); }, true);
 
@@ -191,10 +259,12 @@ function graphData() {
 }
 function currentDocument() {
   const extra = { ...state.extra };
-  if (Object.keys(midi.bindings).length) {
-    extra.metadata = { ...(extra.metadata || {}), studio: { ...((extra.metadata || {}).studio || {}), midi: midi.toJSON() } };
-  }
-  return toDocument(graphData(), palette, state.params, extra);
+  const studio = { ...((extra.metadata || {}).studio || {}) };
+  if (Object.keys(midi.bindings).length) studio.midi = midi.toJSON(); else delete studio.midi;
+  const made = toDocument(graphData(), palette, state.params, extra);
+  studio.positions = positionsOf(graphData(), made.paths);  // the layout: kept, never rendered
+  if (made.doc) made.doc.metadata = { ...(extra.metadata || {}), studio };
+  return made;
 }
 
 const history = new History(() => ({ graph: editor.export(), params: JSON.parse(JSON.stringify(state.params)) }));
@@ -263,6 +333,7 @@ function compileNow() {
   }
   state.paths = paths;
   state.cameraKeys[state.gen] = JSON.stringify(doc.camera ?? null);
+  state.settingsKeys[state.gen] = JSON.stringify(doc.settings ?? null);
   send({ type: "doc", gen: state.gen, doc });
   const gen = state.gen;
   return new Promise((resolve) => state.waiters.push({ gen, resolve }));
@@ -336,14 +407,16 @@ function midiMessage(data) {
 
 // -- the view ----------------------------------------------------------------------------
 let viewer = null;
-// A new spec keeps the view's camera and toggles, unless the document's camera changed.
-function showSpec(spec, cameraKey) {
+// A new spec keeps the view's camera unless the document's camera changed, and its toggles
+// unless the document's settings changed (then the new settings show).
+function showSpec(spec, cameraKey, settingsKey) {
   const root = $("studio-view");
   const camera = viewer && cameraKey === state.cameraKey ? viewer.camera : null;
-  const settings = viewer ? viewer.settings : null;
+  const settings = viewer && settingsKey === state.settingsKey ? viewer.settings : null;
   if (viewer) viewer.destroy();
   state.spec = spec;
   state.cameraKey = cameraKey;
+  state.settingsKey = settingsKey;
   viewer = createViewer(root, spec, { onParams: paramsMoved });
   if (camera) viewer.setCamera(camera);
   // the toggles carry over where the new scene offers them (an implicit scene has no AO)
@@ -434,12 +507,13 @@ function connectSocket() {
     } else if (msg.type === "spec") {
       state.compiles = msg.compiles;
       if (msg.gen >= state.gen) {
-        showSpec(msg.spec, state.cameraKeys[msg.gen]);
+        showSpec(msg.spec, state.cameraKeys[msg.gen], state.settingsKeys[msg.gen]);
         state.shownGen = msg.gen;
         for (const id of previews) requestPreview(id);
         showMidi();
       }
       delete state.cameraKeys[msg.gen];
+      delete state.settingsKeys[msg.gen];
       settle(msg.gen, null);
     } else if (msg.type === "error" && msg.request === "doc") {
       if (msg.gen >= state.gen) {
@@ -463,6 +537,8 @@ function connectSocket() {
       answer("python", msg.code);
     } else if (msg.type === "parametric") {
       answer("parametric", msg.node);
+    } else if (msg.type === "primitive") {
+      answer("primitive", { node: msg.node, params: msg.params });
     } else if (msg.type === "export") {
       answer("export", { file: msg.file, b64: msg.b64 });
     }
@@ -515,8 +591,10 @@ document.addEventListener("keydown", (e) => {
   }
 });
 
-// -- primitives panel: an implicit equation, or a rational parametric surface that the
-// server implicitizes (sg.parametric); either becomes an `implicit` node.
+// -- primitives panel: an implicit equation, a rational parametric surface that the server
+// implicitizes (sg.parametric) or a GLSL snippet (sg.glsl), each with named parameters
+// declared one a line ("r = 0.5 in [0.1, 2]"). The server checks and builds the node; each
+// named parameter becomes a live parameter of the new node (a slider on it).
 function addImplicit(expr, bounds = null, x = 120, y = 120) {
   const fields = { expr };
   if (bounds) fields.bounds = bounds;
@@ -527,18 +605,40 @@ function addImplicit(expr, bounds = null, x = 120, y = 120) {
 function addParametric(xs, ys, zs, bounds = null) {
   return request("parametric", { x: xs, y: ys, z: zs, bounds }).then((node) => addImplicit(node.expr, node.bounds ?? bounds));
 }
+// The node the server made (its params table names each parameter as declared), added with
+// parameters named after the new node, so that two primitives' "r" stay apart.
+function addMade({ node, params }, x = 120, y = 120) {
+  const { kind, ...fields } = node;
+  const id = makeNode(kind, x, y, {});
+  const rename = {};
+  for (const [name, entry] of Object.entries(params)) {
+    rename[name] = paramName(id, name);
+    state.params[rename[name]] = { ...entry };
+  }
+  const renamed = JSON.parse(JSON.stringify(fields), (k, v) => (v && typeof v === "object" && !Array.isArray(v)
+    && Object.keys(v).length === 1 && typeof v.param === "string" && v.param in rename ? { param: rename[v.param] } : v));
+  editor.updateNodeDataFromId(id, { ...editor.getNodeFromId(id).data, fields: renamed });
+  showFields(id);
+  edited();
+  return id;
+}
+function addPrimitive(kind, fields, params = "", x = 120, y = 120) {
+  return request("primitive", { kind, fields, params }).then((made) => addMade(made, x, y));
+}
 function buildPrimitives() {
   const box = $("studio-primitives");
   const kind = el("select");
-  for (const [v, text] of [["implicit", "implicit equation f(x, y, z) = 0"], ["parametric", "parametric surface (s, t)"]]) {
+  for (const [v, text] of [["implicit", "implicit equation f(x, y, z) = 0"], ["parametric", "parametric surface (s, t)"],
+    ["glsl", "GLSL: body of float f(vec3 p)"]]) {
     const o = el("option", "", text);
     o.value = v;
     kind.append(o);
   }
-  const input = (label, value) => {
+  const input = (label, value, multi = false) => {
     const row = el("label", "studio-field");
-    const i = el("input");
+    const i = el(multi ? "textarea" : "input");
     i.value = value;
+    i.spellcheck = false;
     row.append(el("span", "", label), i);
     box.append(row);
     return { row, i };
@@ -546,19 +646,23 @@ function buildPrimitives() {
   box.append(kind);
   const f = input("f", "x^2 + y^2 + z^2 - 1");
   const px = input("x(s,t)", "s"), py = input("y(s,t)", "t"), pz = input("z(s,t)", "s^2 - t^2");
+  const code = input("code", "return length(p) - r;", true);
+  const params = input("parameters", "", true);
+  params.i.placeholder = "r = 0.5 in [0.1, 2]";
   const bounds = input("bounds", "[[-1,-1,-1],[1,1,1]]");
   const show = () => {
     f.row.hidden = kind.value !== "implicit";
     for (const p of [px, py, pz]) p.row.hidden = kind.value !== "parametric";
+    code.row.hidden = kind.value !== "glsl";
   };
   kind.addEventListener("change", show);
   show();
   const add = el("button", "studio-tool", "Add node");
   add.addEventListener("click", () => {
     const b = parseField(bounds.i.value) ?? null;
-    const done = kind.value === "implicit" ? Promise.resolve(addImplicit(f.i.value, b))
-      : addParametric(px.i.value, py.i.value, pz.i.value, b);
-    done.catch((e) => { $("studio-error").textContent = String(e.message || e); });
+    const fields = kind.value === "implicit" ? { expr: f.i.value, bounds: b }
+      : kind.value === "parametric" ? { x: px.i.value, y: py.i.value, z: pz.i.value, bounds: b } : { code: code.i.value, bounds: b };
+    addPrimitive(kind.value, fields, params.i.value).catch((e) => { $("studio-error").textContent = String(e.message || e); });
   });
   box.append(add);
 }
@@ -586,6 +690,7 @@ window.studio = {
   export: (format) => request("export", { format }),
   addImplicit,
   addParametric,
+  addPrimitive,
   setPreview,
   midi,
   midiMessage,
