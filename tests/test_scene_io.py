@@ -331,3 +331,26 @@ def test_format_document_lists_every_node_kind_as_built():
     from sdfgl.scene_io.schema import kinds_table
     text = (ROOT / "docs" / "scene-format.md").read_text()
     assert kinds_table() in text, "run: python -m sdfgl.scene_io.schema docs/scene-format.md"
+
+
+def test_implicit_and_parametric_named_parameters_are_live_and_round_trip():
+    pytest.importorskip("sympy")
+    r = sg.param(1.0, "r", range=(0.5, 2.0))
+    ball = sg.implicit("x^2 + y^2 + z^2 - r^2", ((-2, -2, -2), (2, 2, 2)), params={"r": r})
+    src = sg.compile(ball, method="newton", ao=False)
+    assert float(ball.distance((3, 0, 0))) == pytest.approx(8 / 6)
+    r.value = 2.0
+    assert sg.compile(ball, method="newton", ao=False) == src   # a uniform: no new source
+    assert float(ball.distance((3, 0, 0))) == pytest.approx(5 / 6)
+    doc = ball.to_dict()
+    assert doc["scene"]["params"] == [["r", {"param": "r"}]]
+    assert sg.compile(sg.from_dict(doc), method="newton", ao=False) == src
+    a = sg.param(1.0, "a", range=(0.5, 2.0))
+    surface = sg.parametric("a*s", "t", "s^2 - t^2", ((-1, -1, -1), (1, 1, 1)), params={"a": a})
+    assert sg.compile(sg.from_dict(surface.to_dict()), method="newton") == sg.compile(surface, method="newton")
+    with pytest.raises(sg.ParameterError, match="implicit: parameter name 'z' is taken"):
+        sg.implicit("x - z", params={"z": 1.0})
+    with pytest.raises(sg.ParameterError, match="implicit: parameter 'r' is named twice"):
+        sg.implicit("x - r", params=[("r", 1.0), ("r", 2.0)])
+    with pytest.raises(sg.ParameterError, match="implicit: parameter 'r' must be a number"):
+        sg.implicit("x - r", params={"r": "big"})
