@@ -24,7 +24,7 @@ from ..render import checked_size
 from .field_grid import (Progress, SampledField, auto_resolution, sample_cells, sample_colors, sample_field,
                          scene_box)
 from .lighting import Sky, Sun
-from .materials import Blend, Look, Material, SceneMaterial, bsdf
+from .materials import Blend, Look, Material, SceneMaterial, blend_weight, bsdf, surface_terms
 
 GROUND_COLORS = ((0.62, 0.61, 0.58), (0.72, 0.71, 0.68))  # the real-time ground's checker
 FAR_SHIFT = 100.0    # scenes further than this many sizes from the origin are moved to it
@@ -135,19 +135,15 @@ def build(mi: Any, scene: Node, camera: Camera | None = None, size: object = (64
         return texture(sample_colors(scene, lo, hi, min(COLOR_CELLS, res), progress))
 
     def surface() -> tuple[dict, dict, float]:
-        """Roughness and metallic textures from the scene's mapSurface() (Blinn-Phong shininess n
-        -> Beckmann alpha sqrt(2 / (n + 2)) -> roughness sqrt(alpha)), and twice its median
-        specular weight (the real-time default 0.25 becomes the principled default 0.5)."""
+        """Roughness and metallic textures and the specular weight from the scene's mapSurface()."""
         sf = sample_cells(lambda p: evaluate_channel(scene, p, "surface", origin=centre)[:, :3], lo, hi,
                           min(COLOR_CELLS, res), 3, progress, "sampling materials")
-        rough = np.clip((2.0 / (np.maximum(sf[..., 1], 0.0) + 2.0)) ** 0.25, 0.0, 1.0)
-        return texture(rough), texture(np.clip(sf[..., 2], 0.0, 1.0)), float(np.clip(2 * np.median(sf[..., 0]), 0, 1))
+        rough, metal, spec = surface_terms(sf)
+        return texture(rough), texture(metal), spec
 
     def weight(boundary: Node, width: float) -> dict:
-        def w(p: np.ndarray) -> np.ndarray:
-            t = np.clip((evaluate(boundary, p, origin=centre).astype(np.float64) + width) / (2 * width), 0, 1)
-            return (t * t * (3 - 2 * t)).astype(np.float32)
-        return texture(sample_cells(w, lo, hi, min(COLOR_CELLS * 2, res), 1, progress, "sampling blend weights"))
+        return texture(sample_cells(lambda p: blend_weight(evaluate(boundary, p, origin=centre), width), lo, hi,
+                                    min(COLOR_CELLS * 2, res), 1, progress, "sampling blend weights"))
 
     eye_dist = float(np.linalg.norm(cam.eye - offset))
     far = eye_dist + 2.0 * float(np.linalg.norm(fld.hi - fld.lo)) + (400.0 * scale if ground else 0.0)
