@@ -16,7 +16,7 @@ from .lighting import Sky, Sun
 from .materials import Look
 from .scene import build
 
-PASS_SPP = 16  # samples per pixel per pass: progress is reported between passes
+PASS_SPP = 16  # samples per pixel per pass (a power of two): progress is reported between passes
 SCENE_OPTIONS = ("resolution", "quality", "bounds", "material", "sky", "sun", "ground", "max_depth", "extra",
                  "progress", "variant")  # what to_mitsuba takes besides size and spp
 RENDER_OPTIONS = SCENE_OPTIONS + ("seed",)
@@ -28,6 +28,13 @@ def check_options(func: str, options: Mapping[str, Any], known: Sequence[str]) -
     if unknown:
         raise ParameterError(f"{func}: unknown option{'s' if len(unknown) > 1 else ''} "
                              f"{', '.join(repr(u) for u in unknown)}; it takes size, spp, {', '.join(known)}")
+
+
+def passes(spp: int) -> list[int]:
+    """Samples per pixel of each pass: PASS_SPP while that many remain, then the powers of two
+    of the rest (the low-discrepancy sampler takes powers of two)."""
+    rest = spp % PASS_SPP
+    return [PASS_SPP] * (spp // PASS_SPP) + [1 << b for b in reversed(range(rest.bit_length())) if rest >> b & 1]
 
 
 def to_mitsuba(scene: Node, camera: Camera | None = None, size: tuple[int, int] = (640, 480), spp: int = 64,
@@ -92,9 +99,8 @@ def render_pbr(scene: Node, camera: Camera | None = None, size: tuple[int, int] 
     level = mi.log_level()
     mi.set_log_level(mi.LogLevel.Error)  # Mitsuba warns of each NaN sample it discards (see README)
     try:
-        for k in range(0, spp, PASS_SPP):
-            n = min(PASS_SPP, spp - k)
-            img = np.asarray(mi.render(loaded, spp=n, seed=seed * 65536 + k // PASS_SPP), dtype=np.float64)
+        for k, n in enumerate(passes(spp)):
+            img = np.asarray(mi.render(loaded, spp=n, seed=seed * 65536 + k), dtype=np.float64)
             acc += img[..., :4] * n
             done += n
             if progress is not None:
