@@ -167,19 +167,21 @@ def render_pbr(scene: Node, camera: Camera | None = None, size: tuple[int, int] 
     """Path-trace ``scene`` through Mitsuba 3 (extra ``sdfgl[pbr]``); see :func:`sdfgl.pbr.render_pbr`.
 
     Args:
-        scene: the node to render; its field is sampled by the generated map() into
-            Mitsuba ``sdfgrid`` tiles (any exactness class works: only the sign matters).
+        scene: the node to render; by ``geometry=`` meshed by sdfgl's mesh export ("mesh",
+            the default for bounded scenes) or sampled by the generated map() into Mitsuba
+            ``sdfgrid`` tiles ("grid"; any exactness class works: only the sign matters).
         camera: an sdfgl camera (default: the framing ``render()`` uses); perspective or
             orthographic.
         size: (width, height) in pixels.
         spp: samples per pixel.
-        options: ``resolution``, ``quality``, ``bounds``, ``material``, ``sky``, ``sun``,
-            ``ground``, ``max_depth``, ``extra``, ``seed``, ``variant``, ``progress``.
+        options: ``geometry`` ("auto", "mesh" or "grid"), ``resolution``, ``quality``,
+            ``bounds``, ``material``, ``sky``, ``sun``, ``ground``, ``max_depth``, ``extra``,
+            ``seed``, ``variant``, ``progress``.
 
     Example:
         >>> img = sg.render_pbr(sg.sphere(1), size=(16, 12), spp=1)
         >>> img.alpha.shape, img.settings["geometry"]
-        ((12, 16), 'sdfgrid')
+        ((12, 16), 'mesh')
     """
     from .pbr import render_pbr as _render_pbr
     from .pbr.render import RENDER_OPTIONS, check_options
@@ -197,7 +199,7 @@ def to_mitsuba(scene: Node, camera: Camera | None = None, **options: object) -> 
         options: as :func:`render_pbr` (``size``, ``spp``, ``material``, ...).
 
     Example:
-        >>> d = sg.to_mitsuba(sg.sphere(1), size=(8, 8), spp=1)
+        >>> d = sg.to_mitsuba(sg.sphere(1), size=(8, 8), spp=1, geometry="grid")
         >>> d["sdf_0"]["type"], d["sdf_bsdf"]["type"]
         ('sdfgrid', 'diffuse')
     """

@@ -19,9 +19,12 @@ def add_parser(sub: Any, command: str | None) -> None:
                    help="image path: .png/.jpg (8-bit, gamma 2.2), .exr (linear float) or .npy (default pbr.png)")
     p.add_argument("--size", type=image_size, default=(640, 480), help="WIDTHxHEIGHT (default 640x480)")
     p.add_argument("--spp", type=int, default=64, help="samples per pixel (default 64)")
-    p.add_argument("--resolution", type=int, help="SDF grid cells along the scene's longest side (default: "
-                   "two per pixel footprint)")
-    p.add_argument("--quality", type=float, default=1.0, help="multiplies the automatic grid resolution (default 1)")
+    p.add_argument("--resolution", type=int, help="SDF grid (or mesh lattice) cells along the scene's "
+                   "longest side (default: from the pixel footprint)")
+    p.add_argument("--geometry", choices=("auto", "mesh", "grid"), default="auto",
+                   help="what Mitsuba intersects: the scene's mesh, its sampled SDF grid, or auto (default: the "
+                        "mesh for a bounded scene)")
+    p.add_argument("--quality", type=float, default=1.0, help="multiplies the automatic grid or mesh resolution (default 1)")
     p.add_argument("--max-depth", type=int, default=8, help="longest light path (default 8)")
     p.add_argument("--ground", action="store_true", help="add the checkered ground plane (the demo has it)")
     p.add_argument("--transparent", action="store_true", help="write the coverage as alpha instead of the sky")
@@ -47,6 +50,13 @@ def progress_line() -> Callable[[str, float], None]:
     return report
 
 
+def geometry_line(settings: dict[str, Any]) -> str:
+    """What Mitsuba intersected, from a PBRImage's settings: the grid's cells or the mesh's triangles."""
+    if settings["geometry"] == "mesh":
+        return f"mesh of {settings['mesh_faces']} triangles"
+    return f"grid {'x'.join(str(c) for c in settings['grid_cells'])}"
+
+
 def run(a: argparse.Namespace) -> int:
     """Run ``sdfgl pbr`` (Mitsuba is checked for before the scene loads)."""
     require_scene(a, "pbr")
@@ -56,10 +66,10 @@ def run(a: argparse.Namespace) -> int:
     scene = sf.scene
     img = render_pbr(scene, camera_from_args(a, scene, sf.camera), a.size, a.spp, resolution=a.resolution,
                      quality=a.quality, ground=a.ground or bool(sf.settings.get("ground")), max_depth=a.max_depth,
-                     seed=a.seed, variant=a.variant, progress=None if a.quiet else progress_line())
+                     seed=a.seed, variant=a.variant, progress=None if a.quiet else progress_line(), geometry=a.geometry)
     path = img.save(a.output, exposure=a.exposure, transparent=a.transparent)
     s, t = img.settings, img.timings
     print(f"wrote {path} ({a.size[0]}x{a.size[1]}, {s['spp']} spp, Mitsuba {s['variant']}, "
-          f"grid {'x'.join(str(c) for c in s['grid_cells'])}): sampling {t['sample_s']:.2f} s, "
+          f"{geometry_line(s)}): sampling {t['sample_s']:.2f} s, "
           f"path tracing {t['trace_s']:.2f} s, total {t['total_s']:.2f} s")
     return 0

@@ -14,6 +14,8 @@ import math
 from dataclasses import dataclass
 from typing import Any, Callable, Union
 
+import numpy as np
+
 from ..errors import ParameterError
 from ..nodes.base import Node
 
@@ -118,6 +120,22 @@ Look = Union[Material, Blend, SceneMaterial]
 AlbedoTexture = Callable[[], dict]
 WeightTexture = Callable[[Node, float], dict]
 SurfaceTextures = Callable[[], tuple[dict, dict, float]]
+
+
+def surface_terms(fields: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
+    """(roughness, metallic, specular) from mapSurface() samples (..., 3) of (specular,
+    shininess, metallic): Blinn-Phong shininess n -> Beckmann alpha sqrt(2 / (n + 2)) ->
+    roughness sqrt(alpha); specular is twice the median weight (the real-time default 0.25
+    becomes the principled default 0.5)."""
+    rough = np.clip((2.0 / (np.maximum(fields[..., 1], 0.0) + 2.0)) ** 0.25, 0.0, 1.0)
+    return rough, np.clip(fields[..., 2], 0.0, 1.0), float(np.clip(2 * np.median(fields[..., 0]), 0, 1))
+
+
+def blend_weight(values: np.ndarray, width: float) -> np.ndarray:
+    """A Blend's weight of its ``outside`` material from its boundary field's values:
+    smoothstep over ``width`` either side of the zero set, float32."""
+    t = np.clip((np.asarray(values, np.float64) + width) / (2 * width), 0, 1)
+    return (t * t * (3 - 2 * t)).astype(np.float32)
 
 
 def bsdf(look: Look, albedo: AlbedoTexture, weight: WeightTexture, surface: SurfaceTextures) -> dict[str, Any]:

@@ -1,9 +1,11 @@
 """An sdfgl scene as a Mitsuba 3 scene dictionary.
 
-Geometry: the scene's field sampled by the GPU ``map()`` onto Mitsuba's ``sdfgrid``
-(the default: Mitsuba intersects the grid's trilinear interpolant exactly, cell by
+Geometry, by ``geometry=``: "grid", the scene's field sampled by the GPU ``map()`` onto
+Mitsuba's ``sdfgrid`` (Mitsuba intersects the grid's trilinear interpolant exactly, cell by
 cell, so the surface is where the generated field changes sign, with no meshing step;
-colours come from the generated ``mapColor()`` on a coarser ``gridvolume``). A scene
+colours come from the generated ``mapColor()`` on a coarser ``gridvolume``); or "mesh",
+sdfgl's own mesh export with per-vertex colours and materials and emitting faces as area
+lights (sdfgl.pbr.mesh_shape); "auto" (the default) meshes bounded scenes. A scene
 further than FAR_SHIFT of its sizes from the world origin is moved so that its box
 centre sits at Mitsuba's origin (Mitsuba traces in float32), with the camera moved alike;
 nearer scenes keep world coordinates, so objects added by hand need no shift.
@@ -24,7 +26,8 @@ from ..render import checked_size
 from .field_grid import (Progress, SampledField, auto_resolution, sample_cells, sample_colors, sample_field,
                          scene_box)
 from .lighting import Sky, Sun
-from .materials import Blend, Look, Material, SceneMaterial, bsdf
+from .materials import Blend, Look, Material, SceneMaterial, blend_weight, bsdf, surface_terms
+from .mesh_shape import VertexAttributes, check_geometry, choose_geometry, emitted_groups, export, mesh_shapes, mesh_step
 
 GROUND_COLORS = ((0.62, 0.61, 0.58), (0.72, 0.71, 0.68))  # the real-time ground's checker
 FAR_SHIFT = 100.0    # scenes further than this many sizes from the origin are moved to it
@@ -38,8 +41,9 @@ class Built:
     scene: dict[str, Any]
     camera: Camera
     offset: np.ndarray            # world point placed at Mitsuba's origin
-    field: SampledField
+    field: SampledField | None    # the grid path's samples (None on the mesh path)
     info: dict[str, Any] = field(default_factory=dict)
+    sky_seen: bool = False        # camera rays see the default sky (emitters are shown)
 
 
 def _transform(mi: Any, lo: np.ndarray, hi: np.ndarray) -> Any:
@@ -61,14 +65,18 @@ def _check_camera(camera: object, scene: Node) -> Camera:
 def sensor(mi: Any, camera: Camera, size: tuple[int, int], spp: int, offset: np.ndarray, far: float) -> dict:
     """A sensor with the sdfgl camera's eye and basis: perspective with its vertical field of
     view, or orthographic ``ortho_height`` tall (Mitsuba's orthographic view spans x in
-    [-1, 1] and y in [-1 / aspect, 1 / aspect] before its to_world scale)."""
+    [-1, 1] and y in [-1 / aspect, 1 / aspect] before its to_world scale). Its sampler is
+    the low-discrepancy ``ldsampler`` (a power of four samples per pass): a pixel's coverage
+    converges far faster than with independent samples (measured on the CSG example's
+    silhouette at 160x120 and 64 spp: 99.3 % of edge pixels on the right side of 0.5
+    coverage, against 97.3 % with independent samples)."""
     r, u, f = camera.basis()
     eye = camera.eye - offset
     look = mi.ScalarTransform4f().look_at(origin=eye.tolist(), target=(eye + f).tolist(), up=u.tolist())
     common = {"near_clip": max(far * 1e-7, 1e-6), "far_clip": far,
               "film": {"type": "hdrfilm", "width": size[0], "height": size[1], "pixel_format": "rgba",
                        "rfilter": {"type": "box"}},
-              "sampler": {"type": "independent", "sample_count": int(spp)}}
+              "sampler": {"type": "ldsampler", "sample_count": int(spp)}}
     if camera.orthographic:
         half_width = 0.5 * camera.ortho_height * size[0] / size[1]
         return {"type": "orthographic", "to_world": look @ mi.ScalarTransform4f().scale([half_width, half_width, 1.0]),
@@ -92,13 +100,74 @@ def ground_shape(mi: Any, y: float, centre: np.ndarray, offset: np.ndarray, scal
                 "to_uv": mi.ScalarTransform4f().scale([k, k, 1.0])}}}
 
 
+def _grid_geometry(mi: Any, scene: Node, lo: np.ndarray, hi: np.ndarray, res: int, look: Look, offset: np.ndarray,
+                   progress: Progress | None) -> tuple[dict, dict[str, Any], SampledField, dict[str, Any]]:
+    """(the BSDF, the ``sdfgrid`` tiles by name, the sampled field, what to report) of the grid path."""
+    fld = sample_field(scene, lo, hi, res, progress)
+    centre = (fld.lo + fld.hi) / 2
+    blo, bhi = lo - offset, hi - offset
+
+    def texture(values: np.ndarray) -> dict:
+        """A gridvolume texture over the scene box from [Z, Y, X] or [Z, Y, X, C] samples."""
+        grid = values if values.ndim == 4 else values[..., None]
+        return {"type": "volume", "volume": {"type": "gridvolume", "filter_type": "trilinear",
+                                             "grid": mi.VolumeGrid(np.ascontiguousarray(grid, dtype=np.float32)),
+                                             "to_world": _transform(mi, blo, bhi)}}
+
+    def albedo() -> dict:
+        return texture(sample_colors(scene, lo, hi, min(COLOR_CELLS, res), progress))
+
+    def surface() -> tuple[dict, dict, float]:
+        """Roughness and metallic textures and the specular weight from the scene's mapSurface()."""
+        sf = sample_cells(lambda p: evaluate_channel(scene, p, "surface", origin=centre)[:, :3], lo, hi,
+                          min(COLOR_CELLS, res), 3, progress, "sampling materials")
+        rough, metal, spec = surface_terms(sf)
+        return texture(rough), texture(metal), spec
+
+    def weight(boundary: Node, width: float) -> dict:
+        return texture(sample_cells(lambda p: blend_weight(evaluate(boundary, p, origin=centre), width), lo, hi,
+                                    min(COLOR_CELLS * 2, res), 1, progress, "sampling blend weights"))
+
+    shapes: dict[str, Any] = {}
+    for i, tile in enumerate(fld.tiles):
+        tlo = tile.lo - offset
+        shapes[f"sdf_{i}"] = {"type": "sdfgrid", "grid": mi.TensorXf(np.ascontiguousarray(tile.values[..., None])),
+                              "to_world": _transform(mi, tlo, tlo + tile.size), "bsdf": {"type": "ref", "id": "sdf_bsdf"}}
+    info: dict[str, Any] = {"grid_cells": fld.cells, "cell_size": fld.cell, "resolution": int(res),
+                            "tiles": len(fld.tiles), "tiles_total": fld.tiles_total, "field_samples": fld.samples}
+    if "emission" in material_channels(scene):
+        info["not_rendered"] = "emission: Mitsuba's sdfgrid shape cannot be an emitter (geometry='mesh' renders it)"
+    return bsdf(look, albedo, weight, surface), shapes, fld, info
+
+
+def _mesh_geometry(mi: Any, scene: Node, bounds: object, step: float, look: Look, offset: np.ndarray,
+                   progress: Progress | None) -> tuple[dict, dict[str, Any], tuple[np.ndarray, np.ndarray], dict]:
+    """(the BSDF, the meshes by name, the meshed box, what to report) of the mesh path."""
+    if progress is not None:
+        progress("meshing", 0.0)
+    m = export(scene, bounds, step)
+    box = m.lattice.box if m.lattice is not None else scene.bounds
+    origin = (box[0] + box[1]) / 2
+    attributes = VertexAttributes(scene, m, origin)
+    look_bsdf = bsdf(look, attributes.albedo, attributes.weight, attributes.surface)
+    groups, colours = emitted_groups(scene, m, origin)
+    shapes = mesh_shapes(mi, m, attributes.values, look_bsdf, groups, colours, offset)
+    if progress is not None:
+        progress("meshing", 1.0)
+    info = {"mesh_step": float(m.step), "mesh_cells": m.lattice.cells if m.lattice is not None else None,
+            "mesh_vertices": len(m.vertices), "mesh_faces": len(m.faces), "emitters": len(colours),
+            "mesh_s": float(m.timings.get("total_s", 0.0))}
+    return look_bsdf, shapes, box, info
+
+
 def build(mi: Any, scene: Node, camera: Camera | None = None, size: object = (640, 480), spp: int = 64, *,
           resolution: int | None = None, quality: float = 1.0, bounds: object = None, material: Look | None = None,
           sky: Sky | None = None, sun: Sun | None = None, ground: bool = False, max_depth: int = 8,
-          extra: dict[str, Any] | None = None, progress: Progress | None = None) -> Built:
-    """Sample the scene and assemble the Mitsuba scene dictionary (see render_pbr for the terms)."""
+          extra: dict[str, Any] | None = None, progress: Progress | None = None, geometry: str = "auto") -> Built:
+    """Sample or mesh the scene and assemble the Mitsuba scene dictionary (see render_pbr for the terms)."""
     if not isinstance(scene, Node):
         raise ParameterError(f"pbr: 'scene' must be an sdfgl node, got {type(scene).__name__}")
+    check_geometry(geometry)
     cam = _check_camera(camera, scene)
     wh = checked_size(size, "pbr", 8192)
     if not (isinstance(spp, (int, np.integer)) and 1 <= spp <= 1 << 16):
@@ -117,68 +186,51 @@ def build(mi: Any, scene: Node, camera: Camera | None = None, size: object = (64
         raise ParameterError("pbr: 'sky' must be a pbr Sky and 'sun' a pbr Sun")
 
     lo, hi = scene_box(scene, bounds)
-    res = resolution if resolution is not None else auto_resolution(lo, hi, cam.eye, cam.pixel_angle(wh[1]), quality)
-    fld = sample_field(scene, lo, hi, res, progress)
-    centre = (fld.lo + fld.hi) / 2
-    offset = centre if float(np.max(np.abs(centre))) > FAR_SHIFT * float(np.max(fld.hi - fld.lo)) else np.zeros(3)
-    blo, bhi = lo - offset, hi - offset
+    step = mesh_step(lo, hi, cam, wh[1], quality, resolution)
+    used, why = choose_geometry(geometry, scene, lo, hi, step)
+    centre = (lo + hi) / 2
+    offset = centre if float(np.max(np.abs(centre))) > FAR_SHIFT * float(np.max(hi - lo)) else np.zeros(3)
+    fld: SampledField | None = None
+    if used == "mesh":
+        look_bsdf, shapes, (blo, bhi), info = _mesh_geometry(mi, scene, bounds, step, look, offset, progress)
+    else:
+        res = resolution if resolution is not None else auto_resolution(lo, hi, cam.eye, cam.pixel_angle(wh[1]),
+                                                                        quality)
+        look_bsdf, shapes, fld, info = _grid_geometry(mi, scene, lo, hi, res, look, offset, progress)
+        blo, bhi = fld.lo, fld.hi
     scale = float((hi - lo).max())
-
-    def texture(values: np.ndarray) -> dict:
-        """A gridvolume texture over the scene box from [Z, Y, X] or [Z, Y, X, C] samples."""
-        grid = values if values.ndim == 4 else values[..., None]
-        return {"type": "volume", "volume": {"type": "gridvolume", "filter_type": "trilinear",
-                                             "grid": mi.VolumeGrid(np.ascontiguousarray(grid, dtype=np.float32)),
-                                             "to_world": _transform(mi, blo, bhi)}}
-
-    def albedo() -> dict:
-        return texture(sample_colors(scene, lo, hi, min(COLOR_CELLS, res), progress))
-
-    def surface() -> tuple[dict, dict, float]:
-        """Roughness and metallic textures from the scene's mapSurface() (Blinn-Phong shininess n
-        -> Beckmann alpha sqrt(2 / (n + 2)) -> roughness sqrt(alpha)), and twice its median
-        specular weight (the real-time default 0.25 becomes the principled default 0.5)."""
-        sf = sample_cells(lambda p: evaluate_channel(scene, p, "surface", origin=centre)[:, :3], lo, hi,
-                          min(COLOR_CELLS, res), 3, progress, "sampling materials")
-        rough = np.clip((2.0 / (np.maximum(sf[..., 1], 0.0) + 2.0)) ** 0.25, 0.0, 1.0)
-        return texture(rough), texture(np.clip(sf[..., 2], 0.0, 1.0)), float(np.clip(2 * np.median(sf[..., 0]), 0, 1))
-
-    def weight(boundary: Node, width: float) -> dict:
-        def w(p: np.ndarray) -> np.ndarray:
-            t = np.clip((evaluate(boundary, p, origin=centre).astype(np.float64) + width) / (2 * width), 0, 1)
-            return (t * t * (3 - 2 * t)).astype(np.float32)
-        return texture(sample_cells(w, lo, hi, min(COLOR_CELLS * 2, res), 1, progress, "sampling blend weights"))
-
     eye_dist = float(np.linalg.norm(cam.eye - offset))
-    far = eye_dist + 2.0 * float(np.linalg.norm(fld.hi - fld.lo)) + (400.0 * scale if ground else 0.0)
+    far = eye_dist + 2.0 * float(np.linalg.norm(bhi - blo)) + (400.0 * scale if ground else 0.0)
+    emitting = info.get("emitters", 0) > 0
     d: dict[str, Any] = {
         "type": "scene",
-        "integrator": {"type": "path", "max_depth": int(max_depth), "hide_emitters": True},
+        # emitting meshes must be seen: then the sky is seen as well, and render_pbr takes it out
+        "integrator": {"type": "path", "max_depth": int(max_depth), "hide_emitters": not emitting},
         "sensor": sensor(mi, cam, wh, spp, offset, far),
-        "sdf_bsdf": bsdf(look, albedo, weight, surface),
+        "sdf_bsdf": look_bsdf,
         "sky": {"type": "envmap", "bitmap": mi.Bitmap(sky.bitmap()), "scale": 1.0},
         "sun": sun.emitter(),
+        **shapes,
     }
-    for i, tile in enumerate(fld.tiles):
-        tlo = tile.lo - offset
-        d[f"sdf_{i}"] = {"type": "sdfgrid", "grid": mi.TensorXf(np.ascontiguousarray(tile.values[..., None])),
-                         "to_world": _transform(mi, tlo, tlo + tile.size), "bsdf": {"type": "ref", "id": "sdf_bsdf"}}
     if ground:
         d["ground"] = ground_shape(mi, float(lo[1]), (hi + lo) / 2, offset, scale)
-    if extra is not None:
-        if not isinstance(extra, dict) or not all(isinstance(k, str) for k in extra):
-            raise ParameterError(f"pbr: 'extra' must be a dict of Mitsuba objects by name, got {type(extra).__name__}")
-        for key, obj in extra.items():
-            if key in ("type", "integrator", "sensor", "sdf_bsdf") and obj is None:
-                raise ParameterError(f"pbr: 'extra' cannot remove {key!r}")
-            if obj is None:
-                d.pop(key, None)
-            else:
-                d[key] = obj
-    info = {"geometry": "sdfgrid", "projection": cam.projection, "grid_cells": fld.cells, "cell_size": fld.cell, "resolution": int(res),
-            "tiles": len(fld.tiles), "tiles_total": fld.tiles_total, "field_samples": fld.samples,
-            "spp": int(spp), "max_depth": int(max_depth),
-            "material": look.kind}
-    if "emission" in channels:
-        info["not_rendered"] = "emission: Mitsuba's sdfgrid shape cannot be an emitter"
-    return Built(d, cam, offset, fld, info)
+    sky_dict = d["sky"]
+    _add_extra(d, extra)
+    info = {"geometry": used, "geometry_choice": why, "projection": cam.projection, **info,
+            "spp": int(spp), "max_depth": int(max_depth), "material": look.kind}
+    return Built(d, cam, offset, fld, info, sky_seen=emitting and d.get("sky") is sky_dict)
+
+
+def _add_extra(d: dict[str, Any], extra: dict[str, Any] | None) -> None:
+    """Add, replace or (None) remove Mitsuba objects of ``d`` by name."""
+    if extra is None:
+        return
+    if not isinstance(extra, dict) or not all(isinstance(k, str) for k in extra):
+        raise ParameterError(f"pbr: 'extra' must be a dict of Mitsuba objects by name, got {type(extra).__name__}")
+    for key, obj in extra.items():
+        if key in ("type", "integrator", "sensor", "sdf_bsdf") and obj is None:
+            raise ParameterError(f"pbr: 'extra' cannot remove {key!r}")
+        if obj is None:
+            d.pop(key, None)
+        else:
+            d[key] = obj
