@@ -31,7 +31,7 @@ GEOMETRIES = ("auto", "mesh", "grid")
 # always holds a sample inside it. Measured on a plate one grid cell thick at 160x120: 2 cells
 # per footprint matched the EGL silhouette on 98.9 % of its edge pixels, 3 on 99.8 %.
 MESH_CELLS_PER_FOOTPRINT = 3
-AUTO_MAX_CELLS = 1024      # "auto" meshes up to this many lattice cells along the box's longest side
+AUTO_MAX_CELLS = 512       # "auto" meshes up to this many lattice cells along the box's longest side (meshing grows with its square: ~10 s at 400 on 2 cores)
 MAX_EMITTED_COLOURS = 16   # distinct emitted colours on the mesh path (one area emitter each)
 
 

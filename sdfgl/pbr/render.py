@@ -75,7 +75,7 @@ def render_pbr(scene: Node, camera: Camera | None = None, size: tuple[int, int] 
         the field sampled onto Mitsuba's ``sdfgrid`` at two cells per footprint (the
         trilinear interpolant rounds edges off by about a cell and loses features thinner
         than a cell; no emission). "auto" (default): "mesh" for a bounded scene whose
-        lattice has at most 1024 cells along its longest side, else "grid" (an unbounded
+        lattice has at most 512 cells along its longest side, else "grid" (an unbounded
         field: a mesh would close where ``bounds`` cuts it). ``settings["geometry"]`` says
         which was used and ``settings["geometry_choice"]`` why.
     resolution: cells of the SDF grid (or of the mesh lattice) along the longest side of

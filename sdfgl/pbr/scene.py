@@ -62,6 +62,14 @@ def _check_camera(camera: object, scene: Node) -> Camera:
     return cam
 
 
+def power_of_four(n: int) -> int:
+    """The smallest power of four >= ``n``: a sample count the ldsampler takes without a warning."""
+    p = 1
+    while p < n:
+        p *= 4
+    return p
+
+
 def sensor(mi: Any, camera: Camera, size: tuple[int, int], spp: int, offset: np.ndarray, far: float) -> dict:
     """A sensor with the sdfgl camera's eye and basis: perspective with its vertical field of
     view, or orthographic ``ortho_height`` tall (Mitsuba's orthographic view spans x in
@@ -76,7 +84,7 @@ def sensor(mi: Any, camera: Camera, size: tuple[int, int], spp: int, offset: np.
     common = {"near_clip": max(far * 1e-7, 1e-6), "far_clip": far,
               "film": {"type": "hdrfilm", "width": size[0], "height": size[1], "pixel_format": "rgba",
                        "rfilter": {"type": "box"}},
-              "sampler": {"type": "ldsampler", "sample_count": int(spp)}}
+              "sampler": {"type": "ldsampler", "sample_count": power_of_four(int(spp))}}
     if camera.orthographic:
         half_width = 0.5 * camera.ortho_height * size[0] / size[1]
         return {"type": "orthographic", "to_world": look @ mi.ScalarTransform4f().scale([half_width, half_width, 1.0]),
