@@ -4,6 +4,8 @@
     s = sg.sphere(1) & sg.box(1.5)
     sg.render(s, camera=sg.OrbitCamera(distance=5), size=(800, 600), aa=2).save("out.png")
 """
+from collections.abc import Sequence as _Sequence
+
 import numpy as _np
 
 from .camera import Camera, OrbitCamera
@@ -62,7 +64,7 @@ def __dir__() -> list[str]:
 
 
 def show(scene: Node, camera: Camera | None = None, size: tuple[int, int] = (960, 540), *,
-         window: bool | None = None, **settings: object) -> object:
+         window: bool | None = None, meshes: _Sequence[RasterMesh] = (), **settings: object) -> object:
     """Open an interactive window on ``scene``; returns when it is closed.
 
     In a Jupyter kernel a window would block the kernel, so ``show`` returns the notebook
@@ -74,6 +76,8 @@ def show(scene: Node, camera: Camera | None = None, size: tuple[int, int] = (960
         size: window size (width, height) in pixels.
         window: True opens the window even in a kernel; False returns the widget; None
             (default) picks by where the code runs.
+        meshes: triangle meshes made by :func:`raster`, drawn by rasterisation in the window
+            as in ``render(scene, meshes=...)`` (the notebook widget does not draw them).
         settings: render settings, as for :func:`render`.
 
     The window needs a display (glfw). Mouse: orbit, pan, zoom; keys toggle AA, shadows,
@@ -86,9 +90,11 @@ def show(scene: Node, camera: Camera | None = None, size: tuple[int, int] = (960
     if window is None:
         window = not in_kernel()
     if not window:
+        if meshes:
+            raise ParameterError("show: raster meshes are drawn in the native window only; pass window=True")
         return widget(scene, camera, size, **settings)
     from .viewer import show as _show
-    _show(scene, camera, size, **settings)
+    _show(scene, camera, size, meshes=meshes, **settings)
     return None
 
 

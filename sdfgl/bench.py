@@ -3,7 +3,9 @@
 Frame times are wall-clock draws closed by ctx.finish() (GL timer queries are not
 trusted on llvmpipe), variants interleaved round by round so drift cancels, reported
 as medians, p95 and ratios. Errors come from the same shader against the float64
-reference (sdfgl.reference). Run it as ``sdfgl bench`` or ``python benchmarks/bench.py``.
+reference (sdfgl.reference). The full run adds a mesh as a field against libigl and
+rasterisation (:mod:`sdfgl.bench_mesh_field`). Run it as ``sdfgl bench`` or
+``python benchmarks/bench.py``.
 """
 from __future__ import annotations
 
@@ -387,6 +389,11 @@ def run(quick: bool, size: tuple[int, int] | None, out: Path, progress: bool = T
     from .mesh.bench import run_mesh
     mesh_md, mesh_data = run_mesh(2 ** 18 if quick else 2 ** 22, 1 if quick else 3, None if quick else 1024)
 
+    mesh_field: tuple[str, dict] | None = None
+    if not quick:  # its compiles would lengthen the quick run; the rows' own test runs QUICK sizes
+        from .bench_mesh_field import run_mesh_field
+        mesh_field = run_mesh_field(False, renderer)
+
     from .bench_big import run_big, run_phases
     big = run_big(quick, (160, 120) if quick else (320, 240))
     big += "\n\n" + run_phases(quick, (160, 120) if quick else (320, 240))
@@ -402,14 +409,14 @@ def run(quick: bool, size: tuple[int, int] | None, out: Path, progress: bool = T
         "## Model only what a scene needs\n\n" + model,
         "## Big scenes\n\n" + big,
         "## Mesh export against fogleman/sdf and DistForge\n\n" + mesh_md,
-    ])
+    ] + ([f"## A mesh as a field against libigl and rasterisation\n\n{mesh_field[0]}"] if mesh_field else []))
     (out / "bench.md").write_text(md + "\n")
     data = {"size": size, "frames": frames, "warmup": warmup, "gl": describe(renderer.ctx),
             "variants": [{"scene": v.scene, "label": v.label, "settings": v.settings,
                           **{k: val for k, val in v.result.items() if not k.startswith("_")}} for v in variants],
             "features": [{"label": v.label, "settings": v.settings,
                           **{k: val for k, val in v.result.items() if not k.startswith("_")}} for v in features],
-            "mesh": mesh_data}
+            "mesh": mesh_data, **({"mesh_field": mesh_field[1]} if mesh_field else {})}
     (out / "bench.json").write_text(json.dumps(data, indent=1, default=_json_value))
     pareto_plot(variants, out / "pareto.png")
     print(md)

@@ -24,7 +24,7 @@ from .gl.context import CurrentContext, GLThread, describe, gl_thread
 from .gl.buffer_texture import BufferTexture
 from .gl.data import DataTextures
 from .gl.programs import ProgramCache
-from .gl.raster_pass import draw_meshes, view_range
+from .gl.raster_pass import RasterImages, draw_meshes, view_range
 from .gl.targets import TargetCache
 from .nodes.base import Node
 from .raster import RasterMesh
@@ -339,8 +339,7 @@ class Renderer:
         wanted = st.outputs
         # the march writes depth (and normals when asked) for the compositing
         st_draw = dataclasses.replace(st, outputs=tuple(o for o in OUTPUTS if o in wanted or o == "depth"))
-        source = generate(scene, st_draw, origin, target="render_over_mesh", projection=cam.projection)
-        mesh_source = generate(scene, st_draw, origin, target="raster_mesh", projection=cam.projection)
+        source, mesh_source = mesh_sources(scene, st_draw, origin, cam.projection)
         origin_uniforms(source, scene, origin)
         t1 = time.perf_counter()
         res = self.run(self._draw_with_meshes, scene, cam, wh, st_draw, source, mesh_source, origin, meshes)
@@ -356,13 +355,9 @@ class Renderer:
                           meshes: tuple[RasterMesh, ...]) -> RenderResult:
         ctx = self.ctx
         check_size(ctx, wh)
-        prog, _ = self.programs.entry(mesh_source, "mains/raster_mesh.vert")
-        camera_uniforms(prog, cam, wh, origin)
-        scene_uniforms(prog, mesh_source, scene, origin, self.data)
-        _set_uniform(prog, "uOrtho", 1.0 if cam.orthographic else 0.0)
-        _set_uniform(prog, "uNearFar", view_range(cam, meshes))
+        prog, _ = self.programs.entry(mesh_source, RASTER_VERTEX)
         t2 = time.perf_counter()
-        raster = draw_meshes(ctx, prog, meshes, wh, origin)
+        raster = raster_pass(prog, mesh_source, scene, cam, wh, origin, meshes, self.data)
         raster_s = time.perf_counter() - t2
         try:
             res = self._draw(scene, cam, wh, st, source, origin, (raster.depth_texture, raster.color_texture))
@@ -389,11 +384,8 @@ class Renderer:
                              f"{exc}") from None
         camera_uniforms(prog, cam, wh, origin)
         scene_uniforms(prog, source, scene, origin, self.data)
-        if meshes is not None:  # the raster meshes' t and colour, on the units after the scene's data
-            first = DATA_UNIT + len(source.data)
-            for unit, (name, tex) in enumerate(zip(("uMeshDepth", "uMeshColor"), meshes), start=first):
-                tex.use(unit)
-                _set_uniform(prog, name, unit)
+        if meshes is not None:
+            bind_raster_images(prog, source, *meshes)
         targets.fbo.use()
         ctx.viewport = (0, 0, *wh)
         t2 = time.perf_counter()
@@ -412,6 +404,37 @@ class Renderer:
             res.steps = targets.read("steps")[..., 0].astype(np.int32)
         res.timings = {"compile_s": compile_s, "draw_s": t3 - t2, "read_s": time.perf_counter() - t3}
         return res
+
+
+RASTER_VERTEX = "mains/raster_mesh.vert"
+"""The vertex shader of the raster meshes' program (its fragment shader: the "raster_mesh" target)."""
+
+
+def mesh_sources(scene: Node, st: Settings, origin: np.ndarray, projection: str) -> tuple[ShaderSource, ShaderSource]:
+    """The two programs of a frame with raster meshes: the march that stops at the meshes' depth
+    ("render_over_mesh") and the meshes' own fragments, shaded by the scene ("raster_mesh")."""
+    return (generate(scene, st, origin, target="render_over_mesh", projection=projection),
+            generate(scene, st, origin, target="raster_mesh", projection=projection))
+
+
+def raster_pass(prog: moderngl.Program, mesh_source: ShaderSource, scene: Node, cam: Camera, size: tuple[int, int],
+                origin: np.ndarray, meshes: Sequence[RasterMesh], data: DataTextures) -> RasterImages:
+    """Draw ``meshes`` with the linked "raster_mesh" program ``prog`` (a moderngl program of the
+    current context) through ``cam`` at ``size``: the textures the march then reads."""
+    camera_uniforms(prog, cam, size, origin)
+    scene_uniforms(prog, mesh_source, scene, origin, data)
+    _set_uniform(prog, "uOrtho", 1.0 if cam.orthographic else 0.0)
+    _set_uniform(prog, "uNearFar", view_range(cam, meshes))
+    return draw_meshes(prog.ctx, prog, meshes, size, origin)
+
+
+def bind_raster_images(prog: moderngl.Program, source: ShaderSource, depth: moderngl.Texture, color: moderngl.Texture) -> None:
+    """Bind the raster meshes' t and colour textures for the march ``prog`` of ``source`` (a
+    moderngl program or the viewer's RawProgram), on the texture units after the scene's data."""
+    first = DATA_UNIT + len(source.data)
+    for unit, (name, tex) in enumerate(zip(("uMeshDepth", "uMeshColor"), (depth, color)), start=first):
+        tex.use(unit)
+        _set_uniform(prog, name, unit)
 
 
 _default: Renderer | None = None

@@ -137,3 +137,16 @@ def test_capped_newton_keeps_the_roots_of_an_implicit_surface():
         res = sg.render(t, cam, (64, 48), method="newton", newton_cap=cap, ao=False, outputs=("color", "depth", "normal"))
         lost[cap] = R.compare(res, ref).lost_hits
     assert lost[2.0] < 0.25 * lost[None] and lost[2.0] < 0.02 * np.isfinite(ref.t).sum()
+
+
+def test_bench_mesh_field_rows_at_quick_sizes():
+    from sdfgl.bench_mesh_field import QUICK, run_mesh_field
+    md, data = run_mesh_field(True)
+    assert data["triangles"] == 2 * QUICK["nu"] * QUICK["nv"]
+    d, f = data["distance"], data["frame"]
+    assert d["points"] == QUICK["points"] and d["gpu_s"] > 0 and d["igl_s"] > 0
+    assert d["ratio"] == pytest.approx(d["gpu_s"] / d["igl_s"])
+    assert d["max_diff_diag"] < 1e-5 and d["sign_agreement"] > 0.999
+    assert f["size"] == list(QUICK["size"]) and f["ratio"] == pytest.approx(f["field_s"] / f["raster_s"])
+    assert "| signed distance at 10000 points |" in md and "| frame 64x48" in md
+    json.dumps(data)  # bench.json holds it

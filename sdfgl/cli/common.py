@@ -149,3 +149,18 @@ def camera_from_args(a: argparse.Namespace, scene: Any, camera: Any) -> Any:
     pick = {k: (v if v is not None else getattr(base, k)) for k, v in given.items()}
     return OrbitCamera(pick["target"], pick["distance"], pick["yaw"], pick["pitch"], pick["fov"], base.projection,
                        base._ortho_height)
+
+
+def add_mesh_arguments(p: argparse.ArgumentParser) -> None:
+    """``--mesh PATH`` (repeatable) and ``--mesh-color``: meshes drawn by rasterisation with the scene."""
+    p.add_argument("--mesh", action="append", metavar="PATH", default=[],
+                   help="a mesh file (STL, OBJ, PLY, GLB/glTF, 3MF, OFF) drawn by rasterisation in the same "
+                        "frame, hidden by and shadowed by the scene; repeat for more")
+    p.add_argument("--mesh-color", default="#cccccc", metavar="COLOR",
+                   help="the colour of the --mesh meshes (default #cccccc)")
+
+
+def meshes_from_args(a: argparse.Namespace) -> list[Any]:
+    """The ``--mesh`` files as raster meshes (sg.raster) of colour ``--mesh-color``."""
+    from ..raster import raster
+    return [raster(path, color=a.mesh_color) for path in a.mesh]

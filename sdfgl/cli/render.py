@@ -5,8 +5,9 @@ import argparse
 from typing import Any
 
 from ..settings import OUTPUTS
-from .common import (add_camera_arguments, add_scene_arguments, add_settings_arguments, camera_from_args,
-                     finite_number, image_size, load_scene_args, output_names, render_settings, require_scene)
+from .common import (add_camera_arguments, add_mesh_arguments, add_scene_arguments, add_settings_arguments,
+                     camera_from_args, finite_number, image_size, load_scene_args, meshes_from_args, output_names,
+                     render_settings, require_scene)
 
 
 def add_parser(sub: Any, command: str | None) -> None:
@@ -25,11 +26,7 @@ def add_parser(sub: Any, command: str | None) -> None:
     r.add_argument("--alpha", action="store_true", help="transparent background: RGBA PNG, alpha = coverage")
     r.add_argument("--fog", type=finite_number, help="fade surfaces into the background over this distance")
     r.add_argument("--ortho", action="store_true", help="orthographic camera framing the scene")
-    r.add_argument("--mesh", action="append", metavar="PATH", default=[],
-                   help="a mesh file (STL, OBJ, PLY, GLB/glTF, 3MF, OFF) drawn by rasterisation in the same "
-                        "frame, hidden by and shadowed by the scene; repeat for more")
-    r.add_argument("--mesh-color", default="#cccccc", metavar="COLOR",
-                   help="the colour of the --mesh meshes (default #cccccc)")
+    add_mesh_arguments(r)
     add_camera_arguments(r)
     add_settings_arguments(r)
     r.set_defaults(func=run)
@@ -51,7 +48,6 @@ def look_settings(a: argparse.Namespace) -> dict[str, object]:
 def run(a: argparse.Namespace) -> int:
     """Run ``sdfgl render``; the status line reports the settings rendered with."""
     from ..outputs import save_outputs
-    from ..raster import raster
     from ..render import render
     require_scene(a, "render")
     sf = load_scene_args(a)
@@ -68,8 +64,7 @@ def run(a: argparse.Namespace) -> int:
         from ..camera import OrbitCamera
         yaw, pitch = (cam.yaw, cam.pitch) if isinstance(cam, OrbitCamera) else (30.0, 20.0)
         cam = OrbitCamera.framing(*scene.bounds, yaw, pitch, aspect=a.size[0] / a.size[1], projection="orthographic")
-    meshes = [raster(path, color=a.mesh_color) for path in a.mesh]
-    res = render(scene, cam, a.size, meshes=meshes, outputs=outputs, **settings)
+    res = render(scene, cam, a.size, meshes=meshes_from_args(a), outputs=outputs, **settings)
     paths = save_outputs(res, a.output, outputs)
     t = res.timings
     print(f"wrote {', '.join(str(p) for p in paths)} ({a.size[0]}x{a.size[1]}, aa {res.settings.aa}): "

@@ -7,9 +7,9 @@ from typing import Any
 
 from ..scenefile_process import DEFAULT_TIMEOUT_S, SceneFileLoader
 
-from .common import (SCENE_HELP, add_camera_arguments, add_scene_arguments, add_settings_arguments,
-                     camera_flags_given, camera_from_args, image_size, load_scene_args, render_settings,
-                     settings_overrides)
+from .common import (SCENE_HELP, add_camera_arguments, add_mesh_arguments, add_scene_arguments, add_settings_arguments,
+                     camera_flags_given, camera_from_args, image_size, load_scene_args, meshes_from_args,
+                     render_settings, settings_overrides)
 
 
 def add_parser(sub: Any, command: str | None) -> None:
@@ -33,6 +33,7 @@ def add_parser(sub: Any, command: str | None) -> None:
                         f"reload (then keep the last scene) (default {DEFAULT_TIMEOUT_S:g})")
     v.add_argument("--panel", action=argparse.BooleanOptionalAction, default=None,
                    help="open with the side panel shown / hidden (default: shown if the window is >= 800 wide)")
+    add_mesh_arguments(v)
     live = v.add_argument_group("live control (needs pip install 'sdfgl[live]')")
     live.add_argument("--osc", type=port_number, metavar="PORT",
                       help="receive OSC messages on this UDP port (bound as --bindings says)")
@@ -91,7 +92,8 @@ def run(a: argparse.Namespace) -> int:
     """Run ``sdfgl view`` until the window closes."""
     from ..viewer import Viewer
     common = dict(size=a.size, target_ms=a.target_ms, adaptive=not a.no_adaptive, max_samples=a.max_samples,
-                  state_file=a.state_file, screenshot_dir=a.screenshot_dir, panel=a.panel, **live_options(a))
+                  state_file=a.state_file, screenshot_dir=a.screenshot_dir, panel=a.panel, meshes=meshes_from_args(a),
+                  **live_options(a))
     if a.scene is None or a.demo:
         sf = load_scene_args(a)
         v = Viewer(sf.scene, camera_from_args(a, sf.scene, sf.camera), **common, **render_settings(a, sf))

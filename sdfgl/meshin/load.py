@@ -12,9 +12,7 @@ from ..extras import require_extra
 from ..nodes.mesh_field import MAX_TRIANGLES, MeshField
 from ..values import validate as v
 from ..values.units import MILLIMETRES, unit_name
-
-FORMATS = (".stl", ".obj", ".ply", ".glb", ".gltf", ".3mf", ".off")
-"""File suffixes :func:`load_mesh` reads (trimesh's loaders)."""
+from .source import MeshFile, file_sha256, mesh_file
 
 
 def _factor(scale: float, units: str | None, scene_units: str, where: str) -> float:
@@ -27,7 +25,7 @@ def _factor(scale: float, units: str | None, scene_units: str, where: str) -> fl
 
 
 def load_mesh(path: str | os.PathLike, scale: float = 1.0, units: str | None = None,
-              scene_units: str = "mm") -> MeshField:
+              scene_units: str = "mm", name: str | None = None) -> MeshField:
     """The exact signed distance to the closed mesh in the file at ``path``.
 
     Args:
@@ -37,8 +35,10 @@ def load_mesh(path: str | os.PathLike, scale: float = 1.0, units: str | None = N
             taken as scene units.
         scene_units: what one scene unit is, when ``units`` is given (default "mm", the
             unit :meth:`Node.save` writes 3MF in).
+        name: what errors and the shader's comments call the mesh (default: ``path``).
 
-    Duplicate vertices are merged, faces wound inward are turned and small holes (a
+    The node remembers the file (its absolute path and SHA-256), so a scene document saves
+    it as a reference to the file (docs/scene-format.md). Duplicate vertices are merged, faces wound inward are turned and small holes (a
     missing triangle or quad) are filled. A mesh that stays open, is not a manifold, has
     non-finite vertices, no triangles or more than
     :data:`~sdfgl.nodes.mesh_field.MAX_TRIANGLES` raises :class:`~sdfgl.errors.MeshError`
@@ -51,23 +51,22 @@ def load_mesh(path: str | os.PathLike, scale: float = 1.0, units: str | None = N
         >>> sg.load_mesh(path, units="cm").bounds[1].round(1)  # a unit sphere in cm, in mm
         array([10., 10., 10.])
     """
-    name = os.fspath(v.file_path("load_mesh", "path", path))
+    given = os.fspath(v.file_path("load_mesh", "path", path))
     require_extra("meshin", "trimesh", purpose="sg.load_mesh")
     import trimesh
-    file = Path(name)
-    if not file.is_file():
-        raise MeshError(f"mesh file '{name}': no such file")
-    if file.suffix.lower() not in FORMATS:
-        raise MeshError(f"mesh file '{name}': unknown format {file.suffix!r}; use one of {', '.join(FORMATS)}")
-    if file.stat().st_size == 0:
-        raise MeshError(f"mesh file '{name}': is empty")
+    if not Path(given).is_file():
+        raise MeshError(f"mesh file '{given}': no such file")
+    file = mesh_file(given)
+    digest = file_sha256(file)
     try:
-        loaded = trimesh.load(name, force="mesh", process=False)
+        loaded = trimesh.load(str(file), file_type=file.suffix.lower()[1:], force="mesh", process=False)
     except Exception as exc:  # trimesh's loaders raise many kinds of error for a bad file
-        raise MeshError(f"mesh file '{name}': cannot be read ({type(exc).__name__}: {exc})") from None
+        raise MeshError(f"mesh file '{given}': cannot be read ({type(exc).__name__}: {exc})") from None
     if not isinstance(loaded, trimesh.Trimesh) or len(loaded.faces) == 0:
-        raise MeshError(f"mesh file '{name}': holds no triangles")
-    return from_mesh(loaded, scale=scale, units=units, scene_units=scene_units, name=name)
+        raise MeshError(f"mesh file '{given}': holds no triangles")
+    source = MeshFile(str(file), digest, float(v.scalar(f"mesh '{given}'", "scale", scale, positive=True)), units,
+                      scene_units)
+    return _field(loaded, scale, units, scene_units, given if name is None else name, source)
 
 
 def from_mesh(mesh: Any, scale: float = 1.0, units: str | None = None, scene_units: str = "mm",
@@ -89,6 +88,12 @@ def from_mesh(mesh: Any, scale: float = 1.0, units: str | None = None, scene_uni
         'exact'
     """
     require_extra("meshin", "trimesh", purpose="sg.from_mesh")
+    return _field(mesh, scale, units, scene_units, name, None)
+
+
+def _field(mesh: Any, scale: float, units: str | None, scene_units: str, name: str,
+           source: MeshFile | None) -> MeshField:
+    """The repaired mesh's node (see :func:`from_mesh`), remembering its file ``source``."""
     import trimesh
     if not isinstance(mesh, trimesh.Trimesh):
         raise MeshError(f"mesh '{name}': from_mesh needs a trimesh.Trimesh, got {type(mesh).__name__}")
@@ -108,4 +113,4 @@ def from_mesh(mesh: Any, scale: float = 1.0, units: str | None = None, scene_uni
     if not tm.is_watertight:
         tm.fill_holes()
     trimesh.repair.fix_winding(tm)
-    return MeshField(tm.vertices, tm.faces, name=name)
+    return MeshField(tm.vertices, tm.faces, name=name, source=source)

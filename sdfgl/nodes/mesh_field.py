@@ -22,6 +22,7 @@ from .layouts import layout
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..compiler.emitter import Emitter
+    from ..meshin.source import MeshFile
 
 MAX_TRIANGLES = 1_500_000
 """The most triangles a mesh node holds (its GPU tables fill the data texture's 2^24 texels)."""
@@ -86,18 +87,18 @@ class MeshField(Node):
     """The exact signed distance to a closed triangle mesh (negative inside).
 
     Build it with :func:`sdfgl.load_mesh` (a file) or :func:`sdfgl.from_mesh` (a trimesh);
-    ``MeshField(vertices, faces, name)`` takes the arrays themselves."""
+    ``MeshField(vertices, faces, name)`` takes the arrays themselves. ``source`` is the file
+    the triangles were read from (:class:`~sdfgl.meshin.source.MeshFile`, set by
+    ``load_mesh``), which a scene document saves instead of the triangles
+    (:mod:`sdfgl.scene_io.mesh_nodes`)."""
 
     kind = "mesh"
-    serializable = False
-    unsaved_reason = ("a scene document does not carry triangle arrays; pickle the scene or load the mesh "
-                      "in a Python scene file")
 
-    def __init__(self, vertices: Any, faces: Any, name: str = "mesh") -> None:
+    def __init__(self, vertices: Any, faces: Any, name: str = "mesh", source: "MeshFile | None" = None) -> None:
         verts, tris = checked_mesh(vertices, faces, name)
         digest = hashlib.sha1(verts.tobytes() + tris.tobytes()).hexdigest()[:16]
         super().__init__((), mesh=digest, triangles=len(tris))
-        self.vertices, self.faces, self.name = verts, tris, name
+        self.vertices, self.faces, self.name, self.source = verts, tris, name, source
 
     def label(self) -> str:
         return f"mesh({self.name}, {len(self.faces)} triangles)"

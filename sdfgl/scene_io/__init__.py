@@ -31,16 +31,19 @@ __all__ = ["save_scene", "load_scene", "to_dict", "from_dict", "dumps", "loads",
 _STRING = re.compile(rb'"(?:[^"\\]|\\.)*"', re.S)
 
 
-def to_dict(scene: Any, camera: Any = None, settings: dict[str, Any] | None = None) -> dict[str, Any]:
-    """The scene (and optionally camera and render settings) as a JSON-ready document dict."""
-    return to_document(scene, camera, settings)
+def to_dict(scene: Any, camera: Any = None, settings: dict[str, Any] | None = None,
+            base: str | Path | None = None) -> dict[str, Any]:
+    """The scene (and optionally camera and render settings) as a JSON-ready document dict;
+    mesh files inside folder ``base`` are referenced relative to it (else by absolute path)."""
+    return to_document(scene, camera, settings, None if base is None else Path(base))
 
 
-def from_dict(doc: Any) -> Any:
+def from_dict(doc: Any, base: str | Path | None = None) -> Any:
     """The scene node of a document dict (as :meth:`Node.to_dict` or ``json.load`` gives it).
 
     Args:
         doc: the document dict.
+        base: the folder relative mesh files are read from (None: the working directory).
 
     Use :func:`load_scene` (or :func:`loads`) for the camera, settings and parameters too.
 
@@ -49,12 +52,18 @@ def from_dict(doc: Any) -> Any:
         >>> sg.compile(sg.from_dict(s.to_dict())) == sg.compile(s)
         True
     """
-    return from_document(doc).scene
+    return from_document(doc, None if base is None else Path(base)).scene
 
 
-def dumps(scene: Any, camera: Any = None, settings: dict[str, Any] | None = None, indent: int | None = 1) -> str:
-    """The document as JSON text."""
-    return json.dumps(to_document(scene, camera, settings), indent=indent, allow_nan=False)
+def dumps(scene: Any, camera: Any = None, settings: dict[str, Any] | None = None, indent: int | None = 1,
+          base: str | Path | None = None) -> str:
+    """The document as JSON text; mesh files inside folder ``base`` are referenced relative to it."""
+    text = json.dumps(to_document(scene, camera, settings, None if base is None else Path(base)), indent=indent,
+                      allow_nan=False)
+    if len(text.encode()) > MAX_BYTES:
+        raise SceneDocumentError(f"(document): {len(text.encode())} bytes, over the limit of {MAX_BYTES} a document "
+                                 f"is loaded within; save large meshes to files and build them with sg.load_mesh")
+    return text
 
 
 def _check_nesting(raw: bytes) -> None:
@@ -67,8 +76,9 @@ def _check_nesting(raw: bytes) -> None:
                                  f"written with a 'nodes' table, which keeps documents shallow")
 
 
-def loads(text: str | bytes) -> Document:
-    """Parse a JSON document (within the size and nesting limits) and decode it."""
+def loads(text: str | bytes, base: str | Path | None = None) -> Document:
+    """Parse a JSON document (within the size and nesting limits) and decode it; relative mesh
+    files are read from folder ``base`` (None: the working directory)."""
     raw = text.encode() if isinstance(text, str) else bytes(text)
     if len(raw) > MAX_BYTES:
         raise SceneDocumentError(f"(document): {len(raw)} bytes (limit {MAX_BYTES})")
@@ -82,7 +92,7 @@ def loads(text: str | bytes) -> Document:
         raise SceneDocumentError(f"(document): not UTF-8 text: {exc.reason} at byte {exc.start}") from None
     except RecursionError:  # pragma: no cover - _check_nesting keeps the parser far from it
         raise SceneDocumentError(f"(document): nested too deeply (limit {MAX_NESTING})") from None
-    return from_document(doc)
+    return from_document(doc, None if base is None else Path(base))
 
 
 def _no_constant(name: str) -> Any:
@@ -98,7 +108,10 @@ def save_scene(scene: Any, path: str | Path, camera: Any = None, settings: dict[
         camera: an :class:`OrbitCamera` or look-at :class:`Camera`, or None.
         settings: render settings (validated now), e.g. ``{"method": "newton"}``.
 
-    Returns the path. Loading it back gives the same generated GLSL, byte for byte.
+    Returns the path. Loading it back gives the same generated GLSL, byte for byte. A mesh
+    node read from a file is saved as a reference to it (relative to the document's folder
+    when it lies in it or below), with the file's SHA-256; one built from a trimesh is saved
+    with its triangles (see docs/scene-format.md).
 
     Example:
         >>> import tempfile, pathlib
@@ -108,8 +121,9 @@ def save_scene(scene: Any, path: str | Path, camera: Any = None, settings: dict[
         >>> doc.settings, sg.compile(doc.scene) == sg.compile(sg.sphere(1) | sg.box(1.5))
         ({'aa': 2}, True)
     """
-    text = dumps(scene, camera, settings)
-    return write_text_atomically(Path(path), text + "\n", "scene document")
+    path = Path(path)
+    text = dumps(scene, camera, settings, base=path.parent)
+    return write_text_atomically(path, text + "\n", "scene document")
 
 
 def load_scene(path: str | Path) -> Document:
@@ -120,7 +134,8 @@ def load_scene(path: str | Path) -> Document:
 
     Returns a :class:`Document`: ``.scene``, ``.camera`` (or None), ``.settings`` (a dict
     for ``render(**settings)``) and ``.params`` (name -> live parameter, to animate or drive
-    sliders). A malformed document raises one :class:`~sdfgl.errors.SceneDocumentError`
+    sliders). Mesh nodes' files are read relative to the document's folder and must not have
+    changed since it was saved. A malformed document raises one :class:`~sdfgl.errors.SceneDocumentError`
     naming the file and the JSON path, e.g. ``scene.children[2]: sphere: parameter 'radius'
     must be a number, got str 'x'``. Limits: MAX_BYTES, MAX_NESTING, MAX_NODES, MAX_ARRAY.
 
@@ -148,6 +163,6 @@ def load_scene(path: str | Path) -> Document:
     except SceneDocumentError as exc:
         raise SceneDocumentError(f"scene document '{p}': {exc}") from None
     try:
-        return loads(raw)
+        return loads(raw, base=p.parent)
     except SceneDocumentError as exc:
         raise SceneDocumentError(f"scene document '{p}': {exc}") from None

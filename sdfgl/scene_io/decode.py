@@ -12,6 +12,7 @@ from __future__ import annotations
 import inspect
 import math
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Any
 
 from ..errors import ParameterError, SceneDocumentError, SdfglError
@@ -20,6 +21,8 @@ from ..params import Live, Param
 from ..values.float32 import FLOAT32_MAX
 from .encode import signature
 from .limits import FORMAT, MAX_ARRAY, MAX_NODES, MAX_PARAMS, VERSION
+from .mesh_nodes import KIND as MESH_KIND
+from .mesh_nodes import decode_mesh
 
 TOP_KEYS = ("format", "version", "params", "nodes", "scene", "camera", "settings", "metadata")
 _TYPE = {bool: "a boolean", int: "a number", float: "a number", str: "a string", list: "an array",
@@ -47,10 +50,13 @@ class Document:
 
 
 class Decoder:
-    def __init__(self, doc: Any) -> None:
+    """Reads one document; relative mesh files are looked for in folder ``base`` (the
+    document's; None: the working directory)."""
+
+    def __init__(self, doc: Any, base: Path | None = None) -> None:
         if not isinstance(doc, dict):
             raise fail("(document)", f"expected an object, got {_what(doc)}")
-        self.doc = doc
+        self.doc, self.base = doc, base
         self.kinds = registry()
         self.params: dict[str, Param] = {}
         self.shared: dict[str, Any] = {}
@@ -182,6 +188,9 @@ class Decoder:
         self.count += 1
         if self.count > MAX_NODES:
             raise fail(p, f"more than {MAX_NODES} nodes in the document")
+        if kind == MESH_KIND:  # a file reference or inline triangles, not constructor arguments
+            target[idx] = decode_mesh(v, p, self.base, fail)
+            return
         sig = signature(cls)
         names = [k for k in v if k != "kind"]
         for k in names:
@@ -395,6 +404,7 @@ def _light(d: Any, path: str) -> Any:
     return light
 
 
-def from_document(doc: Any) -> Document:
-    """Decode a document dict (as json.load returns it) into scene, camera, settings and params."""
-    return Decoder(doc).document()
+def from_document(doc: Any, base: Path | None = None) -> Document:
+    """Decode a document dict (as json.load returns it) into scene, camera, settings and params;
+    relative mesh files are looked for in folder ``base`` (None: the working directory)."""
+    return Decoder(doc, base).document()

@@ -14,13 +14,17 @@ import math
 from functools import lru_cache
 from typing import Any
 
+from pathlib import Path
+
 import numpy as np
 
 from ..errors import ParameterError
+from ..nodes.mesh_field import MeshField
 from ..nodes.record import Recorded, recorded_in
 from ..nodes.traverse import walk
 from ..params import Live, Param
 from .limits import FORMAT, INLINE_HEIGHT, VERSION
+from .mesh_nodes import encode_mesh
 
 _MAX_VALUE_DEPTH = 16
 
@@ -42,9 +46,11 @@ def bound_arguments(obj: Recorded) -> dict[str, Any]:
 
 
 class Encoder:
-    """Writes one document: nodes, the parameter table and the shared-node table."""
+    """Writes one document: nodes, the parameter table and the shared-node table; mesh files
+    inside folder ``base`` (the document's) are referenced relative to it."""
 
-    def __init__(self) -> None:
+    def __init__(self, base: Path | None = None) -> None:
+        self.base = base
         self.params: dict[str, dict[str, Any]] = {}
         self._param_keys: dict[int, str] = {}
         self.table: dict[str, dict[str, Any]] = {}
@@ -66,6 +72,9 @@ class Encoder:
         return walk(root, lambda n: [c for v in bound_arguments(n).values() for c in recorded_in(v)])
 
     def _encode_node(self, node: Recorded, shared: bool) -> None:
+        if isinstance(node, MeshField):
+            self._place(node, encode_mesh(node, self.base), 1, shared)
+            return
         if not node.serializable:
             why = f": {node.unsaved_reason}" if node.unsaved_reason else ""
             raise ParameterError(f"{node.label()}: a {node.kind!r} node cannot be saved in a scene document{why}")
@@ -76,7 +85,10 @@ class Encoder:
         height = [0]
         for name, value in bound_arguments(node).items():
             out[name] = self._value(value, f"{node.kind}.{name}", height, 0)
-        h = height[0] + 1
+        self._place(node, out, height[0] + 1, shared)
+
+    def _place(self, node: Recorded, out: dict[str, Any], h: int, shared: bool) -> None:
+        """Keep ``out`` (of height ``h``) inline, or in the shared-node table if it is shared or deep."""
         if shared or h > INLINE_HEIGHT:
             ref = f"n{len(self.table) + 1}"
             self.table[ref] = out
@@ -192,9 +204,11 @@ def settings_to_dict(settings: dict[str, Any]) -> dict[str, Any]:
     return out
 
 
-def to_document(scene: Recorded, camera: Any = None, settings: dict[str, Any] | None = None) -> dict[str, Any]:
-    """The whole document: format, version, params, shared nodes, scene, camera, settings."""
-    enc = Encoder()
+def to_document(scene: Recorded, camera: Any = None, settings: dict[str, Any] | None = None,
+                base: Path | None = None) -> dict[str, Any]:
+    """The whole document: format, version, params, shared nodes, scene, camera, settings;
+    mesh files inside folder ``base`` (the document's) are referenced relative to it."""
+    enc = Encoder(base)
     root = enc.scene(scene)
     doc: dict[str, Any] = {"format": FORMAT, "version": VERSION}
     if enc.params:

@@ -66,13 +66,15 @@ class _Uniform:
 @dataclass
 class Job:
     """One compile: ``build`` makes the source (codegen runs off the window's thread too);
-    ``scene`` and ``origin`` set the uniforms of the warm-up draw; ``meta`` comes back."""
+    ``scene`` and ``origin`` set the uniforms of the warm-up draw; ``meta`` comes back.
+    ``mesh_build``, when the view has raster meshes, makes the source of their program."""
 
     token: int
     build: Callable[[], ShaderSource]
     scene: Any = None
     origin: Any = None
     meta: Any = None
+    mesh_build: Callable[[], ShaderSource] | None = None
 
 
 @dataclass
@@ -89,10 +91,10 @@ class Result:
     timings: dict[str, float] = field(default_factory=dict)
 
 
-def make_source(job: Job) -> ShaderSource:
-    """Run the job's codegen; any failure becomes one SdfglError (the overlay's message)."""
+def make_source(build: Callable[[], ShaderSource]) -> ShaderSource:
+    """Run a job's codegen ``build``; any failure becomes one SdfglError (the overlay's message)."""
     try:
-        return job.build()
+        return build()
     except SdfglError:
         raise
     except Exception as exc:  # codegen of a user's scene: report, never kill the thread
@@ -107,6 +109,17 @@ def link(gl: rawgl.GL, source: ShaderSource, ctx: moderngl.Context) -> RawProgra
     except rawgl.GLError as exc:
         raise SdfglError(explain_compile_error(source, str(exc))) from None
     return RawProgram(gl, glo, gl.uniforms(glo), ctx)
+
+
+def link_raster(source: ShaderSource, ctx: moderngl.Context) -> moderngl.Program:
+    """Link the raster meshes' program of ``source`` in ``ctx`` (moderngl: the raster pass draws
+    vertex buffers through it); SdfglError with the driver's log."""
+    from ..render import RASTER_VERTEX
+    try:
+        vertex = of_source(source.text).convert(shaderlib.read(RASTER_VERTEX))
+        return ctx.program(vertex_shader=vertex, fragment_shader=source.text)
+    except moderngl.Error as exc:
+        raise SdfglError(explain_compile_error(source, str(exc))) from None
 
 
 def stamp(res: Result, t0: float, **phases: float) -> None:

@@ -27,10 +27,12 @@ if TYPE_CHECKING:  # pragma: no cover
     from .window import Viewer
 
 
-def _codegen(scene: Node, settings: Settings, origin: np.ndarray, projection: str, highlight: Node | None) -> Any:
-    """The window's shader source (run in a render thread); any failure becomes one overlay message."""
+def _codegen(scene: Node, settings: Settings, origin: np.ndarray, projection: str, highlight: Node | None,
+             target: str = "render") -> Any:
+    """The window's shader source for ``target`` (run in a render thread); any failure becomes one
+    overlay message."""
     try:
-        return generate(scene, settings, origin, projection=projection, highlight=highlight)
+        return generate(scene, settings, origin, target=target, projection=projection, highlight=highlight)
     except SdfglError:
         raise
     except Exception as exc:  # noqa: BLE001 - a user's scene may raise anything while generating code
@@ -86,7 +88,11 @@ class Progressive:
         self.token += 1
         meta = (scene, dict(settings), why, origin, file_settings)
         self.pending = meta
-        job = Job(self.token, lambda: _codegen(scene, st, origin, projection, hl), scene, origin, meta)
+        if v.meshes:  # the march stops at the raster meshes' depth; their own program is built beside it
+            job = Job(self.token, lambda: _codegen(scene, st, origin, projection, hl, "render_over_mesh"), scene,
+                      origin, meta, lambda: _codegen(scene, st, origin, projection, None, "raster_mesh"))
+        else:
+            job = Job(self.token, lambda: _codegen(scene, st, origin, projection, hl), scene, origin, meta)
         with self.exchange.cond:
             self.exchange.job = job  # a queued older request is dropped: the newest wins
             self.exchange.cond.notify_all()
@@ -158,7 +164,7 @@ class Progressive:
             origin = shader_origin(scene, v.camera.eye)  # parameters with no recompile (else it is fixed)
         self.version += 1
         spec = FrameSpec(self.version, lane, key, source, scene, origin, copy.deepcopy(v.camera), view[2:],
-                         moving, v.max_samples, v.target_ms, v.adaptive)
+                         moving, v.max_samples, v.target_ms, v.adaptive, v.meshes)
         keep = {key} | ({self.good[0][2]} if self.good and self.good[0] else set())
         with self.exchange.cond:
             self.exchange.spec = spec

@@ -38,9 +38,10 @@ from ..errors import SdfglError
 from ..gl.cache import default_budget
 from ..gl.data import DataTextures
 from ..nodes.base import Node
-from ..render import camera_uniforms, scene_uniforms
+from ..gl.raster_pass import RasterImages
+from ..render import bind_raster_images, camera_uniforms, raster_pass, scene_uniforms
 from . import rawgl
-from .programs import Job, RawProgram, Result, link, make_source, stamp
+from .programs import Job, RawProgram, Result, link, link_raster, make_source, stamp
 
 LANES = 2
 CACHE_SIZE = 12          # warm programs kept per lane, for instant toggling back
@@ -80,6 +81,7 @@ class FrameSpec:
     max_samples: int
     target_ms: float
     adaptive: bool
+    meshes: tuple[Any, ...] = ()   # raster meshes (sg.raster), drawn by the raster pass before the march
 
 
 class DisplayBuffer:
@@ -163,6 +165,9 @@ class Lane:
         if not self._hidden:
             raise SdfglError("glfw could not create a render thread's shared context")
         self.warm: OrderedDict[str, RawProgram] = OrderedDict()  # linked here and drawn once here
+        # program key -> the raster meshes' program that goes with it (views with meshes)
+        self.raster_programs: dict[str, tuple[ShaderSource, moderngl.Program]] = {}
+        self._raster: tuple[tuple[int, tuple[int, int]], RasterImages] | None = None  # (spec version, size), images
         self.failed = ""
         self._ready = threading.Event()
         self._drawn = -1          # version of the spec the targets hold
@@ -232,9 +237,10 @@ class Lane:
         buf.release()
 
     def _teardown(self) -> None:
-        for prog in self.warm.values():
-            prog.release()
-        self.warm.clear()
+        for text in list(self.warm):
+            self._release_program(text)
+        if self._raster is not None:
+            self._raster[1].release()
         self.data.clear()
         for t in (self._accum, self._low, *self._warm_targets):
             if t is not None:
@@ -292,7 +298,7 @@ class Lane:
         t0 = time.perf_counter()
         res = Result(job.token, job.meta)
         try:
-            source = make_source(job)
+            source = make_source(job.build)
             res.source = source
             t1 = time.perf_counter()
             with ex.cond:
@@ -303,15 +309,23 @@ class Lane:
                 stamp(res, t0, codegen_s=t1 - t0)
             else:
                 prog = link(self.gl, source, self.ctx)
-                t2 = time.perf_counter()
+                raster = None
                 try:
+                    if job.mesh_build is not None:
+                        mesh_source = make_source(job.mesh_build)
+                        raster = (mesh_source, link_raster(mesh_source, self.ctx))
+                    t2 = time.perf_counter()
                     self._warm_up(prog, source, job)
                 except Exception:
                     prog.release()
+                    if raster is not None:
+                        raster[1].release()
                     raise
                 t3 = time.perf_counter()
                 with ex.cond:
                     self.warm[source.text] = prog
+                    if raster is not None:
+                        self.raster_programs[source.text] = raster
                     self._trim()
                 res.lane, res.compiled = self.index, True
                 stamp(res, t0, codegen_s=t1 - t0, link_s=t2 - t1, warm_s=t3 - t2)
@@ -339,7 +353,31 @@ class Lane:
             if len(self.warm) <= CACHE_SIZE:
                 break
             if text not in keep:
-                self.warm.pop(text).release()
+                self._release_program(text)
+
+    def _release_program(self, text: str) -> None:
+        """Release the warm program ``text`` and its raster meshes' program, if any."""
+        self.warm.pop(text).release()
+        raster = self.raster_programs.pop(text, None)
+        if raster is not None:
+            raster[1].release()
+
+    def _bind_meshes(self, spec: FrameSpec, prog: RawProgram, size: tuple[int, int]) -> None:
+        """Draw the spec's raster meshes at ``size`` (once per spec and size: they do not take the
+        samples' jitter) and bind their textures for the march ``prog``."""
+        key = (spec.version, size)
+        if self._raster is None or self._raster[0] != key:
+            if self._raster is not None:
+                self._raster[1].release()
+                self._raster = None
+            found = self.raster_programs.get(spec.key)
+            if found is None:
+                raise SdfglError("render: the raster meshes' program is not in this render thread's cache")
+            mesh_source, mesh_prog = found
+            self._raster = key, raster_pass(mesh_prog, mesh_source, spec.scene, spec.camera, size, spec.origin,
+                                            spec.meshes, self.data)
+        images = self._raster[1]
+        bind_raster_images(prog, spec.source, images.depth_texture, images.color_texture)
 
     # -- frames (active lane) -------------------------------------------------------------
     def _draw(self, prog: RawProgram, target: _Target, jitter: tuple[float, float], blend: bool,
@@ -388,6 +426,8 @@ class Lane:
                     self._low.release()
                 self._low = _Target(self.ctx, spec.size, "f1")  # room for any scale of this view
             camera_uniforms(prog, spec.camera, size, spec.origin, (0.0, 0.0))
+            if spec.meshes:
+                self._bind_meshes(spec, prog, size)
             ms = self._draw(prog, self._low, (0.0, 0.0), False, size)
             if spec.adaptive:  # area scales with scale^2; damp the correction
                 want = scale * math.sqrt(spec.target_ms / max(ms, 1e-3))
@@ -403,6 +443,8 @@ class Lane:
             if self._samples == 0:
                 self._accum.fbo.clear(0.0, 0.0, 0.0, 0.0)
             camera_uniforms(prog, spec.camera, spec.size, spec.origin, r2(self._samples))
+            if spec.meshes:
+                self._bind_meshes(spec, prog, spec.size)
             ms = self._draw(prog, self._accum, r2(self._samples), True)
             self._samples += 1
             source, weight, samples = self._accum, 1.0 / self._samples, self._samples

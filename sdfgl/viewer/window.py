@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import time
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Sequence
 
 import glfw
 import moderngl
@@ -23,6 +23,8 @@ from ..camera import Camera, OrbitCamera
 from ..errors import ContextError, SdfglError
 from ..gl.memory import limit_malloc_arenas
 from ..nodes.base import Node
+from ..raster import RasterMesh
+from ..render import checked_meshes
 from ..scenefile_process import DEFAULT_TIMEOUT_S
 from ..settings import Settings
 from . import panel as panel_mod
@@ -50,6 +52,9 @@ class Viewer:
     ``live`` (a :class:`~sdfgl.live.LiveControl`) lets MIDI and OSC messages move the live
     parameters, with the bindings of the file ``bindings`` (names checked before the window opens).
 
+    ``meshes`` (made by :func:`sdfgl.raster`) are drawn by rasterisation and composited with the
+    scene by depth, by the same raster pass as ``sg.render(..., meshes=...)``.
+
     ``dirty`` says the render threads need a new frame spec (camera, parameters, size or
     program changed), ``repaint`` that the window needs presenting again (overlay, panel)."""
 
@@ -58,7 +63,8 @@ class Viewer:
                  max_samples: int = 16, state_file: str | Path | None = None,
                  screenshot_dir: str | Path = ".", panel: bool | None = None,
                  load_timeout: float = DEFAULT_TIMEOUT_S, live: "LiveControl | None" = None,
-                 bindings: str | Path | None = None, **settings: Any) -> None:
+                 bindings: str | Path | None = None, meshes: Sequence[RasterMesh] = (), **settings: Any) -> None:
+        self.meshes = checked_meshes(meshes)
         self.path = Path(path) if path else None
         self.watch: SceneFileWatch | None = None
         if self.path is not None:
@@ -399,6 +405,10 @@ class Viewer:
         glfw.terminate()
 
 
-def show(scene: Node, camera: Camera | None = None, size: tuple[int, int] = (960, 540), **settings: Any) -> None:
-    """Open a window on ``scene`` (see KEYS_HELP for the controls); returns when it is closed."""
-    Viewer(scene, camera, size=size, **settings).run()
+def show(scene: Node, camera: Camera | None = None, size: tuple[int, int] = (960, 540),
+         meshes: Sequence[RasterMesh] = (), **settings: Any) -> None:
+    """Open a window on ``scene`` (see KEYS_HELP for the controls); returns when it is closed.
+
+    ``meshes`` (made by :func:`sdfgl.raster`) are drawn by rasterisation in the same view, as in
+    ``sg.render(scene, meshes=...)``."""
+    Viewer(scene, camera, size=size, meshes=meshes, **settings).run()
