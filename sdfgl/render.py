@@ -22,10 +22,11 @@ from .errors import ParameterError, SdfglError
 from .gl.cache import CacheBudget, default_budget
 from .gl.context import CurrentContext, GLThread, describe, gl_thread
 from .gl.buffer_texture import BufferTexture
+from .gl.coarse_pass import draw_coarse
 from .gl.data import DataTextures
 from .gl.programs import ProgramCache
 from .gl.raster_pass import draw_meshes, view_range
-from .gl.targets import TargetCache
+from .gl.targets import TargetCache, Targets
 from .nodes.base import Node
 from .raster import RasterMesh
 from .settings import OUTPUTS, Settings
@@ -261,7 +262,7 @@ class Renderer:
         self.data = DataTextures(self._limits)
         self.targets = TargetCache(self._limits)
         self._epoch = [self.gl.epoch]
-        self._last_source: tuple | None = None  # (key, scene, source): frames of one scene skip codegen
+        self._last_source: tuple | None = None  # (key, scene, source, coarse source): frames of one scene skip codegen
         if isinstance(self.gl, GLThread):  # a dropped headless renderer frees its GL objects
             fin = weakref.finalize(self, self.gl.submit, _free_caches, self.gl, self._epoch, self.programs,
                                    self.data, self.targets)
@@ -319,19 +320,52 @@ class Renderer:
         t0 = time.perf_counter()
         if meshes:
             return self._render_meshes(scene, cam, wh, st, origin, meshes, t0)
-        key = (id(scene), st, origin_key(scene, origin), cam.projection)  # nodes are immutable, params are uniforms:
-        last = self._last_source                  # the same scene, settings and origin give the same source
-        if last is not None and last[0] == key and last[1] is scene:
-            source = last[2]
-        else:
-            source = generate(scene, st, origin, projection=cam.projection)
-            self._last_source = (key, scene, source)
+        source, coarse = self._sources(scene, st, origin, cam.projection)
         origin_uniforms(source, scene, origin)  # refuses an origin float32 cannot hold, before drawing
         t1 = time.perf_counter()
-        res = self.run(self._draw, scene, cam, wh, st, source, origin)
+        res = self.run(self._draw, scene, cam, wh, st, source, origin, None, coarse)
         res.timings["codegen_s"] = t1 - t0
         res.timings["total_s"] = time.perf_counter() - t0
         return res
+
+    def _sources(self, scene: Node, st: Settings, origin: np.ndarray,
+                 projection: str) -> tuple[ShaderSource, ShaderSource | None]:
+        """The image's source and its coarse pass's (None where it has none), kept for the next frame."""
+        key = (id(scene), st, origin_key(scene, origin), projection)  # nodes are immutable, params are uniforms:
+        last = self._last_source                  # the same scene, settings and origin give the same source
+        if last is not None and last[0] == key and last[1] is scene:
+            return last[2], last[3]
+        source = generate(scene, st, origin, projection=projection)
+        coarse = None
+        if source.coarse_tile:
+            coarse = generate(scene, dataclasses.replace(st, debug=None, outputs=("color",)), origin,
+                              target="coarse", projection=projection)
+        self._last_source = (key, scene, source, coarse)
+        return source, coarse
+
+    def coarse_starts(self, scene: Node, camera: Camera | None = None, size: Sequence[int] = (640, 480),
+                      **settings: object) -> np.ndarray | None:
+        """The coarse pass of ``render(scene, camera, size, **settings)`` alone: per tile of pixels
+        (``Settings.coarse`` a side; row 0 on top) the float32 ray parameter before which no surface
+        lies on any of the tile's rays (1e38 where the tile is proven empty), or None where that
+        render has no coarse pass."""
+        st = Settings.build(**settings).resolved(scene.exactness)
+        wh = checked_size(size)
+        cam = camera if camera is not None else OrbitCamera.framing(*scene.bounds, aspect=wh[0] / wh[1])
+        origin = shader_origin(scene, cam.eye)
+        check_float32_camera(cam, origin)
+        source, coarse = self._sources(scene, st, origin, cam.projection)
+        if coarse is None:
+            return None
+        return self.run(lambda: self._coarse(scene, cam, wh, coarse, origin).read("start")[..., 0])
+
+    def _coarse(self, scene: Node, cam: Camera, wh: tuple[int, int], coarse: ShaderSource,
+                origin: np.ndarray) -> Targets:
+        """Draw the coarse pass of an image of size ``wh``; its tile target."""
+        prog, vao = self.programs.entry(coarse)
+        camera_uniforms(prog, cam, wh, origin)
+        scene_uniforms(prog, coarse, scene, origin, self.data)
+        return draw_coarse(self.ctx, vao, self.targets, wh, coarse.coarse_tile)
 
     def _render_meshes(self, scene: Node, cam: Camera, wh: tuple[int, int], st: Settings, origin: np.ndarray,
                        meshes: tuple[RasterMesh, ...], t0: float) -> RenderResult:
@@ -377,11 +411,16 @@ class Renderer:
         return res
 
     def _draw(self, scene: Node, cam: Camera, wh: tuple[int, int], st: Settings, source: ShaderSource,
-              origin: np.ndarray, meshes: tuple[moderngl.Texture, moderngl.Texture] | None = None) -> RenderResult:
+              origin: np.ndarray, meshes: tuple[moderngl.Texture, moderngl.Texture] | None = None,
+              coarse: ShaderSource | None = None) -> RenderResult:
         ctx = self.ctx
         check_size(ctx, wh)
+        t2 = time.perf_counter()
+        starts = None if coarse is None else self._coarse(scene, cam, wh, coarse, origin)
+        coarse_compile_s = 0.0 if coarse is None else self.programs.last_compile_s
+        t_coarse = time.perf_counter() - t2 - coarse_compile_s
         prog, vao = self.programs.entry(source)
-        compile_s = self.programs.last_compile_s
+        compile_s = self.programs.last_compile_s + coarse_compile_s
         try:
             targets = self.targets.get(ctx, wh, st.outputs)
         except moderngl.Error as exc:
@@ -394,6 +433,10 @@ class Renderer:
             for unit, (name, tex) in enumerate(zip(("uMeshDepth", "uMeshColor"), meshes), start=first):
                 tex.use(unit)
                 _set_uniform(prog, name, unit)
+        if starts is not None:  # the coarse pass's tile starts, on the unit after the scene's data
+            unit = DATA_UNIT + len(source.data)
+            starts.textures["start"].use(unit)
+            _set_uniform(prog, "uCoarseStart", unit)
         targets.fbo.use()
         ctx.viewport = (0, 0, *wh)
         t2 = time.perf_counter()
@@ -410,7 +453,7 @@ class Renderer:
             res.normal = targets.read("normal", 3)
         if "steps" in st.outputs:
             res.steps = targets.read("steps")[..., 0].astype(np.int32)
-        res.timings = {"compile_s": compile_s, "draw_s": t3 - t2, "read_s": time.perf_counter() - t3}
+        res.timings = {"compile_s": compile_s, "draw_s": t3 - t2 + t_coarse, "read_s": time.perf_counter() - t3}
         return res
 
 
