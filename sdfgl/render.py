@@ -336,10 +336,7 @@ class Renderer:
         if last is not None and last[0] == key and last[1] is scene:
             return last[2], last[3]
         source = generate(scene, st, origin, projection=projection)
-        coarse = None
-        if source.coarse_tile:
-            coarse = generate(scene, dataclasses.replace(st, debug=None, outputs=("color",)), origin,
-                              target="coarse", projection=projection)
+        coarse = coarse_source(scene, source, st, origin, projection)
         self._last_source = (key, scene, source, coarse)
         return source, coarse
 
@@ -357,11 +354,12 @@ class Renderer:
         source, coarse = self._sources(scene, st, origin, cam.projection)
         if coarse is None:
             return None
-        return self.run(lambda: self._coarse(scene, cam, wh, coarse, origin).read("start")[..., 0])
+        return self.run(lambda: self.coarse_pass(scene, cam, wh, coarse, origin).read("start")[..., 0])
 
-    def _coarse(self, scene: Node, cam: Camera, wh: tuple[int, int], coarse: ShaderSource,
-                origin: np.ndarray) -> Targets:
-        """Draw the coarse pass of an image of size ``wh``; its tile target."""
+    def coarse_pass(self, scene: Node, cam: Camera, wh: tuple[int, int], coarse: ShaderSource,
+                    origin: np.ndarray) -> Targets:
+        """Draw the coarse pass ``coarse`` (:func:`coarse_source`) of an image of size ``wh``;
+        its tile target, for :func:`bind_coarse`. Call on the context's thread."""
         prog, vao = self.programs.entry(coarse)
         camera_uniforms(prog, cam, wh, origin)
         scene_uniforms(prog, coarse, scene, origin, self.data)
@@ -416,7 +414,7 @@ class Renderer:
         ctx = self.ctx
         check_size(ctx, wh)
         t2 = time.perf_counter()
-        starts = None if coarse is None else self._coarse(scene, cam, wh, coarse, origin)
+        starts = None if coarse is None else self.coarse_pass(scene, cam, wh, coarse, origin)
         coarse_compile_s = 0.0 if coarse is None else self.programs.last_compile_s
         t_coarse = time.perf_counter() - t2 - coarse_compile_s
         prog, vao = self.programs.entry(source)
@@ -433,10 +431,8 @@ class Renderer:
             for unit, (name, tex) in enumerate(zip(("uMeshDepth", "uMeshColor"), meshes), start=first):
                 tex.use(unit)
                 _set_uniform(prog, name, unit)
-        if starts is not None:  # the coarse pass's tile starts, on the unit after the scene's data
-            unit = DATA_UNIT + len(source.data)
-            starts.textures["start"].use(unit)
-            _set_uniform(prog, "uCoarseStart", unit)
+        if starts is not None:
+            bind_coarse(prog, source, starts)
         targets.fbo.use()
         ctx.viewport = (0, 0, *wh)
         t2 = time.perf_counter()
@@ -455,6 +451,24 @@ class Renderer:
             res.steps = targets.read("steps")[..., 0].astype(np.int32)
         res.timings = {"compile_s": compile_s, "draw_s": t3 - t2 + t_coarse, "read_s": time.perf_counter() - t3}
         return res
+
+
+def coarse_source(scene: Node, source: ShaderSource, st: Settings, origin: np.ndarray,
+                  projection: str = "perspective") -> ShaderSource | None:
+    """The coarse pass of the image ``source`` (generated from ``scene`` and resolved settings
+    ``st``), or None where the image has none."""
+    if not source.coarse_tile:
+        return None
+    return generate(scene, dataclasses.replace(st, debug=None, outputs=("color",)), origin, target="coarse",
+                    projection=projection)
+
+
+def bind_coarse(prog: moderngl.Program, source: ShaderSource, starts: Targets) -> None:
+    """Bind the coarse pass's tile starts for the image ``prog`` (of ``source``) on the unit
+    after the scene's data. Call on the context's thread."""
+    unit = DATA_UNIT + len(source.data)
+    starts.textures["start"].use(unit)
+    _set_uniform(prog, "uCoarseStart", unit)
 
 
 _default: Renderer | None = None
