@@ -101,15 +101,19 @@ class FrameTimer:
     def _draw(self, v: Variant) -> float:
         prog, origin, source, coarse = v.result["_prog"]
         t0 = time.perf_counter()
-        if coarse is not None:  # the coarse pass, as render() draws it first
-            bind_coarse(prog, source, self.r.coarse_pass(v.node, v.camera, self.size, coarse, origin))
+        starts = None if coarse is None else self.r.coarse_pass(v.node, v.camera, self.size, coarse, origin)
+        if starts is not None:  # the coarse pass, as render() draws it first
+            bind_coarse(prog, source, starts)
         camera_uniforms(prog, v.camera, self.size, origin)
         scene_uniforms(prog, source, v.node, origin)
         self.fbo.use()
         self.r.ctx.viewport = (0, 0, *self.size)
         self.r.vao(prog).render(moderngl.TRIANGLES, vertices=3)
         self.r.ctx.finish()
-        return time.perf_counter() - t0
+        dt = time.perf_counter() - t0
+        if starts is not None:
+            starts.release()
+        return dt
 
 
 def time_interleaved(timer: FrameTimer, variants: Sequence[Variant], frames: int, warmup: int,

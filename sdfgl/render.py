@@ -354,16 +354,25 @@ class Renderer:
         source, coarse = self._sources(scene, st, origin, cam.projection)
         if coarse is None:
             return None
-        return self.run(lambda: self.coarse_pass(scene, cam, wh, coarse, origin).read("start")[..., 0])
+        return self.run(self._read_starts, scene, cam, wh, coarse, origin)
+
+    def _read_starts(self, scene: Node, cam: Camera, wh: tuple[int, int], coarse: ShaderSource,
+                     origin: np.ndarray) -> np.ndarray:
+        starts = self.coarse_pass(scene, cam, wh, coarse, origin)
+        try:
+            return starts.read("start")[..., 0]
+        finally:
+            starts.release()
 
     def coarse_pass(self, scene: Node, cam: Camera, wh: tuple[int, int], coarse: ShaderSource,
                     origin: np.ndarray) -> Targets:
         """Draw the coarse pass ``coarse`` (:func:`coarse_source`) of an image of size ``wh``;
-        its tile target, for :func:`bind_coarse`. Call on the context's thread."""
+        its tile target, for :func:`bind_coarse`, to release once the image is drawn. Call on the
+        context's thread."""
         prog, vao = self.programs.entry(coarse)
         camera_uniforms(prog, cam, wh, origin)
         scene_uniforms(prog, coarse, scene, origin, self.data)
-        return draw_coarse(self.ctx, vao, self.targets, wh, coarse.coarse_tile)
+        return draw_coarse(self.ctx, vao, wh, coarse.coarse_tile)
 
     def _render_meshes(self, scene: Node, cam: Camera, wh: tuple[int, int], st: Settings, origin: np.ndarray,
                        meshes: tuple[RasterMesh, ...], t0: float) -> RenderResult:
@@ -411,14 +420,27 @@ class Renderer:
     def _draw(self, scene: Node, cam: Camera, wh: tuple[int, int], st: Settings, source: ShaderSource,
               origin: np.ndarray, meshes: tuple[moderngl.Texture, moderngl.Texture] | None = None,
               coarse: ShaderSource | None = None) -> RenderResult:
-        ctx = self.ctx
-        check_size(ctx, wh)
-        t2 = time.perf_counter()
+        check_size(self.ctx, wh)
+        t0 = time.perf_counter()
         starts = None if coarse is None else self.coarse_pass(scene, cam, wh, coarse, origin)
         coarse_compile_s = 0.0 if coarse is None else self.programs.last_compile_s
-        t_coarse = time.perf_counter() - t2 - coarse_compile_s
+        coarse_s = time.perf_counter() - t0 - coarse_compile_s
+        try:
+            res = self._draw_image(scene, cam, wh, st, source, origin, meshes, starts)
+        finally:
+            if starts is not None:
+                starts.release()
+        res.timings["compile_s"] += coarse_compile_s
+        res.timings["draw_s"] += coarse_s
+        return res
+
+    def _draw_image(self, scene: Node, cam: Camera, wh: tuple[int, int], st: Settings, source: ShaderSource,
+                    origin: np.ndarray, meshes: tuple[moderngl.Texture, moderngl.Texture] | None,
+                    starts: Targets | None) -> RenderResult:
+        """The image's draw (after the coarse pass, whose tile ``starts`` it reads) and its read-back."""
+        ctx = self.ctx
         prog, vao = self.programs.entry(source)
-        compile_s = self.programs.last_compile_s + coarse_compile_s
+        compile_s = self.programs.last_compile_s
         try:
             targets = self.targets.get(ctx, wh, st.outputs)
         except moderngl.Error as exc:
@@ -449,7 +471,7 @@ class Renderer:
             res.normal = targets.read("normal", 3)
         if "steps" in st.outputs:
             res.steps = targets.read("steps")[..., 0].astype(np.int32)
-        res.timings = {"compile_s": compile_s, "draw_s": t3 - t2 + t_coarse, "read_s": time.perf_counter() - t3}
+        res.timings = {"compile_s": compile_s, "draw_s": t3 - t2, "read_s": time.perf_counter() - t3}
         return res
 
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import moderngl
 
-from .targets import TargetCache, Targets
+from .targets import Targets
 
 START = ("start",)  # the coarse pass's one output: a float per tile
 
@@ -14,12 +14,17 @@ def coarse_size(size: tuple[int, int], tile: int) -> tuple[int, int]:
     return -(-size[0] // tile), -(-size[1] // tile)
 
 
-def draw_coarse(ctx: moderngl.Context, vao: moderngl.VertexArray, targets: TargetCache, size: tuple[int, int],
-                tile: int) -> Targets:
+def draw_coarse(ctx: moderngl.Context, vao: moderngl.VertexArray, size: tuple[int, int], tile: int) -> Targets:
     """Draw the coarse pass (``vao``'s program, its uniforms set for the full image of ``size``)
-    into the cached tile target, and return that target; call on the context's thread."""
-    target = targets.get(ctx, coarse_size(size, tile), START)
-    target.fbo.use()
-    ctx.viewport = (0, 0, *target.size)
-    vao.render(moderngl.TRIANGLES, vertices=3)
+    into a fresh tile target and return it; the caller releases it once the image is drawn (it
+    is small, and kept out of the target cache, which could release it before). Call on the
+    context's thread."""
+    target = Targets(ctx, coarse_size(size, tile), START)
+    try:
+        target.fbo.use()
+        ctx.viewport = (0, 0, *target.size)
+        vao.render(moderngl.TRIANGLES, vertices=3)
+    except BaseException:
+        target.release()
+        raise
     return target
