@@ -81,9 +81,9 @@ def detail_function(job: Job) -> None:
 def march(job: Job) -> None:
     """The hit refinement, the marcher the method names (or the closed form) and the normal."""
     b, settings = job.b, job.settings
+    b.add_file("stages/refine")
     if job.coarse:
         b.add_file("stages/coarse_start")
-    b.add_file("stages/refine")
     analytic = settings.analytic and analytic_shape(job.scene) is not None
     if not analytic and settings.method in ("newton", "forward_newton"):
         b.add_file("stages/ray_derivative")
