@@ -6,6 +6,7 @@
 // for parallel rays, the distance between their origins.
 #define CONE_STEPS 128       // map() calls a cone may take
 #define CONE_CLOSE 0.5       // a cone stops once its step falls below this share of its radius
+#define CONE_BACK 2.0         // a tile's start lies this many cone radii before where the cone stopped
 #define EMPTY_TILE 1.0e38    // the start of a tile whose cone crossed the scene without meeting it
 
 struct Cone {
@@ -46,22 +47,22 @@ float boxGap(vec3 p) {
 // sphere tracing along the axis by the lower bound max(map / LIPSCHITZ, boxGap) of the
 // distance to such a surface, less the cone's radius. Each step's ball holds every ray's
 // stretch from t to the next t, so the way is proven for all of them; EMPTY_TILE where the
-// cone passed every point of the box (or MAX_DIST) first. The start is the cone's last t but
-// one: the rays then march their own approach to the surface (from where the cone stopped, a
-// ray's first samples lie near it with no slope yet, and a grazing ray's settling may take
-// another root).
+// cone passed every point of the box (or MAX_DIST) first. The start lies CONE_BACK cone
+// radii before where the cone stopped (at most one step back): the rays then march their own
+// approach to the surface (from where the cone stopped, a ray's first samples lie near it
+// with no slope yet, and a grazing ray's settling may take another root).
 float coneStart(Cone c) {
     vec3 centre = 0.5 * (BOUNDS_LO + BOUNDS_HI);
     float far = min(length(c.ro - centre) + c.width + 0.5 * length(BOUNDS_HI - BOUNDS_LO), MAX_DIST);
     float t = 0.0;
-    float back = 0.0;  // the t before the last step
+    float back = 0.0;  // t before the last step
     for (int i = uZero; i < CONE_STEPS; i++) {
         vec3 p = c.ro + c.rd * t;
         float need = coneRadius(c, t);
         float r = boxGap(p);
         if (r <= (1.0 + CONE_CLOSE) * need) r = max(r, map(p) / LIPSCHITZ);
         float step = r - need;
-        if (step < CONE_CLOSE * need) return back;
+        if (step < CONE_CLOSE * need) return max(back, t - CONE_BACK * need);
         back = t;
         t += step;
         if (t >= far) return EMPTY_TILE;
