@@ -33,7 +33,7 @@ from .gl.cache import CacheBudget
 from .gl.context import describe
 from .nodes.base import IMPLICIT, Node
 from .reference import Reference, compare, trace
-from .render import Renderer, camera_uniforms, scene_uniforms, shader_origin
+from .render import Renderer, bind_coarse, camera_uniforms, coarse_source, scene_uniforms, shader_origin
 from .settings import DISTANCE_METHODS, Settings
 
 
@@ -90,8 +90,9 @@ class FrameTimer:
         if v.source is not None:
             source = v.source(source)
         prog = self.r.programs.get(source)
+        coarse = coarse_source(v.node, source, st.resolved(v.node.exactness), origin, v.camera.projection)
         t1 = time.perf_counter()
-        v.result["_prog"] = (prog, origin, source)
+        v.result["_prog"] = (prog, origin, source, coarse)
         first = self.draw(v)
         return t1 - t0, first
 
@@ -100,15 +101,21 @@ class FrameTimer:
         return self.r.run(self._draw, v)
 
     def _draw(self, v: Variant) -> float:
-        prog, origin, source = v.result["_prog"]
+        prog, origin, source, coarse = v.result["_prog"]
+        t0 = time.perf_counter()
+        starts = None if coarse is None else self.r.coarse_pass(v.node, v.camera, self.size, coarse, origin)
+        if starts is not None:  # the coarse pass, as render() draws it first
+            bind_coarse(prog, source, starts)
         camera_uniforms(prog, v.camera, self.size, origin)
         scene_uniforms(prog, source, v.node, origin)
         self.fbo.use()
         self.r.ctx.viewport = (0, 0, *self.size)
-        t0 = time.perf_counter()
         self.r.vao(prog).render(moderngl.TRIANGLES, vertices=3)
         self.r.ctx.finish()
-        return time.perf_counter() - t0
+        dt = time.perf_counter() - t0
+        if starts is not None:
+            starts.release()
+        return dt
 
 
 def time_interleaved(timer: FrameTimer, variants: Sequence[Variant], frames: int, warmup: int,

@@ -63,7 +63,7 @@ def handwritten(name: str) -> Callable[[ShaderSource], ShaderSource]:
         end = src.text.index(shaderlib.read("stages/refine").split("\n")[0])
         text = src.text[:start] + code + "\n" + src.text[end:]
         return ShaderSource(text, ("(hand-written)",) * (text.count("\n") + 1), src.params, src.live_bounds,
-                            src.data)
+                            src.data, coarse_tile=src.coarse_tile)  # the same coarse pass before it
     return rewrite
 
 

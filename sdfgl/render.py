@@ -22,10 +22,11 @@ from .errors import ParameterError, SdfglError
 from .gl.cache import CacheBudget, default_budget
 from .gl.context import CurrentContext, GLThread, describe, gl_thread
 from .gl.buffer_texture import BufferTexture
+from .gl.coarse_pass import draw_coarse
 from .gl.data import DataTextures
 from .gl.programs import ProgramCache
 from .gl.raster_pass import RasterImages, draw_meshes, view_range
-from .gl.targets import TargetCache
+from .gl.targets import TargetCache, Targets
 from .nodes.base import Node
 from .raster import RasterMesh
 from .settings import OUTPUTS, Settings
@@ -261,7 +262,7 @@ class Renderer:
         self.data = DataTextures(self._limits)
         self.targets = TargetCache(self._limits)
         self._epoch = [self.gl.epoch]
-        self._last_source: tuple | None = None  # (key, scene, source): frames of one scene skip codegen
+        self._last_source: tuple | None = None  # (key, scene, source, coarse source): frames of one scene skip codegen
         if isinstance(self.gl, GLThread):  # a dropped headless renderer frees its GL objects
             fin = weakref.finalize(self, self.gl.submit, _free_caches, self.gl, self._epoch, self.programs,
                                    self.data, self.targets)
@@ -319,19 +320,59 @@ class Renderer:
         t0 = time.perf_counter()
         if meshes:
             return self._render_meshes(scene, cam, wh, st, origin, meshes, t0)
-        key = (id(scene), st, origin_key(scene, origin), cam.projection)  # nodes are immutable, params are uniforms:
-        last = self._last_source                  # the same scene, settings and origin give the same source
-        if last is not None and last[0] == key and last[1] is scene:
-            source = last[2]
-        else:
-            source = generate(scene, st, origin, projection=cam.projection)
-            self._last_source = (key, scene, source)
+        source, coarse = self._sources(scene, st, origin, cam.projection)
         origin_uniforms(source, scene, origin)  # refuses an origin float32 cannot hold, before drawing
         t1 = time.perf_counter()
-        res = self.run(self._draw, scene, cam, wh, st, source, origin)
+        res = self.run(self._draw, scene, cam, wh, st, source, origin, None, coarse)
         res.timings["codegen_s"] = t1 - t0
         res.timings["total_s"] = time.perf_counter() - t0
         return res
+
+    def _sources(self, scene: Node, st: Settings, origin: np.ndarray,
+                 projection: str) -> tuple[ShaderSource, ShaderSource | None]:
+        """The image's source and its coarse pass's (None where it has none), kept for the next frame."""
+        key = (id(scene), st, origin_key(scene, origin), projection)  # nodes are immutable, params are uniforms:
+        last = self._last_source                  # the same scene, settings and origin give the same source
+        if last is not None and last[0] == key and last[1] is scene:
+            return last[2], last[3]
+        source = generate(scene, st, origin, projection=projection)
+        coarse = coarse_source(scene, source, st, origin, projection)
+        self._last_source = (key, scene, source, coarse)
+        return source, coarse
+
+    def coarse_starts(self, scene: Node, camera: Camera | None = None, size: Sequence[int] = (640, 480),
+                      **settings: object) -> np.ndarray | None:
+        """The coarse pass of ``render(scene, camera, size, **settings)`` alone: per tile of pixels
+        (``Settings.coarse`` a side; row 0 on top) the float32 ray parameter before which no surface
+        lies on any of the tile's rays (1e38 where the tile is proven empty), or None where that
+        render has no coarse pass."""
+        st = Settings.build(**settings).resolved(scene.exactness)
+        wh = checked_size(size)
+        cam = camera if camera is not None else OrbitCamera.framing(*scene.bounds, aspect=wh[0] / wh[1])
+        origin = shader_origin(scene, cam.eye)
+        check_float32_camera(cam, origin)
+        source, coarse = self._sources(scene, st, origin, cam.projection)
+        if coarse is None:
+            return None
+        return self.run(self._read_starts, scene, cam, wh, coarse, origin)
+
+    def _read_starts(self, scene: Node, cam: Camera, wh: tuple[int, int], coarse: ShaderSource,
+                     origin: np.ndarray) -> np.ndarray:
+        starts = self.coarse_pass(scene, cam, wh, coarse, origin)
+        try:
+            return starts.read("start")[..., 0]
+        finally:
+            starts.release()
+
+    def coarse_pass(self, scene: Node, cam: Camera, wh: tuple[int, int], coarse: ShaderSource,
+                    origin: np.ndarray) -> Targets:
+        """Draw the coarse pass ``coarse`` (:func:`coarse_source`) of an image of size ``wh``;
+        its tile target, for :func:`bind_coarse`, to release once the image is drawn. Call on the
+        context's thread."""
+        prog, vao = self.programs.entry(coarse)
+        camera_uniforms(prog, cam, wh, origin)
+        scene_uniforms(prog, coarse, scene, origin, self.data)
+        return draw_coarse(self.ctx, vao, wh, coarse.coarse_tile)
 
     def _render_meshes(self, scene: Node, cam: Camera, wh: tuple[int, int], st: Settings, origin: np.ndarray,
                        meshes: tuple[RasterMesh, ...], t0: float) -> RenderResult:
@@ -372,9 +413,27 @@ class Renderer:
         return res
 
     def _draw(self, scene: Node, cam: Camera, wh: tuple[int, int], st: Settings, source: ShaderSource,
-              origin: np.ndarray, meshes: tuple[moderngl.Texture, moderngl.Texture] | None = None) -> RenderResult:
+              origin: np.ndarray, meshes: tuple[moderngl.Texture, moderngl.Texture] | None = None,
+              coarse: ShaderSource | None = None) -> RenderResult:
+        check_size(self.ctx, wh)
+        t0 = time.perf_counter()
+        starts = None if coarse is None else self.coarse_pass(scene, cam, wh, coarse, origin)
+        coarse_compile_s = 0.0 if coarse is None else self.programs.last_compile_s
+        coarse_s = time.perf_counter() - t0 - coarse_compile_s
+        try:
+            res = self._draw_image(scene, cam, wh, st, source, origin, meshes, starts)
+        finally:
+            if starts is not None:
+                starts.release()
+        res.timings["compile_s"] += coarse_compile_s
+        res.timings["draw_s"] += coarse_s
+        return res
+
+    def _draw_image(self, scene: Node, cam: Camera, wh: tuple[int, int], st: Settings, source: ShaderSource,
+                    origin: np.ndarray, meshes: tuple[moderngl.Texture, moderngl.Texture] | None,
+                    starts: Targets | None) -> RenderResult:
+        """The image's draw (after the coarse pass, whose tile ``starts`` it reads) and its read-back."""
         ctx = self.ctx
-        check_size(ctx, wh)
         prog, vao = self.programs.entry(source)
         compile_s = self.programs.last_compile_s
         try:
@@ -386,6 +445,8 @@ class Renderer:
         scene_uniforms(prog, source, scene, origin, self.data)
         if meshes is not None:
             bind_raster_images(prog, source, *meshes)
+        if starts is not None:
+            bind_coarse(prog, source, starts)
         targets.fbo.use()
         ctx.viewport = (0, 0, *wh)
         t2 = time.perf_counter()
@@ -435,6 +496,24 @@ def bind_raster_images(prog: moderngl.Program, source: ShaderSource, depth: mode
     for unit, (name, tex) in enumerate(zip(("uMeshDepth", "uMeshColor"), (depth, color)), start=first):
         tex.use(unit)
         _set_uniform(prog, name, unit)
+
+
+def coarse_source(scene: Node, source: ShaderSource, st: Settings, origin: np.ndarray,
+                  projection: str = "perspective") -> ShaderSource | None:
+    """The coarse pass of the image ``source`` (generated from ``scene`` and resolved settings
+    ``st``), or None where the image has none."""
+    if not source.coarse_tile:
+        return None
+    return generate(scene, dataclasses.replace(st, debug=None, outputs=("color",)), origin, target="coarse",
+                    projection=projection)
+
+
+def bind_coarse(prog: moderngl.Program, source: ShaderSource, starts: Targets) -> None:
+    """Bind the coarse pass's tile starts for the image ``prog`` (of ``source``) on the unit
+    after the scene's data. Call on the context's thread."""
+    unit = DATA_UNIT + len(source.data)
+    starts.textures["start"].use(unit)
+    _set_uniform(prog, "uCoarseStart", unit)
 
 
 _default: Renderer | None = None

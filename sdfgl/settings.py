@@ -14,6 +14,8 @@ DISTANCE_METHODS = ("auto", "sphere", "relaxed", "enhanced")
 DEFAULT_OMEGA = {"relaxed": 1.6, "enhanced": 0.9}
 HIT_MODES = ("cone", "relative", "absolute")
 DEBUG_VIEWS = (None, "steps", "normal", "depth", "select")
+COARSE_TILES = (4, 8, 16)  # pixels a side of the coarse pass's tiles
+DEFAULT_COARSE_TILE = 8
 # Settings become float32 literals and uniforms: magnitudes must stay inside what float32
 # holds (3.4e38) with room for the shader's arithmetic, and below its stand-in for infinity
 # (sdfgl.compiler.analysis.GLSL_FAR, 1e30); positive ones must not round to zero (float32's smallest normal is 1.2e-38).
@@ -91,6 +93,11 @@ class Settings:
         (colour un-premultiplied), so anti-aliased edges composite over anything.
     fog: None, or a distance d: surfaces fade into the background by 1 - exp(-t / d)
         (with alpha, they fade out).
+    coarse: a coarse pass before the image: one cone a tile of pixels (True: 8 x 8, or
+        4, 8 or 16 pixels a side) is sphere-traced to the depth before which no surface
+        lies in it, where the tile's rays start marching (a tile the cone crosses empty
+        skips the march); False: every ray marches from the scene box. Only sphere tracing
+        and its relaxed variants use it (a distance bound is needed), never a closed form.
     """
 
     aa: int = 1
@@ -117,6 +124,7 @@ class Settings:
     background: Any = None
     alpha: bool = False
     fog: Any = None
+    coarse: Any = True
 
     def __post_init__(self) -> None:
         if isinstance(self.aa, bool) or not isinstance(self.aa, int) or not 1 <= self.aa <= 4:
@@ -178,6 +186,12 @@ class Settings:
             if isinstance(self.fog, bool) or not isinstance(self.fog, (int, float)) or not 0 < self.fog < float("inf"):
                 raise ParameterError(f"setting 'fog' must be None or a positive distance, got {self.fog!r}")
             object.__setattr__(self, "fog", float(self.fog))
+        if self.coarse is True:
+            object.__setattr__(self, "coarse", DEFAULT_COARSE_TILE)
+        if self.coarse is not False and (not isinstance(self.coarse, int) or isinstance(self.coarse, bool)
+                                         or self.coarse not in COARSE_TILES):
+            raise ParameterError(f"setting 'coarse' must be True, False or a tile side of "
+                                 f"{', '.join(map(str, COARSE_TILES))} pixels, got {self.coarse!r}")
 
     def resolved(self, exactness: str) -> "Settings":
         """These settings with method "auto" replaced by the method a scene of the given

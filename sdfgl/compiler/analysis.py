@@ -116,7 +116,7 @@ def ref_step(settings: Settings, scale: float) -> float:
     return settings.ref_step if settings.ref_step is not None else scale / 512.0
 
 
-IMAGE_TARGETS = ("render", "render_over_mesh", "raster_mesh")
+IMAGE_TARGETS = ("render", "render_over_mesh", "raster_mesh", "coarse")
 """The targets that draw one image together (the march and the raster meshes): they share a shader origin."""
 
 
@@ -129,6 +129,23 @@ def moving_origin(scene: Node, target: str = "render", dialect: str = "desktop")
         return False
     lo, hi = scene.bounds
     return not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi))) or bool(scene.live_params())
+
+
+COARSE_METHODS = ("sphere", "relaxed", "enhanced")  # marchers that step by a distance bound
+
+
+def coarse_tile(scene: Node, settings: Settings, target: str = "render", dialect: str = "desktop") -> int:
+    """The tile side (pixels) of the coarse pass before ``target``'s march, or 0 where there is
+    none: the pass needs a distance bound with a finite Lipschitz factor and a marcher that steps
+    by it (settings resolved), and runs before the desktop image only (``"coarse"`` is the
+    pass itself); a closed-form shape is intersected, never marched."""
+    if not settings.coarse or target not in ("render", "coarse") or dialect != "desktop":
+        return 0
+    if settings.method not in COARSE_METHODS or not np.isfinite(scene.lipschitz) or scene.lipschitz <= 0:
+        return 0
+    if settings.analytic and analytic_shape(scene) is not None:
+        return 0
+    return int(settings.coarse)
 
 
 def ray_free_grid(scene: Node, settings: Settings) -> tuple[Any, np.ndarray] | None:

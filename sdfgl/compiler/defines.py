@@ -85,6 +85,14 @@ def free_way_defines(free_way: tuple[Any, np.ndarray] | None) -> list[str]:
     return ["#define RAY_FREE", f"#define RAY_FREE_TURN mat3({', '.join(glsl_float(float(x)) for x in turn.ravel())})"]
 
 
+def coarse_defines(scene: Node, tile: int) -> list[str]:
+    """The defines of the coarse pass: its tile side in pixels and the field's Lipschitz factor
+    (a cone advances by the field's value over it); none where there is no coarse pass."""
+    if not tile:
+        return []
+    return [f"#define COARSE_TILE {tile}", f"#define LIPSCHITZ {glsl_float(max(scene.lipschitz, 1.0))}"]
+
+
 def light_positions(rig: Sequence[Any], org: np.ndarray, origins: OriginOffsets | None) -> dict[int, str]:
     """GLSL of each point light's position relative to the shader origin: a constant, or
     minus the uOrgN uniform of offset -position when the origin moves."""

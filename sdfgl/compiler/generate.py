@@ -21,10 +21,10 @@ from ..nodes.base import IMPLICIT, Node, grid_min_as
 from ..nodes.traverse import run_deep
 from ..params import Param
 from ..settings import DISTANCE_METHODS, Settings
-from .analysis import analytic_shape, material_channels, moving_origin, one_color, ray_free_grid, shared_subtrees
+from .analysis import analytic_shape, coarse_tile, material_channels, moving_origin, one_color, ray_free_grid, shared_subtrees
 from .builder import SourceBuilder
 from .data.grid import GRID_MIN
-from .defines import free_way_defines, light_positions, settings_defines
+from .defines import coarse_defines, free_way_defines, light_positions, settings_defines
 from .emitter import DATA_MIN, Emitter
 from .source import ShaderSource, comment_text
 from .tables import DataPool, OriginOffsets
@@ -119,19 +119,20 @@ def _generate(scene: Node, settings: Settings, origin: Sequence[float], target: 
                              "and a highlight needs debug='select'")
     org = np.zeros(3) if moving else np.asarray(origin, dtype=np.float64)
     row = TARGETS[target]
+    tile = coarse_tile(scene, settings, target, lang.name)
     if settings.grid_min is not None:
         with grid_min_as(settings.grid_min):
-            src = _write(scene, settings, org, row, lang, projection, highlight=highlight, moving=moving)
+            src = _write(scene, settings, org, row, lang, projection, highlight=highlight, moving=moving, coarse=tile)
         return _checked(dataclasses.replace(src, grid_min=settings.grid_min))
     src = dataclasses.replace(_write(scene, settings, org, row, lang, projection, highlight=highlight,
-                                     moving=moving), grid_min=GRID_MIN)
+                                     moving=moving, coarse=tile), grid_min=GRID_MIN)
     if src.code_size <= settings.code_budget or not settings.grid:
         return _checked(src)
     # over the budget: every hard union of BUDGET_GRID_MIN or more instances becomes data,
     # and every node with more than a few constant rows keeps them in a texture
     with grid_min_as(BUDGET_GRID_MIN):
         small = _write(scene, settings, org, row, lang, projection, data_min=BUDGET_DATA_MIN,
-                       highlight=highlight, moving=moving)
+                       highlight=highlight, moving=moving, coarse=tile)
     if small.code_size >= src.code_size:  # nothing to gain: the scene stays code
         return _checked(src)
     return _checked(dataclasses.replace(
@@ -180,15 +181,17 @@ def _checked(src: ShaderSource) -> ShaderSource:
 
 
 def _write(scene: Node, settings: Settings, org: np.ndarray, row: Target, lang: Dialect, projection: str,
-           data_min: int = DATA_MIN, highlight: Node | None = None, moving: bool = False) -> ShaderSource:
-    """One shader: the passes over the scene, the shared head and map(), then the target's stages."""
+           data_min: int = DATA_MIN, highlight: Node | None = None, moving: bool = False,
+           coarse: int = 0) -> ShaderSource:
+    """One shader: the passes over the scene, the shared head and map(), then the target's stages
+    (``coarse``: the tile side of the coarse pass the march starts from, 0 for none)."""
     origins = OriginOffsets() if moving else None
     passes = Passes(org, [], shared_subtrees(scene, settings.grid), {}, settings.grid, {}, DataPool(), data_min,
                     origins)
     free_way = ray_free_grid(scene, settings) if row.image else None
     dist, dist_result = passes.emit(scene, "dist", highlight=highlight if row.image else None,
                                     ray_free_id=None if free_way is None else id(free_way[0]))
-    job = Job(scene, settings, row, SourceBuilder())
+    job = Job(scene, settings, row, SourceBuilder(), coarse=coarse)
     if row.color and not one_color(scene, highlight):
         job.color = passes.emit(scene, "color")
     if row.image and scene.has_detail:
@@ -207,7 +210,7 @@ def _write(scene: Node, settings: Settings, org: np.ndarray, row: Target, lang: 
     b.add(lang.header(), "(codegen)")
     b.add(f"// sdfgl scene: {comment_text(scene.label())}  [{scene.exactness}, L={scene.lipschitz:g}]", "(codegen)")
     b.add("\n".join(settings_defines(scene, settings, org, live, projection, moving)
-                     + free_way_defines(free_way)), "(settings)")
+                     + free_way_defines(free_way) + coarse_defines(scene, coarse)), "(settings)")
     for i, prm in enumerate(params):
         b.add(f"uniform {'vec3' if prm.dims == 3 else 'float'} uP{i};  // param {comment_text(prm.label)}", "(live parameters)")
     if live:
@@ -246,7 +249,7 @@ def _write(scene: Node, settings: Settings, org: np.ndarray, row: Target, lang: 
     for stage in row.main:
         stage(job)
     return dataclasses.replace(b.build(params, live, data), code_size=size, data_unions=len(passes.grids),
-                               origin_offsets=None if origins is None else tuple(origins.entries))
+                               origin_offsets=None if origins is None else tuple(origins.entries), coarse_tile=coarse)
 
 
 def compile(scene: Node, **settings: object) -> str:  # noqa: A001 - public API name

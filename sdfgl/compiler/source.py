@@ -55,6 +55,7 @@ class ShaderSource:
     # uOrg1, ... (sdfgl.compiler.tables.origin_values turns them into uniform values); the
     # source then does not depend on the origin
     origin_offsets: tuple[OriginEntry, ...] | None = None
+    coarse_tile: int = 0  # the tile side of the coarse pass the march starts from (0: none)
 
     def owner_of(self, line: int) -> str:
         """Who wrote 1-based source line ``line``."""

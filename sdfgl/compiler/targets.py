@@ -35,6 +35,7 @@ class Job:
     rig: Sequence[Any] = ()  # the lights
     lights_at: dict[int, str] = field(default_factory=dict)  # GLSL of each point light's position
     done: set[str] = field(default_factory=set)  # GLSL functions already written
+    coarse: int = 0  # the tile side of the coarse pass (0: none)
 
 
 Stage = Callable[[Job], None]
@@ -81,6 +82,8 @@ def march(job: Job) -> None:
     """The hit refinement, the marcher the method names (or the closed form) and the normal."""
     b, settings = job.b, job.settings
     b.add_file("stages/refine")
+    if job.coarse:
+        b.add_file("stages/coarse_start")
     analytic = settings.analytic and analytic_shape(job.scene) is not None
     if not analytic and settings.method in ("newton", "forward_newton"):
         b.add_file("stages/ray_derivative")
@@ -150,7 +153,8 @@ def raster_mesh_main(job: Job) -> None:
 # colours and path-traced materials), the mesh exporter's samplers "mesh_grid" (a lattice of
 # blocks), "mesh_gradient" (value and gradient at points), "mesh_project" (points moved onto the
 # surface by Newton steps), "render_over_mesh" (the image marched only up to the raster meshes'
-# depth) and "raster_mesh" (the fragments of raster meshes, shaded and shadowed by the scene).
+# depth), "raster_mesh" (the fragments of raster meshes, shaded and shadowed by the scene) and
+# "coarse" (the pass before "render": per tile of pixels, the depth its rays start marching from).
 # The "webgl2" dialect writes the same targets under another header.
 TARGETS: dict[str, Target] = {
     "render": Target(image=True, color=True, scene=(color_functions, detail_function),
@@ -166,6 +170,7 @@ TARGETS: dict[str, Target] = {
                                main=(add_file("stages/raster_composite"), march, shading, render_main)),
     "raster_mesh": Target(image=True, color=True, scene=(color_functions, detail_function),
                           main=(shading, raster_mesh_main)),
+    "coarse": Target(main=(add_file("stages/coarse_cone"), add_file("mains/coarse_main"))),
 }
 # evaluate targets: the material channel function each runs at given points (with map())
 EVALUATE_CHANNELS = {name: t.channel for name, t in TARGETS.items() if t.channel is not None}

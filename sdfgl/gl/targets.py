@@ -8,8 +8,8 @@ import numpy as np
 
 from .cache import LRU, MB, CacheBudget
 
-# output name -> (components, dtype) of its texture
-FORMATS = {"color": (4, "f1"), "depth": (1, "f4"), "normal": (4, "f4"), "steps": (1, "f4")}
+# output name -> (components, dtype) of its texture ("start": the coarse pass's per tile)
+FORMATS = {"color": (4, "f1"), "depth": (1, "f4"), "normal": (4, "f4"), "steps": (1, "f4"), "start": (1, "f4")}
 
 
 def target_bytes(size: tuple[int, int], outputs: tuple[str, ...]) -> int:

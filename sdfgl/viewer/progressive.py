@@ -80,7 +80,8 @@ class Progressive:
         if self.pending is not None and self.pending[2] == "reload" and why != "reload":
             why, file_settings = "reload", self.pending[4]
         origin = shader_origin(scene, v.camera.eye)
-        st = Settings.build(**{**settings, "outputs": ("color", "steps")})  # steps: the panel's readout
+        # steps: the panel's readout; no coarse pass: the window's frames draw the image alone
+        st = Settings.build(**{**settings, "outputs": ("color", "steps"), "coarse": False})
         hl = None
         if st.debug == "select":  # the scene tree's selection (else the whole scene) is tinted
             hl = v.highlight[1] if v.highlight and v.highlight[0] is scene else scene

@@ -20,6 +20,9 @@ struct Hit {
 Hit tracePrimary(vec3 ro, vec3 rd) {
     Hit h = Hit(-1.0, 0, false);
     vec2 range = sceneRange(ro, rd);
+#ifdef COARSE_TILE
+    range.x = max(range.x, coarseStart());  // the tile's cone proved the way before it empty
+#endif
 #ifdef MESH_DEPTH
     float tm = meshDepth();  // a raster mesh in front ends the march
     range.y = min(range.y, tm);

@@ -1,0 +1,108 @@
+"""The coarse pass: the depth each tile of pixels starts marching from lies before every hit
+of every ray in the tile, a tile proven empty has no hits, and the image does not change."""
+import numpy as np
+import pytest
+
+import sdfgl as sg
+from sdfgl.demo import demo_camera, demo_scene
+from sdfgl.errors import ParameterError
+from sdfgl.hardcases import case
+from sdfgl.reference import trace
+
+SIZE = (64, 48)
+EMPTY = 1e37  # a start at or past this: the tile's cone crossed the scene without meeting it
+
+
+def tile_of(starts: np.ndarray, size: tuple[int, int], tile: int, sub: int) -> np.ndarray:
+    """Each ray of an image ``sub`` times as fine as ``size`` (row 0 on top): its tile's start."""
+    w, h = size
+    rows = np.arange(h * sub) // sub           # the pixel's row, from the top
+    gl_rows = (h - 1 - rows) // tile             # its tile's row, from the bottom (GL's)
+    cols = (np.arange(w * sub) // sub) // tile
+    return starts[starts.shape[0] - 1 - gl_rows][:, cols]
+
+
+@pytest.mark.parametrize("name", ["box_frame", "thin_shell", "horizon_plane", "grazing_face_0.5", "small_spheres",
+                                  "five_spheres", "tunnel", "small_beside_big_1e4", "twist_720"])
+@pytest.mark.parametrize("tile", [4, 8])
+def test_starts_lie_before_every_hit(renderer, name, tile):
+    """No ray through any part of a tile's pixels (the reference at twice the resolution) meets
+    a surface before the tile's start; thin bars, a shell 1e-3 thick and planes seen at a
+    grazing angle included."""
+    c = case(name)
+    scene, cam = c.build()
+    settings = {**c.settings, "analytic": False, "coarse": tile}
+    starts = renderer.coarse_starts(scene, cam, SIZE, **settings)
+    assert starts is not None and starts.shape == (-(-SIZE[1] // tile), -(-SIZE[0] // tile))
+    ref = trace(scene, cam, (2 * SIZE[0], 2 * SIZE[1]), max_dist=c.max_dist)
+    start = tile_of(starts, SIZE, tile, 2).astype(np.float64)
+    hit = ref.hit & ~ref.undecided
+    assert hit.any()
+    late = hit & (start > ref.t * (1 + 1e-6))
+    assert not late.any(), f"{late.sum()} rays hit before their tile's start, by up to " \
+                           f"{np.max((start - ref.t)[late]):.3g}"
+    assert np.all(start[hit & (start >= EMPTY)] < 0), "a tile proven empty has hits"
+    assert (starts[starts < EMPTY] > 0).any(), "the pass proves nothing: every start at the eye"
+
+
+def test_orthographic_starts(renderer):
+    """Parallel rays: the cone is a cylinder as wide as the tile."""
+    scene = sg.box_frame(2.0, 0.02) | sg.sphere(0.3)
+    cam = sg.OrbitCamera(distance=6, yaw=30, pitch=25, projection="orthographic", ortho_height=3.0)
+    starts = renderer.coarse_starts(scene, cam, SIZE, coarse=4)
+    ref = trace(scene, cam, (2 * SIZE[0], 2 * SIZE[1]))
+    start = tile_of(starts, SIZE, 4, 2)
+    hit = ref.hit & ~ref.undecided
+    assert hit.any() and (starts >= EMPTY).any() and (starts[starts < EMPTY] > 3).any()
+    assert not (hit & (start > ref.t * (1 + 1e-6))).any()
+
+
+def low_scene() -> tuple[sg.Node, sg.Camera, dict]:
+    """Objects on a ground plane (a plane of the scene, marched), seen low."""
+    parts = [sg.box(0.4).translate((x, 0.4, z)) for x in (-3, 0, 3) for z in (-3, 0, 3)]
+    scene = sg.union(sg.plane(), *parts, sg.sphere(0.6).translate((1.5, 0.6, 1.5)),
+                     sg.box_frame(1.0, 0.02).translate((-1.5, 0.5, 1.5)))
+    return scene, sg.OrbitCamera(target=(0, 0.3, 0), distance=8, yaw=20, pitch=4), {}
+
+
+@pytest.mark.parametrize("build", [low_scene, lambda: (demo_scene(), demo_camera(), {"ground": True})],
+                         ids=["low", "demo"])
+def test_image_unchanged(renderer, build):
+    """With and without the pass, under 0.1% of the pixels differ by more than 8/255, the pass
+    saves map() calls, and the hits agree."""
+    scene, cam, extra = build()
+    look = dict(outputs=("color", "depth", "steps"), **extra)
+    off = renderer.render(scene, cam, (160, 90), coarse=False, **look)
+    on = renderer.render(scene, cam, (160, 90), **look)
+    diff = np.abs(on.color.astype(int) - off.color.astype(int)).max(axis=-1)
+    assert np.mean(diff > 8) < 1e-3
+    assert on.steps.sum() < 0.9 * off.steps.sum()
+    both = np.isfinite(on.depth) & np.isfinite(off.depth)
+    assert np.mean(np.isfinite(on.depth) != np.isfinite(off.depth)) < 1e-3
+    assert np.median(np.abs(on.depth[both] - off.depth[both]) / on.depth[both]) < 1e-4
+
+
+def test_shader_without_the_pass():
+    """coarse=False: the image's shader has no code of the pass (its hook in the primary trace
+    is under #ifdef COARSE_TILE, like the raster meshes'); where a scene cannot use it (a
+    closed form, an implicit field, Newton marching, WebGL) it is absent too."""
+    scene = sg.box(1) | sg.sphere(0.7).translate((1, 0, 0))
+    words = ("#define COARSE_TILE", "float coarseStart()", "uniform sampler2D uCoarseStart", "#define LIPSCHITZ")
+    on = sg.compile(scene)
+    assert all(w in on for w in words)
+    for src in (sg.compile(scene, coarse=False), sg.compile(sg.sphere(1)),
+                sg.compile(sg.product(sg.sphere(1), sg.box(1))),
+                sg.compile(scene, method="newton")):
+        assert not any(w in src for w in words)
+    from sdfgl.compiler.generate import generate
+    from sdfgl.settings import Settings
+    assert not any(w in generate(scene, Settings(), dialect="webgl2").text for w in words)
+    assert generate(scene, Settings(coarse=4)).coarse_tile == 4
+
+
+def test_coarse_setting():
+    from sdfgl.settings import Settings
+    assert Settings().coarse == 8 and Settings(coarse=True).coarse == 8 and Settings(coarse=16).coarse == 16
+    for bad in (3, 8.0, "8", None):
+        with pytest.raises(ParameterError, match="coarse"):
+            Settings(coarse=bad)
