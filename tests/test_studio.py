@@ -84,6 +84,20 @@ def test_workspace_counts_compiles_and_slider_values_do_not_recompile(tmp_path):
     assert again.doc == s.doc
 
 
+def test_workspace_compiles_a_node_preview_as_one_webgl2_shader_with_its_live_parameters():
+    s = Workspace(None, size=(W, H))
+    r = sg.param(0.7, "r", range=(0.2, 1.2))
+    spec = s.preview(to_dict(sg.sphere(r).translate((0.5, 0, 0))))
+    assert s.preview_compiles == 1 and s.compiles == 0
+    assert spec["size"] == [120, 80] and list(spec["variants"]) == ["1|off|0|none"]
+    assert spec["settings"] == {"aa": 1, "shadows": False, "ao": False, "debug": None}
+    assert [(p["uniform"], p["label"], p["min"], p["max"]) for p in spec["params"]] == [("uP0", "r", 0.2, 1.2)]
+    assert "#version 300 es" in "".join(spec["blocks"]) and spec["frame"]["live"]
+    with pytest.raises(SdfglError):  # a 2D shape alone is no scene
+        s.preview({"format": "sdfgl-scene", "version": 1, "scene": {"kind": "circle", "radius": 1.0}})
+    assert s.preview_compiles == 1
+
+
 def test_workspace_refuses_code_in_strings_with_the_json_path(tmp_path):
     s = Workspace(None, size=(W, H))
     bad = {"format": "sdfgl-scene", "version": 1, "scene": {"kind": "implicit", "expr": CODE}}
