@@ -84,6 +84,20 @@ def test_workspace_counts_compiles_and_slider_values_do_not_recompile(tmp_path):
     assert again.doc == s.doc
 
 
+def test_workspace_compiles_a_node_preview_as_one_webgl2_shader_with_its_live_parameters():
+    s = Workspace(None, size=(W, H))
+    r = sg.param(0.7, "r", range=(0.2, 1.2))
+    spec = s.preview(to_dict(sg.sphere(r).translate((0.5, 0, 0))))
+    assert s.preview_compiles == 1 and s.compiles == 0
+    assert spec["size"] == [120, 80] and list(spec["variants"]) == ["1|off|0|none"]
+    assert spec["settings"] == {"aa": 1, "shadows": False, "ao": False, "debug": None}
+    assert [(p["uniform"], p["label"], p["min"], p["max"]) for p in spec["params"]] == [("uP0", "r", 0.2, 1.2)]
+    assert "#version 300 es" in "".join(spec["blocks"]) and spec["frame"]["live"]
+    with pytest.raises(SdfglError):  # a 2D shape alone is no scene
+        s.preview({"format": "sdfgl-scene", "version": 1, "scene": {"kind": "circle", "radius": 1.0}})
+    assert s.preview_compiles == 1
+
+
 def test_workspace_refuses_code_in_strings_with_the_json_path(tmp_path):
     s = Workspace(None, size=(W, H))
     bad = {"format": "sdfgl-scene", "version": 1, "scene": {"kind": "implicit", "expr": CODE}}
@@ -184,6 +198,20 @@ def canvas(b: Chromium) -> np.ndarray:
     return b.screenshot(tuple(rect))
 
 
+PREVIEW = (120, 80)  # a node preview's size (workspace.PREVIEW_SIZE) and settings
+PREVIEW_SETTINGS = {"aa": 1, "shadows": False, "ao": False}
+PREVIEW_FRACTION = 0.02
+
+
+def preview(b: Chromium, node: int) -> np.ndarray:
+    """The pixels of a node's preview canvas (its 2D canvas, read back as PNG)."""
+    from PIL import Image
+    url = b.evaluate(f"document.querySelector('#node-{node} canvas.studio-preview').toDataURL('image/png')")
+    img = np.asarray(Image.open(io.BytesIO(base64.b64decode(url.split(",", 1)[1]))).convert("RGB"))
+    assert img.shape == (PREVIEW[1], PREVIEW[0], 3)
+    return img
+
+
 def frames(b: Chromium) -> int:
     return int(b.evaluate("+document.getElementById('studio-view').dataset.frames || 0"))
 
@@ -278,14 +306,10 @@ def test_csg_part_built_in_the_page_renders_like_sg_render(page):
     settle(b)
     compiles = st.workspace.compiles
 
-    # a node's own preview: its subtree rendered by sg.render
-    b.evaluate(f"window.studio.setPreview({built['ball']}, true)")
-    b.wait_for(f"+document.getElementById('node-{built['ball']}').dataset.previews > 0", timeout=60)
-    src = b.evaluate(f"document.querySelector('#node-{built['ball']} .studio-preview').src")
-    from PIL import Image
-    thumb = np.asarray(Image.open(io.BytesIO(base64.b64decode(src.split(",", 1)[1]))).convert("RGB"))
-    want = sg.render(sg.sphere(1.12), None, (120, 80), aa=1, shadows=False, ao=False).color
-    assert thumb.shape == (80, 120, 3) and differing(thumb, want) < MAX_FRACTION
+    # a node's own preview: its subtree drawn live with the view's camera, like sg.render
+    b.wait_for("window.studio.previewsIdle()", timeout=120)
+    want = sg.render(sg.sphere(1.12), CAMERA, PREVIEW, **PREVIEW_SETTINGS).color
+    assert differing(preview(b, built["ball"]), want) < PREVIEW_FRACTION
     assert st.workspace.compiles == compiles
 
     # an error stays at its node; the last good image stays up
@@ -317,6 +341,7 @@ def test_csg_part_built_in_the_page_renders_like_sg_render(page):
     assert sg.compile(ns["scene"]) == sg.compile(from_dict(saved))
 
     # export PNG: sg.render on the server
+    from PIL import Image
     png = np.asarray(Image.open(io.BytesIO(base64.b64decode(b.evaluate("window.studio.export('png').then((r) => r.b64)")))).convert("RGB"))
     assert png.shape == (H, W, 3) and differing(png, grown) < MAX_FRACTION
 
@@ -653,3 +678,109 @@ def test_output_node_controls_write_the_settings_and_re_render(page):
     assert b.evaluate("window.studio.document()")["settings"]["method"] == "sphere"
     assert b.evaluate("window.studio.document()")["settings"]["aa"] == 2
     assert b.evaluate("document.getElementById('studio-error').textContent") == ""
+
+
+# -- node previews: live, in the page's one WebGL context -----------------------------------------
+
+# counts the WebGL contexts the page creates (installed before any of the page's scripts run)
+COUNT_CONTEXTS = """(() => {
+  window.__glContexts = 0;
+  const seen = new WeakSet();
+  for (const cls of [HTMLCanvasElement, window.OffscreenCanvas].filter(Boolean)) {
+    const get = cls.prototype.getContext;
+    cls.prototype.getContext = function (type, ...rest) {
+      const ctx = get.call(this, type, ...rest);
+      if (ctx && /webgl/.test(type) && !seen.has(ctx)) { seen.add(ctx); window.__glContexts++; }
+      return ctx;
+    };
+  }
+})()"""
+
+BUILD_ROW = """(async () => {
+  const s = window.studio;
+  s.clear();
+  const parts = [], balls = [];
+  for (let i = 0; i < 10; i++) {
+    const ball = s.addNode("sphere", 40 + 130 * i, 40, { radius: 0.2 + 0.03 * i });
+    const moved = s.addNode("translate", 40 + 130 * i, 260, { offset: [0.5 * i - 2.25, 0, 0] });
+    s.connect(ball, moved);
+    balls.push(ball); parts.push(moved);
+  }
+  const all = s.addNode("union", 600, 480);
+  for (const m of parts) s.connect(m, all);
+  const out = s.addNode("output", 900, 480, { camera: %(camera)s });
+  s.connect(all, out);
+  const err = await s.compileNow();
+  return { err, balls, parts, all, nodes: Object.keys(s.editor.export().drawflow.Home.data).length };
+})()"""
+
+
+def row_scene(radii: list[float]) -> sg.Node:
+    return sg.union(*[sg.sphere(r).translate((0.5 * i - 2.25, 0, 0)) for i, r in enumerate(radii)])
+
+
+@pytest.fixture(scope="module")
+def counted(tmp_path_factory):
+    path = tmp_path_factory.mktemp("previews") / "row.json"
+    with Studio(Workspace(path, size=(W, H))) as st, Chromium(size=(1400, 800)) as b:
+        b.send("Page.addScriptToEvaluateOnNewDocument", {"source": COUNT_CONTEXTS}, session=True)
+        b.goto(st.url)
+        b.wait_for("document.body.dataset.ready === '1' && window.studio.state.shownGen >= 1", timeout=60)
+        yield st, b
+
+
+@pytest.mark.browser
+@pytest.mark.slow
+@pytest.mark.skipif(find_chromium() is None, reason="needs Chromium (./install.sh --test installs it)")
+def test_every_node_has_a_live_preview_in_the_pages_one_webgl_context(counted):
+    st, b = counted
+    built = b.evaluate(BUILD_ROW % {"camera": json.dumps(to_dict(sg.sphere(1), CAMERA)["camera"])})
+    assert built["err"] is None, built["err"]
+    assert built["nodes"] >= 20
+    settle(b)
+    b.wait_for("window.studio.previewsIdle()", timeout=180)
+    ids = built["balls"] + built["parts"] + [built["all"]]
+    assert b.evaluate("window.studio.previewCount()") == len(ids)
+    drawn = b.evaluate(f"{ids}.map((id) => +document.getElementById(`node-${{id}}`).dataset.previews || 0)")
+    assert min(drawn) > 0
+    assert b.evaluate("window.__glContexts") == 1
+    radii = [0.2 + 0.03 * i for i in range(10)]
+
+    # a preview is its subtree as sg.render draws it, with the output view's camera
+    want = sg.render(sg.sphere(radii[3]).translate((-0.75, 0, 0)), CAMERA, PREVIEW, **PREVIEW_SETTINGS).color
+    assert differing(preview(b, built["parts"][3]), want) < PREVIEW_FRACTION
+    whole = preview(b, built["all"])
+    assert differing(whole, sg.render(row_scene(radii), CAMERA, PREVIEW, **PREVIEW_SETTINGS).color) < PREVIEW_FRACTION
+
+    # a slider moves the previews that read it, with no compile of the view or of any preview
+    ball = built["balls"][3]
+    b.evaluate(f"window.studio.setLive({ball}, 'radius', true); window.studio.compileNow()")
+    settle(b)
+    b.wait_for("window.studio.previewsIdle()", timeout=120)
+    compiles, previews = st.workspace.compiles, st.workspace.preview_compiles
+    n = int(b.evaluate(f"+document.getElementById('node-{built['all']}').dataset.previews"))
+    b.evaluate(f"window.studio.setParam('n{ball}_radius', 0.5)")
+    b.wait_for(f"+document.getElementById('node-{built['all']}').dataset.previews > {n}"
+               " && window.studio.previewsIdle()", timeout=60)
+    radii[3] = 0.5
+    want = sg.render(row_scene(radii), CAMERA, PREVIEW, **PREVIEW_SETTINGS).color
+    moved = preview(b, built["all"])
+    assert differing(moved, want) < PREVIEW_FRACTION and differing(moved, whole) > 0.005
+    assert differing(preview(b, ball), sg.render(sg.sphere(0.5), CAMERA, PREVIEW, **PREVIEW_SETTINGS).color) \
+        < PREVIEW_FRACTION
+    assert st.workspace.compiles == compiles and st.workspace.preview_compiles == previews
+
+    # structure edits recompile the previews of the subtrees they change; the context stays one
+    programs = b.evaluate("window.studio.glPrograms()")
+    for k in range(10):
+        err = b.evaluate(f"window.studio.setField({built['balls'][0]}, 'radius', {0.21 + 0.01 * k});"
+                         " window.studio.compileNow()")
+        assert err is None, err
+    settle(b)
+    b.wait_for("window.studio.previewsIdle()", timeout=180)
+    assert st.workspace.preview_compiles > previews
+    assert b.evaluate("window.__glContexts") == 1
+    assert b.evaluate("window.studio.glPrograms()") <= programs + 1  # replaced programs are deleted
+    radii[0] = 0.3
+    want = sg.render(row_scene(radii), CAMERA, PREVIEW, **PREVIEW_SETTINGS).color
+    assert differing(preview(b, built["all"]), want) < PREVIEW_FRACTION

@@ -40,8 +40,9 @@ def main() -> None:
         count = b.evaluate("""(() => { const s = window.studio, data = s.editor.export().drawflow.Home.data;
           const ids = Object.values(data).filter((n) => n.name !== "output").map((n) => n.id);
           s.editor.zoom_out(); s.editor.zoom_out(); s.editor.zoom_out(); s.editor.zoom_out();
-          ids.forEach((id) => s.setPreview(id, true)); return ids.length; })()""")
-        b.wait_for(f"document.querySelectorAll('.drawflow-node[data-previews]').length === {count}", timeout=120)
+          return ids.length; })()""")
+        b.wait_for(f"window.studio.previewsIdle() && "
+                   f"document.querySelectorAll('.drawflow-node[data-previews]').length === {count}", timeout=120)
         b.wait_for(still)
         Image.fromarray(b.screenshot()).save(ROOT / "docs" / "studio.png", optimize=True)
         rect = b.evaluate("(() => { const r = document.getElementById('studio-side').getBoundingClientRect();"

@@ -12,12 +12,14 @@ Websocket messages, page -> server: ``{"type": "doc", "gen", "doc"}`` (compile),
 ``{"type": "save", "doc"}``, ``{"type": "python"}``, ``{"type": "export", "format"}``,
 ``{"type": "parametric", "x", "y", "z", "bounds"}``, ``{"type": "primitive", "kind", "fields",
 "params"}`` (the primitives panel: an implicit, parametric or GLSL primitive with named parameters),
-``{"type": "preview", "node", "doc"}`` (a node's own picture). Server -> page:
+``{"type": "preview", "node", "gen", "doc"}`` (compile a node's subtree for its live preview). Server -> page:
 ``hello`` (the document, the file name), ``spec`` (the view spec, ``gen``, ``compiles``),
 ``error`` (``path``, ``message``, ``gen``, ``request``), ``saved``, ``python``, ``export``
 (``file``, ``b64``),
 ``parametric`` (an implicit node), ``primitive`` (``node``, ``params``: a node and its
-parameter table), ``preview`` (``node``, ``b64``), ``values`` (live
+parameter table), ``preview`` (``node``, ``gen``, ``spec``: the preview's view spec, its
+shader in the WebGL2 dialect and its live-parameter layout, ``previews``: the preview compile
+count), ``values`` (live
 parameters moved by a MIDI or OSC controller, :mod:`sdfgl.live`), ``failed``.
 """
 from __future__ import annotations
@@ -184,7 +186,7 @@ class Studio:
 
 def make_app(studio: Studio) -> Any:
     """The tornado application of ``studio``: ``/``, ``/assets/NAME`` (``viewer.js`` is the browser
-    viewer's own file, :mod:`sdfgl.web`), ``/stats`` (the compile count), ``/ws``."""
+    viewer's own file, :mod:`sdfgl.web`), ``/stats`` (the compile counts), ``/ws``."""
     import tornado.web
     import tornado.websocket
 
@@ -226,7 +228,7 @@ def make_app(studio: Studio) -> Any:
 
     class StatsHandler(Guarded):
         def get(self) -> None:
-            self.write({"compiles": studio.workspace.compiles})
+            self.write({"compiles": studio.workspace.compiles, "previews": studio.workspace.preview_compiles})
 
     class NoIcon(Guarded):
         def get(self) -> None:
@@ -286,8 +288,9 @@ def make_app(studio: Studio) -> Any:
                                                       msg.get("params"))
                     self.send({"type": "primitive", **made})
                 elif kind == "preview":
-                    data = await loop.run_in_executor(studio.worker, s.preview, msg.get("doc"))
-                    self.send({"type": "preview", "node": msg.get("node"), "b64": base64.b64encode(data).decode("ascii")})
+                    spec = await loop.run_in_executor(studio.worker, s.preview, msg.get("doc"))
+                    self.send({"type": "preview", "node": msg.get("node"), "gen": msg.get("gen"), "spec": spec,
+                               "previews": s.preview_compiles})
                 elif kind == "export":
                     name, data = await loop.run_in_executor(studio.worker, s.export, msg.get("format"))
                     self.send({"type": "export", "file": name, "b64": base64.b64encode(data).decode("ascii")})
@@ -298,7 +301,7 @@ def make_app(studio: Studio) -> Any:
                 self.send({**err, "gen": msg.get("gen"), "request": kind, "node": msg.get("node")})
             except (TypeError, ValueError, AttributeError) as exc:  # a message of the wrong shape
                 self.send({"type": "error", "path": "", "message": f"bad {kind!r} message: {exc}",
-                           "gen": msg.get("gen"), "request": kind})
+                           "gen": msg.get("gen"), "request": kind, "node": msg.get("node")})
 
     return tornado.web.Application([
         (r"/", PageHandler),

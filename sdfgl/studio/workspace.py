@@ -71,6 +71,7 @@ class Workspace:
         self.doc: dict[str, Any] = doc if doc is not None else json.loads(json.dumps(EMPTY))
         self.size = size
         self.compiles = 0
+        self.preview_compiles = 0  # node previews compiled (a slider move compiles none)
         self.document: Document = from_document(self.doc)  # decoded, not compiled: the page asks for that
         self._lock = threading.Lock()
 
@@ -153,17 +154,20 @@ class Workspace:
         doc = to_dict(node)
         return {"node": doc["scene"], "params": doc.get("params", {})}
 
-    @staticmethod
-    def preview(doc: dict[str, Any]) -> bytes:
-        """A small PNG of the document ``doc`` (a node's subtree): ``sg.render`` framing its
-        bounds at PREVIEW_SIZE, one sample a pixel, no shadows or AO."""
+    def preview(self, doc: dict[str, Any]) -> dict[str, Any]:
+        """The view spec of a node's own preview: the document ``doc`` (that node's subtree)
+        compiled by the same ``build`` as the page's view, at PREVIEW_SIZE, one sample a
+        pixel, no shadows or AO, one shader (no toggles). The page draws it with the output
+        view's camera and live parameters. Counted in :attr:`preview_compiles`."""
         from ..nodes.base import Node
-        from ..png import encode_png
-        from ..render import render
+        from ..web.spec import build
         scene = from_document(doc).scene
         if not isinstance(scene, Node):
             raise ParameterError(f"a {scene.kind} is a 2D shape: extrude or revolve it to see it")
-        return encode_png(render(scene, None, PREVIEW_SIZE, aa=1, shadows=False, ao=False).color)
+        spec, _ = build(scene, None, PREVIEW_SIZE, toggles=False, aa=1, shadows=False, ao=False)
+        with self._lock:
+            self.preview_compiles += 1
+        return spec
 
     def export(self, fmt: str) -> tuple[str, bytes]:
         """The current scene as a file of format ``fmt`` through the existing exporters: ``png``

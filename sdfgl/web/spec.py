@@ -197,9 +197,11 @@ def build_spec(scene: Node, camera: Camera | None = None, size: tuple[int, int] 
     return build(scene, camera, size, **settings)[0]
 
 
-def build(scene: Node, camera: Camera | None = None, size: tuple[int, int] = (640, 400),
+def build(scene: Node, camera: Camera | None = None, size: tuple[int, int] = (640, 400), toggles: bool = True,
           **settings: Any) -> tuple[dict[str, Any], tuple[Param, ...]]:
-    """:func:`build_spec`, and the parameters behind the uniforms uP0, uP1, ... of its shaders."""
+    """:func:`build_spec`, and the parameters behind the uniforms uP0, uP1, ... of its shaders.
+    With ``toggles`` False only the shader of the given settings is generated (a view without
+    the A, S, O, D toggles: the studio's node previews)."""
     if not isinstance(scene, Node):
         raise ParameterError(f"scene must be an sdfgl node, got {type(scene).__name__} {scene!r}")
     w, h = (int(x) for x in size)
@@ -217,6 +219,8 @@ def build(scene: Node, camera: Camera | None = None, size: tuple[int, int] = (64
     states = [(aa, sh, ao, None) for aa in (1, 2, 3, 4) for sh in (False, "hard", "soft")
               for ao in ((False,) if implicit else (False, True))]
     states += [(1, False, False, d) for d in DEBUG_VIEWS]
+    if not toggles:
+        states = [(start.aa, start.shadows, start.ao, start.debug)]
     first = None
     for aa, sh, ao, debug in states:
         st = replace(start, aa=aa, shadows=sh, ao=ao, debug=debug, outputs=("color",))
@@ -247,7 +251,8 @@ def build(scene: Node, camera: Camera | None = None, size: tuple[int, int] = (64
         "variants": variants,
         "settings": {"aa": start.aa, "shadows": start.shadows, "ao": start.ao, "debug": start.debug},
         "toggles": {"aa": [1, 2, 3, 4], "shadows": [False, "hard", "soft"], "ao": [False] if implicit else [False, True],
-                    "debug": [None, *DEBUG_VIEWS]},
+                    "debug": [None, *DEBUG_VIEWS]} if toggles else
+                   {"aa": [start.aa], "shadows": [start.shadows], "ao": [start.ao], "debug": [start.debug]},
         "origin": [float(x) for x in origin],
         "bounds": [[float(x) if np.isfinite(x) else (-GLSL_FAR if i == 0 else GLSL_FAR) for x in b]
                    for i, b in enumerate(scene.bounds)],

@@ -61,6 +61,164 @@ function el(tag, cls, text) {
   return e;
 }
 
+// The programs of one WebGL2 context, each linked once per shader text and deleted when
+// the last renderer holding it lets it go (a page that draws several views in one context
+// shares one of these between them).
+export function programCache(gl) {
+  const byText = new Map();
+  const shader = (type, text) => {
+    const s = gl.createShader(type);
+    gl.shaderSource(s, text);
+    gl.compileShader(s);
+    if (!gl.getShaderParameter(s, gl.COMPILE_STATUS)) throw new Error(`shader compile failed:\n${gl.getShaderInfoLog(s)}`);
+    return s;
+  };
+  return {
+    acquire(vertex, fragment) {
+      const key = `${vertex}\0${fragment}`;
+      let entry = byText.get(key);
+      if (!entry) {
+        const prog = gl.createProgram();
+        const vs = shader(gl.VERTEX_SHADER, vertex), fs = shader(gl.FRAGMENT_SHADER, fragment);
+        gl.attachShader(prog, vs);
+        gl.attachShader(prog, fs);
+        gl.linkProgram(prog);
+        gl.deleteShader(vs);
+        gl.deleteShader(fs);
+        if (!gl.getProgramParameter(prog, gl.LINK_STATUS)) {
+          const log = gl.getProgramInfoLog(prog);
+          gl.deleteProgram(prog);
+          throw new Error(`program link failed:\n${log}`);
+        }
+        entry = { key, prog, loc: new Map(), refs: 0 };
+        byText.set(key, entry);
+      }
+      entry.refs++;
+      return entry;
+    },
+    release(entry) {
+      if (--entry.refs > 0) return;
+      gl.deleteProgram(entry.prog);
+      byText.delete(entry.key);
+    },
+    get size() { return byText.size; },
+  };
+}
+
+// Draws the shaders of `spec` with `gl`: its data textures, its programs (from `cache`),
+// the camera, parameter and scene-box uniforms. `draw` renders one frame at (0, 0, w, h).
+export function createRenderer(gl, spec, cache = null) {
+  const programs = cache === null ? programCache(gl) : cache;
+  const held = new Map();  // toggle state -> program entry
+  const textures = [];
+  const vao = gl.createVertexArray();
+  spec.data.forEach((d, unit) => {
+    const tex = gl.createTexture();
+    gl.activeTexture(gl.TEXTURE0 + unit);
+    gl.bindTexture(gl.TEXTURE_2D, tex);
+    gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA32F, d.width, d.height, 0, gl.RGBA, gl.FLOAT, decodeFloats(d.b64));
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+    textures.push(tex);
+  });
+
+  function compile(key) {
+    if (held.has(key)) return held.get(key);
+    const ids = spec.variants[key];
+    if (!ids) throw new Error(`no shader for toggle state ${key}`);
+    const entry = programs.acquire(spec.vertex, ids.map((i) => spec.blocks[i]).join(""));
+    const known = new Set([...spec.uniforms, ...spec.params.map((p) => p.uniform), ...spec.data.map((d) => d.name),
+      ...(spec.frame.live ? Object.keys(spec.frame.base) : [])]);
+    for (let i = 0; i < gl.getProgramParameter(entry.prog, gl.ACTIVE_UNIFORMS); i++) {
+      const name = gl.getActiveUniform(entry.prog, i).name;
+      if (!known.has(name)) {
+        programs.release(entry);
+        throw new Error(`the shader reads uniform ${name}, which this viewer does not set`);
+      }
+    }
+    held.set(key, entry);
+    return entry;
+  }
+
+  // the scene box at `values`: interpolated from the sweeps spec.frame tabulates
+  function frameAt(values) {
+    if (!spec.frame.live) return null;
+    const out = JSON.parse(JSON.stringify(spec.frame.base));
+    let moved = 0;
+    for (const sw of spec.frame.sweeps) {
+      const p = spec.params[sw.param];
+      const comp = (v) => (p.dims === 3 ? v[sw.component] : v);
+      const v = comp(values[sw.param]), v0 = comp(p.value);
+      if (v === v0) continue;
+      const f = interpolate(sw, v), f0 = interpolate(sw, v0);
+      if (!f || !f0) continue;
+      moved++;
+      for (const key of Object.keys(out)) {
+        out[key] = Array.isArray(out[key]) ? out[key].map((x, k) => x + f[key][k] - f0[key][k]) : out[key] + f[key] - f0[key];
+      }
+    }
+    if (moved && spec.frame.margin > 0) {  // where the estimate fell short at export, widen the clip box
+      out.uBoundsLo = out.uBoundsLo.map((x) => x - spec.frame.margin);
+      out.uBoundsHi = out.uBoundsHi.map((x) => x + spec.frame.margin);
+    }
+    return out;
+  }
+
+  // one frame of toggle state `key` at w x h pixels; `frame` is the exact scene box or null
+  // (then estimated). Returns the milliseconds it took.
+  function draw(key, w, h, camera, values, frame = null) {
+    const { prog, loc } = compile(key);
+    const at = (name) => {
+      if (!loc.has(name)) loc.set(name, gl.getUniformLocation(prog, name));
+      return loc.get(name);
+    };
+    const set = (name, v) => {
+      const l = at(name);
+      if (l === null) return;
+      if (Array.isArray(v)) (v.length === 2 ? gl.uniform2fv : gl.uniform3fv).call(gl, l, v);
+      else gl.uniform1f(l, v);
+    };
+    gl.viewport(0, 0, w, h);
+    gl.useProgram(prog);
+    const cam = cameraBasis(camera);
+    set("uResolution", [w, h]);
+    set("uEye", cam.eye.map((x, k) => x - spec.origin[k]));
+    set("uRight", cam.r);
+    set("uUp", cam.u);
+    set("uForward", cam.f);
+    set("uTanHalfFov", Math.tan((camera.fov * Math.PI) / 360));
+    set("uJitter", [0, 0]);
+    if (at("uZero") !== null) gl.uniform1i(at("uZero"), 0);
+    spec.params.forEach((p, i) => set(p.uniform, values[i]));
+    const box = frame || frameAt(values);
+    if (box) for (const [name, v] of Object.entries(box)) set(name, v);
+    spec.data.forEach((d, unit) => {
+      gl.activeTexture(gl.TEXTURE0 + unit);
+      gl.bindTexture(gl.TEXTURE_2D, textures[unit]);
+      if (at(d.name) !== null) gl.uniform1i(at(d.name), unit);
+    });
+    gl.bindVertexArray(vao);
+    const t0 = performance.now();
+    gl.drawArrays(gl.TRIANGLES, 0, 3);
+    gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array(4));  // wait for the frame
+    return performance.now() - t0;
+  }
+
+  return {
+    draw,
+    frameAt,
+    destroy() {
+      for (const entry of held.values()) programs.release(entry);
+      held.clear();
+      for (const t of textures) gl.deleteTexture(t);
+      gl.deleteVertexArray(vao);
+    },
+  };
+}
+
+// `hooks.context`, if given, is a WebGL2 context the page shares between views
+// ({gl, programs, begin(w, h), copy(ctx2d, w, h)}): the view then draws into it and copies
+// each frame to its own 2D canvas, and creates no context of its own.
 export function createViewer(root, spec, hooks = {}) {
   const [width, height] = spec.size;  // CSS pixels; the drawing buffer has devicePixelRatio times more
   const dpr = Math.min(window.devicePixelRatio || 1, 2);
@@ -97,118 +255,30 @@ export function createViewer(root, spec, hooks = {}) {
   box.append(canvas, panel);
   root.append(box);
 
-  const gl = canvas.getContext("webgl2", { antialias: false, preserveDrawingBuffer: true });
-  const programs = new Map();
-  const textures = [];
-  let vao = null;
+  const shared = hooks.context || null;
+  const gl = shared ? shared.gl : canvas.getContext("webgl2", { antialias: false, preserveDrawingBuffer: true });
+  const ctx2d = shared ? canvas.getContext("2d") : null;
+  let renderer = null;
   if (!gl) {
     error.textContent = "This browser has no WebGL2: the scene cannot be drawn.";
   } else {
-    vao = gl.createVertexArray();
-    spec.data.forEach((d, unit) => {
-      const tex = gl.createTexture();
-      gl.activeTexture(gl.TEXTURE0 + unit);
-      gl.bindTexture(gl.TEXTURE_2D, tex);
-      gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA32F, d.width, d.height, 0, gl.RGBA, gl.FLOAT, decodeFloats(d.b64));
-      gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
-      gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
-      textures.push(tex);
-    });
-  }
-
-  function compile(key) {
-    if (programs.has(key)) return programs.get(key);
-    const ids = spec.variants[key];
-    if (!ids) throw new Error(`no shader for toggle state ${key}`);
-    const source = ids.map((i) => spec.blocks[i]).join("");
-    const shader = (type, text) => {
-      const s = gl.createShader(type);
-      gl.shaderSource(s, text);
-      gl.compileShader(s);
-      if (!gl.getShaderParameter(s, gl.COMPILE_STATUS)) throw new Error(`shader compile failed:\n${gl.getShaderInfoLog(s)}`);
-      return s;
-    };
-    const prog = gl.createProgram();
-    gl.attachShader(prog, shader(gl.VERTEX_SHADER, spec.vertex));
-    gl.attachShader(prog, shader(gl.FRAGMENT_SHADER, source));
-    gl.linkProgram(prog);
-    if (!gl.getProgramParameter(prog, gl.LINK_STATUS)) throw new Error(`program link failed:\n${gl.getProgramInfoLog(prog)}`);
-    const known = new Set([...spec.uniforms, ...spec.params.map((p) => p.uniform), ...spec.data.map((d) => d.name),
-      ...(spec.frame.live ? Object.keys(spec.frame.base) : [])]);
-    for (let i = 0; i < gl.getProgramParameter(prog, gl.ACTIVE_UNIFORMS); i++) {
-      const name = gl.getActiveUniform(prog, i).name;
-      if (!known.has(name)) throw new Error(`the shader reads uniform ${name}, which this viewer does not set`);
-    }
-    const entry = { prog, loc: new Map() };
-    programs.set(key, entry);
-    return entry;
+    renderer = createRenderer(gl, spec, shared ? shared.programs : null);
   }
 
   function frameUniforms() {
     if (!spec.frame.live) return null;
-    if (state.exactFrame) return state.exactFrame;
-    const out = JSON.parse(JSON.stringify(spec.frame.base));
-    let moved = 0;
-    for (const sw of spec.frame.sweeps) {
-      const p = spec.params[sw.param];
-      const comp = (v) => (p.dims === 3 ? v[sw.component] : v);
-      const v = comp(state.values[sw.param]), v0 = comp(p.value);
-      if (v === v0) continue;
-      const f = interpolate(sw, v), f0 = interpolate(sw, v0);
-      if (!f || !f0) continue;
-      moved++;
-      for (const key of Object.keys(out)) {
-        out[key] = Array.isArray(out[key]) ? out[key].map((x, k) => x + f[key][k] - f0[key][k]) : out[key] + f[key] - f0[key];
-      }
-    }
-    if (moved && spec.frame.margin > 0) {  // where the estimate fell short at export, widen the clip box
-      out.uBoundsLo = out.uBoundsLo.map((x) => x - spec.frame.margin);
-      out.uBoundsHi = out.uBoundsHi.map((x) => x + spec.frame.margin);
-    }
-    return out;
+    return state.exactFrame || renderer.frameAt(state.values);
   }
 
   function draw(key, w, h) {
-    const entry = compile(key);
-    const { prog, loc } = entry;
-    const at = (name) => {
-      if (!loc.has(name)) loc.set(name, gl.getUniformLocation(prog, name));
-      return loc.get(name);
-    };
-    const set = (name, v) => {
-      const l = at(name);
-      if (l === null) return;
-      if (Array.isArray(v)) (v.length === 2 ? gl.uniform2fv : gl.uniform3fv).call(gl, l, v);
-      else gl.uniform1f(l, v);
-    };
     if (canvas.width !== w || canvas.height !== h) {
       canvas.width = w;
       canvas.height = h;
     }
-    gl.viewport(0, 0, w, h);
-    gl.useProgram(prog);
-    const cam = cameraBasis(state.camera);
-    set("uResolution", [w, h]);
-    set("uEye", cam.eye.map((x, k) => x - spec.origin[k]));
-    set("uRight", cam.r);
-    set("uUp", cam.u);
-    set("uForward", cam.f);
-    set("uTanHalfFov", Math.tan((state.camera.fov * Math.PI) / 360));
-    set("uJitter", [0, 0]);
-    if (at("uZero") !== null) gl.uniform1i(at("uZero"), 0);
-    spec.params.forEach((p, i) => set(p.uniform, state.values[i]));
-    const frame = frameUniforms();
-    if (frame) for (const [name, v] of Object.entries(frame)) set(name, v);
-    spec.data.forEach((d, unit) => {
-      gl.activeTexture(gl.TEXTURE0 + unit);
-      gl.bindTexture(gl.TEXTURE_2D, textures[unit]);
-      if (at(d.name) !== null) gl.uniform1i(at(d.name), unit);
-    });
-    gl.bindVertexArray(vao);
-    const t0 = performance.now();
-    gl.drawArrays(gl.TRIANGLES, 0, 3);
-    gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array(4));  // wait for the frame
-    return performance.now() - t0;
+    if (shared) shared.begin(w, h);
+    const ms = renderer.draw(key, w, h, state.camera, state.values, state.exactFrame);
+    if (shared) shared.copy(ctx2d, w, h);
+    return ms;
   }
 
   function updateStatus() {
@@ -428,10 +498,7 @@ export function createViewer(root, spec, hooks = {}) {
     },
     destroy() {
       if (raf) cancelAnimationFrame(raf);
-      if (gl) {
-        for (const { prog } of programs.values()) gl.deleteProgram(prog);
-        for (const t of textures) gl.deleteTexture(t);
-      }
+      if (renderer) renderer.destroy();
       box.remove();
     },
   };

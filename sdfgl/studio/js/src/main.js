@@ -2,14 +2,18 @@
 // (sdfgl/studio/server.py) decodes and compiles it with the Python compiler and sends back
 // the view spec that the browser viewer (sdfgl/web/viewer.js, served as ./viewer.js) draws.
 // Slider moves of live parameters only set uniforms; structure edits recompile on the server.
+// Each node shows a live preview of its subtree, drawn from a spec the server compiles; the
+// output view and every preview share one WebGL2 context (shared_gl.js).
 import Drawflow from "drawflow";
-import { createViewer } from "./viewer.js";
+import { createRenderer, createViewer } from "./viewer.js";
+import { createSharedContext } from "./shared_gl.js";
 import { OUTPUT, fromDocument, paramName, paramRefs, positionsOf, toDocument } from "./graph.js";
 import { History } from "./history.js";
 import { MidiLearn } from "./midi.js";
 import { outputControlsHtml, settingsAfter, showOutputControls } from "./output.js";
 
 const COMPILE_DELAY_MS = 120;  // edits within this time are compiled together
+const PREVIEW_BUDGET_MS = 12;  // node previews drawn in one animation frame: until this is spent (at least one)
 const boot = JSON.parse(document.getElementById("studio-boot").textContent);
 const palette = Object.fromEntries(boot.palette.map((e) => [e.kind, e]));
 
@@ -27,6 +31,7 @@ const state = {
   gen: 0,           // structure edits sent
   shownGen: 0,      // the edit whose spec is on screen
   compiles: 0,      // the server's compile count
+  previewCompiles: 0,  // the server's count of node previews compiled
   spec: null,
   paths: {},
   cameraKey: null,  // the document camera (JSON) of the spec on screen
@@ -65,7 +70,7 @@ function nodeHtml(kind) {
   const slots = entry.inputs.map((s) => s.name + (s.many ? " (many)" : "")).join(", ");
   return `<div class="studio-node-title" title="${entry.doc.replace(/"/g, "&quot;")}">${kind}</div>`
     + (slots ? `<div class="studio-slots">in: ${slots}</div>` : "") + rows
-    + (kind === OUTPUT ? outputControlsHtml(entry.controls) : `<label class="studio-preview-toggle"><input type="checkbox" data-preview="1"> preview</label><img class="studio-preview" alt="" hidden>`)
+    + (kind === OUTPUT ? outputControlsHtml(entry.controls) : `<canvas class="studio-preview" width="1" height="1"></canvas>`)
     + `<div class="studio-node-error"></div>`;
 }
 
@@ -198,7 +203,6 @@ $("studio-editor").addEventListener("change", (e) => {
   }
   if (t.dataset.field) setField(id, t.dataset.field, parseField(t.value));
   else if (t.dataset.live) setLive(id, t.dataset.live, t.checked);
-  else if (t.dataset.preview) setPreview(id, t.checked);
   else if (t.dataset.colour) setField(id, t.dataset.colour, rgbOf(t.value));
 });
 // a named parameter's slider moves its uniform (no recompile)
@@ -317,6 +321,7 @@ function nodeOfPath(path) {
 
 function compileNow() {
   clearTimeout(compileTimer);
+  refreshPreviews();
   const { doc, paths, error } = currentDocument();
   const text = error ? null : JSON.stringify({ ...doc, metadata: undefined });  // metadata never changes the scene
   if (text !== null && text === state.lastSent && state.shownGen === state.gen && !state.error) {
@@ -346,28 +351,120 @@ function settle(gen, value) {
   });
 }
 
-// -- each node's own preview: its subtree rendered by sg.render on the server, refreshed
-// after every compile while its box is ticked
-const previews = new Set();
-function setPreview(id, on) {
-  const img = nodeElement(id).querySelector(".studio-preview");
-  nodeElement(id).querySelector("input[data-preview]").checked = on;
-  if (on) previews.add(id); else previews.delete(id);
-  img.hidden = !on;
-  if (on) requestPreview(id);
+// -- each node's own preview: a live WebGL2 render of its subtree, with the output view's
+// camera and the live parameters' current values. The server compiles a subtree when its
+// structure changes (its document, parameter values left out); a slider move or an orbit
+// of the output view only redraws. Drawn in the shared context, at most once an animation
+// frame, the previews on screen first, within PREVIEW_BUDGET_MS a frame (the rest the next).
+const shared = createSharedContext();
+const previews = new Map();  // node id -> {key, gen (asked), shown (answered), spec, renderer, dirty}
+let previewGen = 0;
+let previewRaf = 0;
+
+// a subtree document without its parameters' values: what a preview is compiled from
+function structureKey(doc) {
+  const params = Object.fromEntries(Object.entries(doc.params || {}).map(([k, p]) => [k, { ...p, value: null }]));
+  return JSON.stringify({ ...doc, params });
 }
-function requestPreview(id) {
-  if (!graphData()[id]) { previews.delete(id); return; }
-  const { doc, error } = toDocument(graphData(), palette, state.params, {}, id);
-  if (error || !doc) return;
-  send({ type: "preview", node: id, doc });
+function dropPreview(p) {
+  if (p.renderer) p.renderer.destroy();
+  p.renderer = null;
+  p.spec = null;
+  p.dirty = false;
 }
-function showPreview(id, b64, message) {
+function previewCanvas(id) {
   const elem = nodeElement(id);
-  if (!elem) return;
-  const img = elem.querySelector(".studio-preview");
-  if (b64) { img.src = `data:image/png;base64,${b64}`; img.title = ""; }
-  else img.title = message;
+  return elem ? elem.querySelector("canvas.studio-preview") : null;
+}
+// after an edit: ask for the previews whose subtree changed, forget those of removed nodes
+function refreshPreviews() {
+  const data = graphData();
+  for (const [id, p] of previews) if (!data[id]) { dropPreview(p); previews.delete(id); }
+  for (const [key, n] of Object.entries(data)) {
+    if (n.name === OUTPUT) continue;
+    const id = Number(key);
+    if (!previews.has(id)) previews.set(id, { key: null, gen: 0, shown: 0, spec: null, renderer: null, dirty: false });
+    const p = previews.get(id);
+    const { doc, error } = toDocument(data, palette, state.params, {}, id);
+    const k = error || !doc ? null : structureKey(doc);
+    if (k === p.key) continue;
+    p.key = k;
+    p.gen = ++previewGen;
+    if (k === null) { previewFailed(id, error ? error.message : "", p.gen); continue; }
+    send({ type: "preview", node: id, gen: p.gen, doc });
+  }
+  markPreviews();  // a typed value of a live field changes no structure, but the picture
+}
+function previewCompiled(msg) {
+  const p = previews.get(msg.node);
+  state.previewCompiles = msg.previews;
+  if (!p || p.gen !== msg.gen || !shared) return;  // an older compile of this subtree
+  p.shown = msg.gen;
+  const old = p.renderer;
+  p.spec = msg.spec;
+  p.renderer = createRenderer(shared.gl, msg.spec, shared.programs);
+  if (old) old.destroy();  // its programs are deleted unless another view draws them
+  const canvas = previewCanvas(msg.node);
+  if (canvas) canvas.title = "";
+  p.dirty = true;
+  schedulePreviews();
+}
+function previewFailed(id, message, gen) {
+  const p = previews.get(id);
+  if (!p || p.gen !== gen) return;
+  p.shown = gen;
+  dropPreview(p);
+  const canvas = previewCanvas(id);
+  if (!canvas) return;
+  canvas.getContext("2d").clearRect(0, 0, canvas.width, canvas.height);
+  canvas.title = message;
+}
+// redraw the previews that read any of the live parameters `names` (all of them: null)
+function markPreviews(names = null) {
+  for (const p of previews.values()) {
+    if (p.renderer && (names === null || p.spec.params.some((x) => names.includes(x.label)))) p.dirty = true;
+  }
+  schedulePreviews();
+}
+function schedulePreviews() {
+  if (!previewRaf) previewRaf = requestAnimationFrame(drawPreviews);
+}
+function drawPreviews() {
+  previewRaf = 0;
+  const t0 = performance.now();
+  const camera = viewer ? viewer.camera : null;
+  const view = $("studio-editor").getBoundingClientRect();
+  const due = [];
+  for (const [id, p] of previews) {
+    if (!p.dirty || !p.renderer) continue;
+    const canvas = previewCanvas(id);
+    if (!canvas) { p.dirty = false; continue; }
+    const r = canvas.getBoundingClientRect();
+    due.push({ id, p, canvas, shown: r.right > view.left && r.left < view.right && r.bottom > view.top && r.top < view.bottom });
+  }
+  due.sort((a, b) => b.shown - a.shown);
+  let drawn = 0;
+  for (const { id, p, canvas } of due) {
+    if (drawn && performance.now() - t0 > PREVIEW_BUDGET_MS) break;
+    drawPreview(id, p, canvas, camera);
+    drawn++;
+  }
+  if (drawn < due.length) schedulePreviews();
+}
+function drawPreview(id, p, canvas, camera) {
+  p.dirty = false;
+  const dpr = Math.min(window.devicePixelRatio || 1, 2);
+  const [w, h] = p.spec.size.map((x) => Math.round(x * dpr));
+  if (canvas.width !== w || canvas.height !== h) { canvas.width = w; canvas.height = h; }
+  const values = p.spec.params.map((x) => (state.params[x.label] ? state.params[x.label].value : x.value));
+  try {
+    shared.begin(w, h);
+    p.renderer.draw(Object.keys(p.spec.variants)[0], w, h, camera || p.spec.camera, values);
+    shared.copy(canvas.getContext("2d"), w, h);
+  } catch (e) {
+    canvas.title = String(e.message || e);
+  }
+  const elem = nodeElement(id);
   elem.dataset.previews = String(+(elem.dataset.previews || 0) + 1);
 }
 
@@ -417,13 +514,14 @@ function showSpec(spec, cameraKey, settingsKey) {
   state.spec = spec;
   state.cameraKey = cameraKey;
   state.settingsKey = settingsKey;
-  viewer = createViewer(root, spec, { onParams: paramsMoved });
+  viewer = createViewer(root, spec, { onParams: paramsMoved, onCamera: () => markPreviews(), context: shared || undefined });
   if (camera) viewer.setCamera(camera);
   // the toggles carry over where the new scene offers them (an implicit scene has no AO)
   if (settings) {
     viewer.setSettings(Object.fromEntries(Object.entries(settings).filter(
       ([k, v]) => (spec.toggles[k] || []).some((x) => x === v))));
   }
+  markPreviews();  // the camera may have changed
 }
 function paramsMoved(values) {
   const named = {};
@@ -436,6 +534,7 @@ function paramsMoved(values) {
 // live parameters' new values (by name) into the parameter table and the nodes' fields
 function takeValues(named) {
   for (const [name, v] of Object.entries(named)) if (state.params[name]) state.params[name].value = v;
+  markPreviews(Object.keys(named));
   for (const id of Object.keys(graphData())) {
     const node = editor.getNodeFromId(Number(id));
     for (const [field, p] of Object.entries(node.data.live || {})) {
@@ -509,7 +608,6 @@ function connectSocket() {
       if (msg.gen >= state.gen) {
         showSpec(msg.spec, state.cameraKeys[msg.gen], state.settingsKeys[msg.gen]);
         state.shownGen = msg.gen;
-        for (const id of previews) requestPreview(id);
         showMidi();
       }
       delete state.cameraKeys[msg.gen];
@@ -524,9 +622,9 @@ function connectSocket() {
     } else if (msg.type === "values") {
       controllerMoved(msg.values);
     } else if (msg.type === "preview") {
-      showPreview(msg.node, msg.b64);
+      previewCompiled(msg);
     } else if (msg.type === "error" && msg.request === "preview") {
-      showPreview(msg.node, null, msg.message);
+      previewFailed(msg.node, msg.message, msg.gen);
     } else if (msg.type === "error" || msg.type === "failed") {
       $("studio-error").textContent = msg.path ? `${msg.path}: ${msg.message}` : msg.message;
       answer(msg.request, msg.message, true);
@@ -691,7 +789,10 @@ window.studio = {
   addImplicit,
   addParametric,
   addPrimitive,
-  setPreview,
+  // the previews drawn (a renderer each), whether all are answered and drawn, the programs linked
+  previewCount: () => [...previews.values()].filter((p) => p.renderer).length,
+  previewsIdle: () => [...previews.values()].every((p) => p.shown === p.gen && !p.dirty),
+  glPrograms: () => (shared ? shared.programs.size : 0),
   midi,
   midiMessage,
   midiLearn: (name) => { midi.learn(name); showMidi(); },
