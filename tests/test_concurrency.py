@@ -4,6 +4,8 @@ from __future__ import annotations
 import multiprocessing as mp
 import os
 import pickle
+import subprocess
+import sys
 import threading
 import time
 
@@ -14,6 +16,23 @@ import sdfgl as sg
 
 SIZE = (40, 30)
 TIMEOUT_S = 120  # a regression (a hang in GL after fork) fails here instead of hanging CI
+FRESH = "SDFGL_TEST_FRESH_PROCESS"
+
+
+@pytest.fixture
+def in_fresh_process(request) -> bool:
+    """True in the test runner, after the test has passed in a fresh interpreter (pytest in a
+    subprocess, this test alone); False in that interpreter, where the body runs. A fork copies
+    only the forking thread: in a test-runner process with threads of its own (pytest-xdist's
+    I/O thread, servers left by other files) the child can inherit a lock held by one of them,
+    which is the runner's hazard, not the one these tests check."""
+    if os.environ.get(FRESH) == request.node.nodeid:
+        return False
+    r = subprocess.run([sys.executable, "-m", "pytest", "-q", "-p", "no:xdist", "-p", "no:cacheprovider",
+                        request.node.nodeid], env={**os.environ, FRESH: request.node.nodeid},
+                       cwd=request.config.rootpath, capture_output=True, text=True, timeout=3 * TIMEOUT_S)
+    assert r.returncode == 0, (r.stdout + r.stderr)[-3000:]
+    return True
 
 
 def scene(i: int) -> sg.Node:
@@ -99,7 +118,9 @@ def _wait_child(pid: int) -> int:
     pytest.fail("the forked child hung (killed after the timeout)")
 
 
-def test_os_fork_child_renders_with_its_own_context(tmp_path):
+def test_os_fork_child_renders_with_its_own_context(tmp_path, in_fresh_process):
+    if in_fresh_process:
+        return
     cached = image(0)
     out = tmp_path / "child.pkl"
     pid = os.fork()
@@ -119,7 +140,9 @@ def test_os_fork_child_renders_with_its_own_context(tmp_path):
 
 
 @pytest.mark.parametrize("method", ["fork", "spawn"])
-def test_multiprocessing_pool_renders_identical_to_serial(method):
+def test_multiprocessing_pool_renders_identical_to_serial(method, in_fresh_process):
+    if in_fresh_process:
+        return
     image(0)  # the parent holds a live context when the pool starts
     ids = [0, 1, 2, 3, 400, 401]
     with mp.get_context(method).Pool(2) as pool:
@@ -127,8 +150,10 @@ def test_multiprocessing_pool_renders_identical_to_serial(method):
     assert got == [image(i) for i in ids]
 
 
-def test_fork_while_another_thread_renders(tmp_path):
+def test_fork_while_another_thread_renders(tmp_path, in_fresh_process):
     """The at-fork handler waits for GL work in flight; both sides render on afterwards."""
+    if in_fresh_process:
+        return
     expected = {i: image(i) for i in (0, 1)}
     stop = threading.Event()
     seen: list[bool] = []
