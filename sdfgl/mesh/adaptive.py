@@ -155,27 +155,30 @@ def split_edges(verts: np.ndarray, faces: np.ndarray,
     """Split the longest edge of each face in ``faces_to_split`` (a mask) at its midpoint, and
     every face on a split edge with it (one, two or three split edges give two, three or four
     triangles), so the mesh stays closed. Returns (vertices, faces, indices of the new vertices,
-    mask of the faces left as they were: they come first, in their order, the new ones after)."""
+    mask of the faces left as they were: they come first, in their order, the new ones after).
+    Only the faces to split are sorted (their longest edges); every face's edges are looked up
+    among those by binary search, so a round costs little more than a pass over the faces."""
     n = len(verts)
-    e = np.stack([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]], axis=1)    # (F, 3, 2)
-    key = np.minimum(e[..., 0], e[..., 1]) * n + np.maximum(e[..., 0], e[..., 1])
-    uk, inv = np.unique(key.ravel(), return_inverse=True)
-    inv = inv.reshape(-1, 3)
-    length = np.linalg.norm(verts[e[..., 0]] - verts[e[..., 1]], axis=2)
-    marked = np.zeros(len(uk), bool)
-    bad = np.nonzero(faces_to_split)[0]
-    marked[inv[bad, np.argmax(length[bad], axis=1)]] = True
-    ids = np.nonzero(marked)[0]
-    mid_of = np.full(len(uk), -1, np.int64)
-    mid_of[ids] = n + np.arange(len(ids))
-    a, b = uk[ids] // n, uk[ids] % n
-    verts = np.concatenate([verts, (verts[a] + verts[b]) / 2])
-    m = mid_of[inv]                               # (F, 3): midpoint of edge (v_i, v_i+1) or -1
+    bad = faces[faces_to_split]
+    nxt = bad[:, [1, 2, 0]]
+    longest = np.argmax(np.linalg.norm(verts[bad] - verts[nxt], axis=2), axis=1)
+    a = np.take_along_axis(bad, longest[:, None], 1)[:, 0]
+    b = np.take_along_axis(nxt, longest[:, None], 1)[:, 0]
+    marked = np.unique(np.minimum(a, b) * n + np.maximum(a, b))   # sorted keys of the split edges
+    f1 = faces[:, [1, 2, 0]]
+    key = np.minimum(faces, f1) * n + np.maximum(faces, f1)        # (F, 3): edge (v_i, v_i+1)
+    at = np.searchsorted(marked, key)
+    np.minimum(at, len(marked) - 1, out=at)
+    m = np.where(marked[at] == key, n + at, -1)                    # midpoint of each edge or -1
     count = (m >= 0).sum(axis=1)
-    out = [faces[count == 0]]
+    verts = np.concatenate([verts, (verts[marked // n] + verts[marked % n]) / 2])
+    unchanged = count == 0
+    touched = ~unchanged
+    out = [faces[unchanged]]
+    faces, m, count = faces[touched], m[touched], count[touched]
     for r in range(3):  # rotate each face so its split edges start at edge 0
         f, mm = np.roll(faces, -r, axis=1), np.roll(m, -r, axis=1)
-        v0, v1, v2, m0, m1, m2 = f[:, 0], f[:, 1], f[:, 2], mm[:, 0], mm[:, 1], mm[:, 2]
+        v0, v1, v2, m0, m1 = f[:, 0], f[:, 1], f[:, 2], mm[:, 0], mm[:, 1]
         one = (count == 1) & (m0 >= 0)
         out += [np.stack([v0, m0, v2], 1)[one], np.stack([m0, v1, v2], 1)[one]]
         two = (count == 2) & (m0 >= 0) & (m1 >= 0)
@@ -183,7 +186,7 @@ def split_edges(verts: np.ndarray, faces: np.ndarray,
     three = count == 3
     v0, v1, v2, m0, m1, m2 = faces[:, 0], faces[:, 1], faces[:, 2], m[:, 0], m[:, 1], m[:, 2]
     out += [np.stack(t, 1)[three] for t in ((v0, m0, m2), (m0, v1, m1), (m2, m1, v2), (m0, m1, m2))]
-    return verts, np.concatenate(out), n + np.arange(len(ids)), count == 0
+    return verts, np.concatenate(out), n + np.arange(len(marked)), unchanged
 
 
 def simplify(field: GPUField, verts: np.ndarray, faces: np.ndarray, normals: np.ndarray, tolerance: float,
