@@ -156,8 +156,9 @@ def split_edges(verts: np.ndarray, faces: np.ndarray,
     every face on a split edge with it (one, two or three split edges give two, three or four
     triangles), so the mesh stays closed. Returns (vertices, faces, indices of the new vertices,
     mask of the faces left as they were: they come first, in their order, the new ones after).
-    Only the faces to split are sorted (their longest edges); every face's edges are looked up
-    among those by binary search, so a round costs little more than a pass over the faces."""
+    Only the split edges are sorted; the edges of the faces with two ends of split edges are
+    looked up among them by binary search, so a round costs little more than a pass over the
+    faces."""
     n = len(verts)
     bad = faces[faces_to_split]
     nxt = bad[:, [1, 2, 0]]
@@ -165,17 +166,22 @@ def split_edges(verts: np.ndarray, faces: np.ndarray,
     a = np.take_along_axis(bad, longest[:, None], 1)[:, 0]
     b = np.take_along_axis(nxt, longest[:, None], 1)[:, 0]
     marked = np.unique(np.minimum(a, b) * n + np.maximum(a, b))   # sorted keys of the split edges
-    f1 = faces[:, [1, 2, 0]]
-    key = np.minimum(faces, f1) * n + np.maximum(faces, f1)        # (F, 3): edge (v_i, v_i+1)
+    end = np.zeros(n, bool)                                        # ends of split edges
+    end[marked // n] = end[marked % n] = True
+    near = np.nonzero(end[faces].sum(axis=1) >= 2)[0]              # faces that may hold one
+    near_faces = faces[near]
+    f1 = near_faces[:, [1, 2, 0]]
+    key = np.minimum(near_faces, f1) * n + np.maximum(near_faces, f1)  # edge (v_i, v_i+1)
     at = np.searchsorted(marked, key)
     np.minimum(at, len(marked) - 1, out=at)
     m = np.where(marked[at] == key, n + at, -1)                    # midpoint of each edge or -1
     count = (m >= 0).sum(axis=1)
     verts = np.concatenate([verts, (verts[marked // n] + verts[marked % n]) / 2])
-    unchanged = count == 0
-    touched = ~unchanged
+    hit = count > 0
+    unchanged = np.ones(len(faces), bool)
+    unchanged[near[hit]] = False
     out = [faces[unchanged]]
-    faces, m, count = faces[touched], m[touched], count[touched]
+    faces, m, count = near_faces[hit], m[hit], count[hit]
     for r in range(3):  # rotate each face so its split edges start at edge 0
         f, mm = np.roll(faces, -r, axis=1), np.roll(m, -r, axis=1)
         v0, v1, v2, m0, m1 = f[:, 0], f[:, 1], f[:, 2], mm[:, 0], mm[:, 1]
