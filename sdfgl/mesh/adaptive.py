@@ -35,6 +35,16 @@ tolerances before the splits, and 16 tolerances squared went past that. meshopti
 quadric placement, vertices only dropped) kept 2.7 times the triangles on the CSG part at half a
 tolerance, and on the demo scene it joined two sheets at an edge; after pyfqmr it only has flat
 parts left to clear.
+
+Time, against the uniform marching-cubes export at 2^22 samples (tolerance 0.05 of its cell;
+``python -c "from sdfgl.mesh.bench import run_adaptive; print(run_adaptive(rounds=5)[0])"``,
+medians of interleaved runs on 2 shared CPU cores with llvmpipe, so within about 20 %): the CSG
+part 0.27 s against 0.15 s (1.8x, 8 236 triangles, 2.3 % of the uniform mesh), the demo scene
+0.28 s against 0.11 s (2.5x, 27 434 triangles, 15.9 %), both within 0.95 tolerances at face
+centres. The demo scene's collapses leave 10 692 triangles and nine split rounds bring them to
+27 434. At this tolerance the cell is capped by ``COARSEST`` at 63.5 tolerances, so
+``STEP_PER_TOLERANCE`` above that changes nothing; pyfqmr at 15 or 25 passes instead of 40 was
+no faster within the noise.
 """
 from __future__ import annotations
 
