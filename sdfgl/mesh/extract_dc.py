@@ -74,12 +74,16 @@ def _quad_cells(low: np.ndarray, axis: np.ndarray) -> tuple[np.ndarray, np.ndarr
 
 
 def _solve(ata: np.ndarray, atb: np.ndarray, mass: np.ndarray) -> np.ndarray:
-    """Minimiser of x^T A x - 2 b^T x nearest the mass point, small singular values cut."""
-    u, s, vt = np.linalg.svd(ata)
-    inv = np.where(s > SVD_CUT * s[:, :1], 1.0 / np.where(s > 0, s, 1.0), 0.0)
+    """Minimiser of x^T A x - 2 b^T x nearest the mass point, small singular values cut.
+    A is symmetric positive semi-definite, so its singular values are the magnitudes of its
+    eigenvalues and its singular vectors its eigenvectors: the symmetric eigensolver gives the
+    same pseudo-inverse as an SVD at about a third of the time."""
+    s, v = np.linalg.eigh(ata)                     # ascending eigenvalues, eigenvectors in columns
+    s = np.abs(s)
+    inv = np.where(s > SVD_CUT * s.max(axis=1, keepdims=True), 1.0 / np.where(s > 0, s, 1.0), 0.0)
     rhs = atb - np.einsum("nij,nj->ni", ata, mass)
-    pinv = np.einsum("nji,nj,nkj->nik", vt, inv, u)
-    return mass + np.einsum("nij,nj->ni", pinv, rhs)
+    y = np.einsum("nji,nj->ni", v, rhs) * inv      # V^T rhs, scaled
+    return mass + np.einsum("nij,nj->ni", v, y)
 
 
 def dual_contour(chunks, lat: Lattice, field: GPUField) -> tuple[np.ndarray, np.ndarray]:  # noqa: ANN001
