@@ -93,9 +93,13 @@ def test_workspace_compiles_a_node_preview_as_one_webgl2_shader_with_its_live_pa
     assert spec["settings"] == {"aa": 1, "shadows": False, "ao": False, "debug": None}
     assert [(p["uniform"], p["label"], p["min"], p["max"]) for p in spec["params"]] == [("uP0", "r", 0.2, 1.2)]
     assert "#version 300 es" in "".join(spec["blocks"]) and spec["frame"]["live"]
-    with pytest.raises(SdfglError):  # a 2D shape alone is no scene
-        s.preview({"format": "sdfgl-scene", "version": 1, "scene": {"kind": "circle", "radius": 1.0}})
-    assert s.preview_compiles == 1
+    flat = s.preview({"format": "sdfgl-scene", "version": 1, "scene": {"kind": "circle", "radius": 1.0}})
+    assert s.preview_compiles == 2 and flat["blocks"] != spec["blocks"]  # a 2D shape: shown as a thin slab
+    from sdfgl.web.spec import build
+    slab, _ = build(sg.extrude(sg.circle(1.0), 0.1), None, (120, 80), toggles=False, aa=1, shadows=False, ao=False)
+    assert flat["blocks"] == slab["blocks"]
+    with pytest.raises(SdfglError):  # a broken subtree is refused, naming what is wrong
+        s.preview({"format": "sdfgl-scene", "version": 1, "scene": {"kind": "circle", "radius": "big"}})
 
 
 def test_workspace_refuses_code_in_strings_with_the_json_path(tmp_path):

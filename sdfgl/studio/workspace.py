@@ -23,6 +23,7 @@ from ..scene_io.decode import Document, from_document
 EMPTY: dict[str, Any] = {"format": FORMAT, "version": VERSION, "scene": {"kind": "sphere", "radius": 1.0}}
 """The document a studio opened on no file (or on a file that does not exist yet) starts with."""
 PREVIEW_SIZE = (120, 80)  # a node's own preview, in pixels
+PREVIEW_SLAB = 0.1        # a 2D shape's preview: the shape extruded this thick (scene units)
 EXPORTS = ("png", "html", "stl", "3mf", "mp4")
 TURNTABLE_S = 4.0  # the length of the exported MP4: one turn about the scene
 """The formats the page's export buttons ask for."""
@@ -155,15 +156,13 @@ class Workspace:
         return {"node": doc["scene"], "params": doc.get("params", {})}
 
     def preview(self, doc: dict[str, Any]) -> dict[str, Any]:
-        """The view spec of a node's own preview: the document ``doc`` (that node's subtree)
-        compiled by the same ``build`` as the page's view, at PREVIEW_SIZE, one sample a
-        pixel, no shadows or AO, one shader (no toggles). The page draws it with the output
+        """The view spec of a node's own preview: the document ``doc`` (that node's subtree;
+        a 2D shape is shown extruded PREVIEW_SLAB thick) compiled by the same ``build`` as
+        the page's view, at PREVIEW_SIZE, one sample a pixel, no shadows or AO, one shader
+        (no toggles). The page draws it with the output
         view's camera and live parameters. Counted in :attr:`preview_compiles`."""
-        from ..nodes.base import Node
         from ..web.spec import build
-        scene = from_document(doc).scene
-        if not isinstance(scene, Node):
-            raise ParameterError(f"a {scene.kind} is a 2D shape: extrude or revolve it to see it")
+        scene = from_document(as_solid(doc)).scene
         spec, _ = build(scene, None, PREVIEW_SIZE, toggles=False, aa=1, shadows=False, ao=False)
         with self._lock:
             self.preview_compiles += 1
@@ -200,3 +199,15 @@ class Workspace:
                     mesh(document.scene).save(target)
                 data = target.read_bytes()
         return f"{stem}.{fmt}", data
+
+
+def as_solid(doc: dict[str, Any]) -> dict[str, Any]:
+    """``doc``, or, where its root is a 2D shape, the document of that shape extruded
+    PREVIEW_SLAB thick (a 2D shape has no 3D field to draw; its preview shows the slab)."""
+    from ..nodes.record import registry
+    from ..nodes.shapes2d import Shape2D
+    root = doc.get("scene") if isinstance(doc, dict) else None
+    cls = registry().get(root.get("kind")) if isinstance(root, dict) else None
+    if isinstance(cls, type) and issubclass(cls, Shape2D):
+        return {**doc, "scene": {"kind": "extrude", "shape": root, "height": PREVIEW_SLAB}}
+    return doc
