@@ -69,6 +69,17 @@ def test_copy_as_python_rebuilds_the_same_glsl():
     assert ns["settings"] == {"aa": 2} and ns["camera"].distance == CAMERA.distance
 
 
+def test_copy_as_python_writes_the_output_nodes_lights():
+    lights = [sg.directional_light((1, 2, 0.5), color="#ffeedd", intensity=1.5, shadow="hard"),
+              sg.point_light((0, 3, 1), intensity=4.0)]
+    doc = to_dict(sg.sphere(1), CAMERA, {"aa": 1, "lights": lights})
+    code = to_python(doc)
+    assert "sg.directional_light(" in code and "sg.point_light(" in code
+    ns: dict = {}
+    exec(compile(code, "<studio>", "exec"), ns)
+    assert sg.compile(ns["scene"], **ns["settings"]) == sg.compile(sg.sphere(1), aa=1, lights=lights)
+
+
 def test_workspace_counts_compiles_and_slider_values_do_not_recompile(tmp_path):
     s = Workspace(tmp_path / "part.json", size=(W, H))
     r = sg.param(0.7, "r", range=(0.2, 1.2))

@@ -71,11 +71,12 @@ class _Writer:
             self.lines.append(f"camera = {cls}({args})")
         else:
             self.lines.append("camera = None")
-        settings = d.get("settings", {})
-        if "lights" in settings:
-            raise ParameterError("copy as Python: settings.lights cannot be written as Python yet; "
-                                 "remove the lights or pass them to sg.render yourself")
-        self.lines.append(f"settings = {settings!r}")
+        settings = dict(d.get("settings", {}))
+        lights = settings.pop("lights", None)
+        text = repr(settings)
+        if lights:
+            text = text[:-1] + (", " if settings else "") + f"'lights': [{', '.join(map(light_call, lights))}]}}"
+        self.lines.append(f"settings = {text}")
         self.lines.append("# sg.render(scene, camera, **settings)")
         head = ["import math", "", "import sdfgl as sg"]
         for module in sorted(self.imports):
@@ -136,3 +137,10 @@ def to_python(doc: dict[str, Any]) -> str:
     :class:`~sdfgl.errors.SceneDocumentError` naming its JSON path."""
     from_document(doc)
     return _Writer(doc).write()
+
+
+def light_call(light: dict[str, Any]) -> str:
+    """The ``sg.directional_light(...)`` / ``sg.point_light(...)`` call of a (decoded, so
+    checked) document light object: numbers, 3-vectors, strings and flags only."""
+    kw = {k: (tuple(v) if isinstance(v, list) else v) for k, v in light.items() if k != "type"}
+    return f"sg.{light['type']}_light(" + ", ".join(f"{k}={v!r}" for k, v in kw.items()) + ")"
