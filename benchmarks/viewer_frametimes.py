@@ -4,10 +4,6 @@ Starts its own Xvfb, opens `sdfgl view` on the demo scene, drags the mouse in ci
 with xdotool for a few seconds, then lets it settle. Run from the repository root:
 
     python benchmarks/viewer_frametimes.py
-    python benchmarks/viewer_frametimes.py --coarse [ROUNDS]
-
-``--coarse`` instead compares the idle full-resolution sample of the demo (soft shadows, AO,
-the ground) with the coarse pass on and off, in interleaved rounds (default 3), no orbiting.
 """
 import statistics
 import subprocess
@@ -50,54 +46,7 @@ def measure(display: str, adaptive: bool, seconds: float = 6.0) -> dict:
             "moving_frames": len(moving), "idle_ms": statistics.median(idle[-8:]), "idle_frames": len(idle)}
 
 
-DEMO_FILE = """from sdfgl.demo import demo_camera, demo_scene
-scene = demo_scene()
-camera = demo_camera()
-settings = {"shadows": "soft", "ao": True, "ground": True, "coarse": %r}
-"""
-
-
-def measure_idle(display: str, coarse: bool, samples: int = 8) -> list[float]:
-    """Draw times (ms) of the idle full-resolution samples of the demo at 1280x720, coarse on or off."""
-    with tempfile.TemporaryDirectory() as tmp:
-        scene, state = Path(tmp) / "demo.py", Path(tmp) / "state.json"
-        scene.write_text(DEMO_FILE % coarse)
-        drv = Driver(display, state)
-        args = [sys.executable, "-m", "sdfgl.cli", "view", str(scene), "--size", "1280x720", "--state-file",
-                str(state), "--max-samples", str(samples), "--no-panel"]
-        proc = subprocess.Popen(args, env=drv.env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-        try:
-            drv.find_window(60)
-            st = drv.wait_for(lambda s: not s["moving"] and s["samples"] >= samples, timeout=300, what="refinement")
-        finally:
-            proc.terminate()
-            proc.wait(10)
-    assert st["coarse"] == (8 if coarse else 0), st["coarse"]
-    return [ms for mv, ms, sc in st["frame_log"] if not mv][-(samples - 2):]  # the first samples warm up
-
-
-def coarse_main(rounds: int) -> None:
-    proc, display = start_xvfb()
-    times: dict[bool, list[float]] = {True: [], False: []}
-    try:
-        for i in range(rounds):
-            for coarse in ((True, False) if i % 2 == 0 else (False, True)):
-                ms = measure_idle(display, coarse)
-                times[coarse].extend(ms)
-                print(f"round {i + 1} coarse {'on ' if coarse else 'off'}: median {statistics.median(ms):.1f} ms "
-                      f"per sample ({len(ms)} samples)", flush=True)
-    finally:
-        proc.terminate()
-    on, off = statistics.median(times[True]), statistics.median(times[False])
-    print(f"viewer idle sample at 1280x720, demo with soft shadows + AO: coarse on {on:.1f} ms, off {off:.1f} ms, "
-          f"on/off {on / off:.2f}x")
-
-
 def main() -> None:
-    if "--coarse" in sys.argv:
-        rest = sys.argv[sys.argv.index("--coarse") + 1:]
-        coarse_main(int(rest[0]) if rest else 3)
-        return
     proc, display = start_xvfb()
     try:
         for adaptive in (True, False):

@@ -49,17 +49,6 @@ class RawProgram:
             self.glo = 0
 
 
-class RawDraw:
-    """``prog`` drawn with vertex array ``vao`` behind moderngl's ``VertexArray.render``, for
-    :func:`sdfgl.gl.coarse_pass.draw_coarse` (the full-screen triangle is all it draws)."""
-
-    def __init__(self, prog: RawProgram, vao: int) -> None:
-        self.prog, self.vao = prog, vao
-
-    def render(self, mode: int = rawgl.TRIANGLES, vertices: int = 3) -> None:
-        self.prog.render(self.vao)
-
-
 class _Uniform:
     def __init__(self, prog: RawProgram, name: str) -> None:
         self.prog, self.name = prog, name
@@ -78,8 +67,7 @@ class _Uniform:
 class Job:
     """One compile: ``build`` makes the source (codegen runs off the window's thread too);
     ``scene`` and ``origin`` set the uniforms of the warm-up draw; ``meta`` comes back.
-    ``mesh_build``, when the view has raster meshes, makes the source of their program;
-    ``coarse_build`` makes, from the image's source, that of its coarse pass (None: it has none)."""
+    ``mesh_build``, when the view has raster meshes, makes the source of their program."""
 
     token: int
     build: Callable[[], ShaderSource]
@@ -87,7 +75,6 @@ class Job:
     origin: Any = None
     meta: Any = None
     mesh_build: Callable[[], ShaderSource] | None = None
-    coarse_build: Callable[[ShaderSource], ShaderSource | None] | None = None
 
 
 @dataclass
@@ -102,7 +89,6 @@ class Result:
     compiled: bool = False   # a new program was linked (not found in a cache)
     seconds: float = 0.0     # codegen + link + warm-up draw, off the window's thread
     timings: dict[str, float] = field(default_factory=dict)
-    coarse: int = 0          # tile side of the coarse pass drawn before the program's frames (0: none)
 
 
 def make_source(build: Callable[[], ShaderSource]) -> ShaderSource:

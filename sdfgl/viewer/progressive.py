@@ -18,7 +18,7 @@ from ..compiler.generate import generate
 from ..compiler.source import ShaderSource
 from ..errors import SdfglError
 from ..nodes.base import Node
-from ..render import coarse_source, shader_origin
+from ..render import shader_origin
 from ..settings import Settings
 from .programs import Job, Result
 from .render_thread import LANES, Exchange, Frame, FrameSpec, Lane, describe_error
@@ -36,17 +36,6 @@ def _codegen(scene: Node, settings: Settings, origin: np.ndarray, projection: st
     except SdfglError:
         raise
     except Exception as exc:  # noqa: BLE001 - a user's scene may raise anything while generating code
-        raise SdfglError(describe_error(exc, "compile")) from exc
-
-
-def _coarse_codegen(scene: Node, source: ShaderSource, settings: Settings, origin: np.ndarray,
-                    projection: str) -> Any:
-    """The coarse pass of the window's image ``source`` (None where it has none), as render() builds it."""
-    try:
-        return coarse_source(scene, source, settings.resolved(scene.exactness), origin, projection)
-    except SdfglError:
-        raise
-    except Exception as exc:  # noqa: BLE001 - as _codegen
         raise SdfglError(describe_error(exc, "compile")) from exc
 
 
@@ -91,8 +80,8 @@ class Progressive:
         if self.pending is not None and self.pending[2] == "reload" and why != "reload":
             why, file_settings = "reload", self.pending[4]
         origin = shader_origin(scene, v.camera.eye)
-        # steps: the panel's readout; the coarse pass (when the settings have one) is built beside the image
-        st = Settings.build(**{**settings, "outputs": ("color", "steps")})
+        # steps: the panel's readout; no coarse pass: the window's frames draw the image alone
+        st = Settings.build(**{**settings, "outputs": ("color", "steps"), "coarse": False})
         hl = None
         if st.debug == "select":  # the scene tree's selection (else the whole scene) is tinted
             hl = v.highlight[1] if v.highlight and v.highlight[0] is scene else scene
@@ -104,8 +93,7 @@ class Progressive:
             job = Job(self.token, lambda: _codegen(scene, st, origin, projection, hl, "render_over_mesh"), scene,
                       origin, meta, lambda: _codegen(scene, st, origin, projection, None, "raster_mesh"))
         else:
-            job = Job(self.token, lambda: _codegen(scene, st, origin, projection, hl), scene, origin, meta,
-                      coarse_build=lambda source: _coarse_codegen(scene, source, st, origin, projection))
+            job = Job(self.token, lambda: _codegen(scene, st, origin, projection, hl), scene, origin, meta)
         with self.exchange.cond:
             self.exchange.job = job  # a queued older request is dropped: the newest wins
             self.exchange.cond.notify_all()
@@ -147,7 +135,6 @@ class Progressive:
             if v.watch is not None:
                 v.watch.file_settings = dict(file_settings or {})
         v.scene, v.state.settings = scene, settings
-        v.state.coarse = res.coarse
         if self.error_token < res.token:  # an error raised after this request (a failed reload) stays shown
             v.set_error("")
         v.mark()

@@ -38,16 +38,13 @@ from ..errors import SdfglError
 from ..gl.cache import default_budget
 from ..gl.data import DataTextures
 from ..nodes.base import Node
-from ..gl.coarse_pass import draw_coarse
 from ..gl.raster_pass import RasterImages
-from ..gl.targets import Targets
-from ..render import bind_coarse, bind_raster_images, camera_uniforms, raster_pass, scene_uniforms
+from ..render import bind_raster_images, camera_uniforms, raster_pass, scene_uniforms
 from . import rawgl
-from .programs import Job, RawDraw, RawProgram, Result, link, link_raster, make_source, stamp
+from .programs import Job, RawProgram, Result, link, link_raster, make_source, stamp
 
 LANES = 2
 CACHE_SIZE = 12          # warm programs kept per lane, for instant toggling back
-COARSE_MARGIN = 0.5      # pixels a coarse tile is widened by a side: the samples' jitter (r2) is within it
 STEPS_EVERY_S = 0.25     # the mean-steps readout reads the steps image at most this often
 COMPILE_NICE = 10        # how much lower the CPU priority of compiles is than drawing's
 
@@ -171,9 +168,6 @@ class Lane:
         # program key -> the raster meshes' program that goes with it (views with meshes)
         self.raster_programs: dict[str, tuple[ShaderSource, moderngl.Program]] = {}
         self._raster: tuple[tuple[int, tuple[int, int]], RasterImages] | None = None  # (spec version, size), images
-        # program key -> the coarse pass's program drawn before it (where the settings have one)
-        self.coarse_programs: dict[str, tuple[ShaderSource, RawProgram]] = {}
-        self._coarse: tuple[tuple[int, tuple[int, int]], Targets] | None = None  # (spec version, size), tile starts
         self.failed = ""
         self._ready = threading.Event()
         self._drawn = -1          # version of the spec the targets hold
@@ -247,8 +241,6 @@ class Lane:
             self._release_program(text)
         if self._raster is not None:
             self._raster[1].release()
-        if self._coarse is not None:
-            self._coarse[1].release()
         self.data.clear()
         for t in (self._accum, self._low, *self._warm_targets):
             if t is not None:
@@ -314,39 +306,28 @@ class Lane:
                 found = [i for i in (active, self.index) if i >= 0 and source.text in ex.lanes[i].warm]
             if found:  # warm already: switching to it costs nothing
                 res.lane = found[0]
-                with ex.cond:
-                    coarse = ex.lanes[res.lane].coarse_programs.get(source.text)
-                res.coarse = coarse[0].coarse_tile if coarse is not None else 0
                 stamp(res, t0, codegen_s=t1 - t0)
             else:
                 prog = link(self.gl, source, self.ctx)
-                raster = coarse = None
+                raster = None
                 try:
                     if job.mesh_build is not None:
                         mesh_source = make_source(job.mesh_build)
                         raster = (mesh_source, link_raster(mesh_source, self.ctx))
-                    if job.coarse_build is not None:
-                        coarse_src = make_source(lambda: job.coarse_build(source))
-                        if coarse_src is not None:
-                            coarse = (coarse_src, link(self.gl, coarse_src, self.ctx))
                     t2 = time.perf_counter()
-                    self._warm_up(prog, source, job, coarse)
+                    self._warm_up(prog, source, job)
                 except Exception:
                     prog.release()
-                    for extra in (raster, coarse):
-                        if extra is not None:
-                            extra[1].release()
+                    if raster is not None:
+                        raster[1].release()
                     raise
                 t3 = time.perf_counter()
                 with ex.cond:
                     self.warm[source.text] = prog
                     if raster is not None:
                         self.raster_programs[source.text] = raster
-                    if coarse is not None:
-                        self.coarse_programs[source.text] = coarse
                     self._trim()
                 res.lane, res.compiled = self.index, True
-                res.coarse = coarse[0].coarse_tile if coarse is not None else 0
                 stamp(res, t0, codegen_s=t1 - t0, link_s=t2 - t1, warm_s=t3 - t2)
         except Exception as exc:  # noqa: BLE001 - a user's scene may fail anywhere: report, keep the thread
             res.error = describe_error(exc, "compile")
@@ -354,34 +335,12 @@ class Lane:
             ex.results.append(res)
         glfw.post_empty_event()  # wake the window's wait_events
 
-    def _warm_up(self, prog: RawProgram, source: ShaderSource, job: Job,
-                 coarse: tuple[ShaderSource, RawProgram] | None = None) -> None:
-        """Draw once into 1x1 targets of both formats (after the coarse pass, when there is one):
-        llvmpipe builds the machine code of each now."""
-        starts = None
-        if coarse is not None:
-            starts = self._coarse_pass(coarse, job.scene, OrbitCamera(), (1, 1), job.origin)
-        try:
-            camera_uniforms(prog, OrbitCamera(), (1, 1), job.origin)
-            scene_uniforms(prog, source, job.scene, job.origin, self.data)
-            if starts is not None:
-                bind_coarse(prog, source, starts)
-            for target, blend in zip(self._warm_targets, (True, False)):
-                self._draw(prog, target, (0.0, 0.0), blend)
-        finally:
-            if starts is not None:
-                starts.release()
-
-    def _coarse_pass(self, coarse: tuple[ShaderSource, RawProgram], scene: Node, camera: Camera,
-                     size: tuple[int, int], origin: np.ndarray) -> Targets:
-        """Draw the coarse pass (render.py's, through this lane's raw GL program) of an image of
-        ``size``, its tiles widened by COARSE_MARGIN for the samples' jitter; its tile starts."""
-        coarse_src, coarse_prog = coarse
-        camera_uniforms(coarse_prog, camera, size, origin)
-        scene_uniforms(coarse_prog, coarse_src, scene, origin, self.data)
-        if "uCoarseMargin" in coarse_prog:
-            coarse_prog["uCoarseMargin"].value = COARSE_MARGIN
-        return draw_coarse(self.ctx, RawDraw(coarse_prog, self.vao), size, coarse_src.coarse_tile)
+    def _warm_up(self, prog: RawProgram, source: ShaderSource, job: Job) -> None:
+        """Draw once into 1x1 targets of both formats: llvmpipe builds the machine code of each now."""
+        camera_uniforms(prog, OrbitCamera(), (1, 1), job.origin)
+        scene_uniforms(prog, source, job.scene, job.origin, self.data)
+        for target, blend in zip(self._warm_targets, (True, False)):
+            self._draw(prog, target, (0.0, 0.0), blend)
 
     def _trim(self) -> None:
         """Release the least recently made programs beyond CACHE_SIZE (never one the window may show)."""
@@ -399,10 +358,9 @@ class Lane:
     def _release_program(self, text: str) -> None:
         """Release the warm program ``text`` and its raster meshes' program, if any."""
         self.warm.pop(text).release()
-        for extras in (self.raster_programs, self.coarse_programs):
-            extra = extras.pop(text, None)
-            if extra is not None:
-                extra[1].release()
+        raster = self.raster_programs.pop(text, None)
+        if raster is not None:
+            raster[1].release()
 
     def _bind_meshes(self, spec: FrameSpec, prog: RawProgram, size: tuple[int, int]) -> None:
         """Draw the spec's raster meshes at ``size`` (once per spec and size: they do not take the
@@ -420,21 +378,6 @@ class Lane:
                                             spec.meshes, self.data)
         images = self._raster[1]
         bind_raster_images(prog, spec.source, images.depth_texture, images.color_texture)
-
-    def _bind_coarse(self, spec: FrameSpec, prog: RawProgram, size: tuple[int, int]) -> None:
-        """Draw the coarse pass of the spec's program at ``size`` (once per spec and size: its
-        widened tiles hold every sample's jitter) and bind its tile starts for the march ``prog``."""
-        coarse = self.coarse_programs.get(spec.key)
-        if coarse is None:
-            return
-        key = (spec.version, size)
-        if self._coarse is None or self._coarse[0] != key:
-            if self._coarse is not None:
-                self._coarse[1].release()
-                self._coarse = None
-            self._coarse = key, self._coarse_pass(coarse, spec.scene, spec.camera, size, spec.origin)
-            scene_uniforms(prog, spec.source, spec.scene, spec.origin, self.data)  # the pass bound its own data
-        bind_coarse(prog, spec.source, self._coarse[1])
 
     # -- frames (active lane) -------------------------------------------------------------
     def _draw(self, prog: RawProgram, target: _Target, jitter: tuple[float, float], blend: bool,
@@ -485,7 +428,6 @@ class Lane:
             camera_uniforms(prog, spec.camera, size, spec.origin, (0.0, 0.0))
             if spec.meshes:
                 self._bind_meshes(spec, prog, size)
-            self._bind_coarse(spec, prog, size)
             ms = self._draw(prog, self._low, (0.0, 0.0), False, size)
             if spec.adaptive:  # area scales with scale^2; damp the correction
                 want = scale * math.sqrt(spec.target_ms / max(ms, 1e-3))
@@ -503,7 +445,6 @@ class Lane:
             camera_uniforms(prog, spec.camera, spec.size, spec.origin, r2(self._samples))
             if spec.meshes:
                 self._bind_meshes(spec, prog, spec.size)
-            self._bind_coarse(spec, prog, spec.size)
             ms = self._draw(prog, self._accum, r2(self._samples), True)
             self._samples += 1
             source, weight, samples = self._accum, 1.0 / self._samples, self._samples

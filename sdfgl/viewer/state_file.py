@@ -44,7 +44,6 @@ class ViewState:
     panel: dict[str, Any] = field(default_factory=dict)
     compile_log: list[dict[str, float]] = field(default_factory=list)  # worker timings of each new program
     present_log: list[tuple[float, float | None, bool]] = field(default_factory=list)  # (wall time, yaw drawn, compiling)
-    coarse: int = 0  # tile side of the coarse pass drawn before each frame of the program shown (0: none)
     mean_steps: float = 0.0  # map() calls per pixel of the image on screen (pixel-centre rays)
     view: tuple[int, int, int, int] = (0, 0, 0, 0)  # the image's rectangle in the window: x, y, width, height
     live: dict[str, Any] = field(default_factory=dict)  # MIDI/OSC control: bindings, learning, messages, errors
