@@ -16,6 +16,7 @@ from typing import Callable
 import numpy as np
 
 from .camera import Camera, OrbitCamera
+from .gl.cache import CacheBudget
 from .nodes import booleans, primitives, shapes2d
 from .nodes.base import Node
 
@@ -224,7 +225,7 @@ def run_phases(quick: bool, size: tuple[int, int] = (320, 240)) -> str:
         ("one node as both operands, 30 levels (2^30 paths)", lambda: dag(30))]
     rows = ["| scene | build s (CPU) | bounds s (CPU) | codegen s | link s | first frame s | render CPU s | "
             "total s (CPU) | frame ms |", "|---|---|---|---|---|---|---|---|---|"]
-    renderer = Renderer()
+    renderer = Renderer(budget=CacheBudget(programs=None))  # timings hold every variant's programs
     renderer.render(primitives.sphere(1), size=(8, 8))  # the context, outside the figures
     for name, make in cases:
         gc.collect()
@@ -256,7 +257,7 @@ def run_big(quick: bool, size: tuple[int, int] = (320, 240)) -> str:
     """Every big-scene row at ``size`` (--quick: smaller scenes); return the markdown section."""
     from .bench import FrameTimer, Progress, Variant, time_interleaved
     from .render import Renderer
-    renderer = Renderer()
+    renderer = Renderer(budget=CacheBudget(programs=None))  # timings hold every variant's programs
     timer = FrameTimer(renderer, size)
     frames, warmup = (3, 1) if quick else (5, 2)
     rows = ["| scene | objects | build s | link ms | first frame ms | frame ms (median) | ratio | steps/px | "
@@ -324,7 +325,7 @@ def run_structures(quick: bool, size: tuple[int, int] = (320, 240), seeds: tuple
     a loaded machine disturbs least); return the markdown section."""
     from .bench import FrameTimer, Variant
     from .render import Renderer
-    renderer = Renderer()
+    renderer = Renderer(budget=CacheBudget(programs=None))  # timings hold every variant's programs
     timer = FrameTimer(renderer, size)
     frames, warmup = (2, 1) if quick else (5, 2)
     sizes = (16, 64) if quick else (16, 256, 1024, 4096)
