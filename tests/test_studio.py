@@ -261,6 +261,12 @@ BUILD_CSG = """(async () => {
 })()"""
 
 
+def open_page(b, url: str) -> None:
+    """Load the studio page at ``url`` in browser ``b`` and wait for its first shown compile."""
+    b.goto(url)
+    b.wait_for("document.body.dataset.ready === '1' && window.studio.state.shownGen >= 1", timeout=60)
+
+
 @pytest.fixture(scope="module")
 def page(tmp_path_factory):
     path = tmp_path_factory.mktemp("page") / "part.json"
@@ -269,8 +275,7 @@ def page(tmp_path_factory):
     live = LiveControl(osc=0)
     with Studio(Workspace(path, size=(W, H)), live=live) as st, Chromium(size=(1400, 800)) as b:
         live.start()
-        b.goto(st.url)
-        b.wait_for("document.body.dataset.ready === '1' && window.studio.state.shownGen >= 1", timeout=60)
+        open_page(b, st.url)
         yield st, b
 
 
@@ -739,8 +744,7 @@ def counted(tmp_path_factory):
     path = tmp_path_factory.mktemp("previews") / "row.json"
     with Studio(Workspace(path, size=(W, H))) as st, Chromium(size=(1400, 800)) as b:
         b.send("Page.addScriptToEvaluateOnNewDocument", {"source": COUNT_CONTEXTS}, session=True)
-        b.goto(st.url)
-        b.wait_for("document.body.dataset.ready === '1' && window.studio.state.shownGen >= 1", timeout=60)
+        open_page(b, st.url)
         yield st, b
 
 
