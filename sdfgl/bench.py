@@ -23,7 +23,7 @@ from typing import Callable, Sequence
 import moderngl
 import numpy as np
 
-from .errors import SdfglError
+from .errors import ParameterError, SdfglError
 from . import hardcases
 from .camera import Camera
 from .compiler.generate import generate
@@ -361,73 +361,81 @@ def _json_value(o: object) -> object:
     return asdict(o) if is_dataclass(o) and not isinstance(o, type) else float(o)  # type: ignore[arg-type]
 
 
+SECTIONS = ("methods", "features", "model", "mesh", "mesh-field", "big")
+
+
 def run(quick: bool, size: tuple[int, int] | None, out: Path, progress: bool = True,
-        scenes: Sequence[str] | None = None) -> dict:
+        scenes: Sequence[str] | None = None, sections: Sequence[str] | None = None) -> dict:
     """Run the benchmark, write bench.json, bench.md and pareto.png into ``out``; return the data.
 
-    Mesa's on-disk shader cache is turned off (before the context exists) so compile
-    times are real compiles, not cache hits from an earlier run."""
+    ``sections`` (of SECTIONS) picks the parts to run; the default is every part, except
+    that the mesh-as-a-field rows run in the full benchmark only (their compiles would
+    lengthen the quick one). Mesa's on-disk shader cache is turned off (before the context
+    exists) so compile times are real compiles, not cache hits from an earlier run."""
     os.environ.setdefault("MESA_SHADER_CACHE_DISABLE", "true")
+    wanted = set(sections) if sections else set(SECTIONS) - ({"mesh-field"} if quick else set())
+    unknown = wanted - set(SECTIONS)
+    if unknown:
+        raise ParameterError(f"bench: unknown section(s) {', '.join(sorted(unknown))}; "
+                             f"choose from {', '.join(SECTIONS)}")
     size = size or ((160, 120) if quick else (400, 300))
     frames, warmup = (3, 1) if quick else (9, 2)
     names = list(scenes) if scenes else (list(SEED_SCENES) + ([] if quick else list(MORE_SCENES)))
-    variants = build_variants(names, full=not quick)
-    features = feature_variants()
+    variants = build_variants(names, full=not quick) if "methods" in wanted else []
+    features = feature_variants() if "features" in wanted else []
     renderer = Renderer(budget=CacheBudget(programs=None))  # timings hold every variant's program
-    total = len(variants) * 2 + (warmup + frames) * 2 + len(features) + len(names)
-    bar = Progress(total, progress)
-
-    refs: dict[str, Reference] = {}
-    for name in names:
-        hc = hardcases.case(name)
-        node, cam = hc.build()
-        refs[name] = trace(node, cam, size, max_dist=hc.max_dist)
-        bar.step(f"reference {name}")
-    timer = FrameTimer(renderer, size)
-    time_interleaved(timer, variants, frames, warmup, bar)
-    for v in variants:
-        measure_errors(renderer, v, refs[v.scene], size)
-        bar.step(f"errors {v.scene}/{v.label}")
-    time_interleaved(timer, features, frames, warmup, Progress(0, False))
-    bar.step("features")
-    from .bench_model import run_model
-    model = run_model((160, 120) if quick else (320, 240), min(frames, 5), warmup,
-                      (16, 64, 256) if quick else (16, 64, 256, 1024), progress)
-    from .mesh.bench import run_mesh
-    mesh_md, mesh_data = run_mesh(2 ** 18 if quick else 2 ** 22, 1 if quick else 3, None if quick else 1024)
-
-    mesh_field: tuple[str, dict] | None = None
-    if not quick:  # its compiles would lengthen the quick run; the rows' own test runs QUICK sizes
+    md_parts = [f"Machine: {platform.machine()}, {describe(renderer.ctx)}; size {size[0]}x{size[1]}, "
+                f"{frames} timed frames after {warmup} warm-up, variants interleaved."]
+    data: dict = {"size": size, "frames": frames, "warmup": warmup, "gl": describe(renderer.ctx)}
+    small = (160, 120) if quick else (320, 240)
+    if variants:
+        refs: dict[str, Reference] = {}
+        bar = Progress(len(variants) * 2 + (warmup + frames) * 2 + len(names), progress)
+        for name in names:
+            hc = hardcases.case(name)
+            node, cam = hc.build()
+            refs[name] = trace(node, cam, size, max_dist=hc.max_dist)
+            bar.step(f"reference {name}")
+        time_interleaved(FrameTimer(renderer, size), variants, frames, warmup, bar)
+        for v in variants:
+            measure_errors(renderer, v, refs[v.scene], size)
+            bar.step(f"errors {v.scene}/{v.label}")
+        md_parts += ["## Summary: default settings of each method\n\n" + summary_table(variants),
+                     "## Methods and settings: speed and error\n\n" + methods_table(variants),
+                     "## The tables of Monzón González's thesis beside ours\n\n" + seed_table(variants)]
+        data["variants"] = [{"scene": v.scene, "label": v.label, "settings": v.settings,
+                             **{k: val for k, val in v.result.items() if not k.startswith("_")}} for v in variants]
+    if features:
+        time_interleaved(FrameTimer(renderer, size), features, frames, warmup, Progress(0, False))
+        md_parts.append("## Cost of each feature #define\n\n" + feature_table(features))
+        data["features"] = [{"label": v.label, "settings": v.settings,
+                             **{k: val for k, val in v.result.items() if not k.startswith("_")}} for v in features]
+    if "model" in wanted:
+        from .bench_model import run_model
+        md_parts.append("## Model only what a scene needs\n\n" + run_model(
+            small, min(frames, 5), warmup, (16, 64, 256) if quick else (16, 64, 256, 1024), progress))
+    if "big" in wanted:
+        from .bench_big import run_big, run_phases
+        md_parts.append("## Big scenes\n\n" + run_big(quick, small) + "\n\n" + run_phases(quick, small))
+    if "mesh" in wanted:
+        from .mesh.bench import run_mesh
+        mesh_md, data["mesh"] = run_mesh(2 ** 18 if quick else 2 ** 22, 1 if quick else 3, None if quick else 1024)
+        md_parts.append("## Mesh export against fogleman/sdf and DistForge\n\n" + mesh_md)
+    if "mesh-field" in wanted:
         from .bench_mesh_field import run_mesh_field
-        mesh_field = run_mesh_field(False, renderer)
-
-    from .bench_big import run_big, run_phases
-    big = run_big(quick, (160, 120) if quick else (320, 240))
-    big += "\n\n" + run_phases(quick, (160, 120) if quick else (320, 240))
+        field_md, data["mesh_field"] = run_mesh_field(quick, renderer)
+        md_parts.append(f"## A mesh as a field against libigl and rasterisation\n\n{field_md}")
 
     out.mkdir(parents=True, exist_ok=True)
-    md = "\n\n".join([
-        f"Machine: {platform.machine()}, {describe(renderer.ctx)}; size {size[0]}x{size[1]}, "
-        f"{frames} timed frames after {warmup} warm-up, variants interleaved.",
-        "## Summary: default settings of each method\n\n" + summary_table(variants),
-        "## Methods and settings: speed and error\n\n" + methods_table(variants),
-        "## The tables of Monzón González's thesis beside ours\n\n" + seed_table(variants),
-        "## Cost of each feature #define\n\n" + feature_table(features),
-        "## Model only what a scene needs\n\n" + model,
-        "## Big scenes\n\n" + big,
-        "## Mesh export against fogleman/sdf and DistForge\n\n" + mesh_md,
-    ] + ([f"## A mesh as a field against libigl and rasterisation\n\n{mesh_field[0]}"] if mesh_field else []))
+    md = "\n\n".join(md_parts)
+    written = [out / "bench.md", out / "bench.json"]
     (out / "bench.md").write_text(md + "\n")
-    data = {"size": size, "frames": frames, "warmup": warmup, "gl": describe(renderer.ctx),
-            "variants": [{"scene": v.scene, "label": v.label, "settings": v.settings,
-                          **{k: val for k, val in v.result.items() if not k.startswith("_")}} for v in variants],
-            "features": [{"label": v.label, "settings": v.settings,
-                          **{k: val for k, val in v.result.items() if not k.startswith("_")}} for v in features],
-            "mesh": mesh_data, **({"mesh_field": mesh_field[1]} if mesh_field else {})}
     (out / "bench.json").write_text(json.dumps(data, indent=1, default=_json_value))
-    pareto_plot(variants, out / "pareto.png")
+    if variants:
+        pareto_plot(variants, out / "pareto.png")
+        written.append(out / "pareto.png")
     print(md)
-    print(f"\nwrote {out / 'bench.md'}, {out / 'bench.json'}, {out / 'pareto.png'}")
+    print(f"\nwrote {', '.join(str(w) for w in written)}")
     return data
 
 
@@ -437,6 +445,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="WIDTHxHEIGHT (default 400x300, 160x120 with --quick)")
     p.add_argument("--out", type=Path, default=Path("bench-out"), help="output folder (default bench-out)")
     p.add_argument("--scenes", nargs="*", help="hard-case names to run (default: the thesis scenes, and more)")
+    p.add_argument("--sections", nargs="*", choices=SECTIONS, metavar="SECTION",
+                   help=f"parts to run, of {', '.join(SECTIONS)} (default: all; mesh-field in the full run only)")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
 
 
@@ -444,5 +454,5 @@ def main(argv: Sequence[str] | None = None, run_fn: Callable[..., dict] = run) -
     p = argparse.ArgumentParser(prog="sdfgl bench", description=__doc__.split("\n")[0])
     add_arguments(p)
     a = p.parse_args(argv)
-    run_fn(a.quick, a.size, a.out, not a.no_progress, a.scenes)
+    run_fn(a.quick, a.size, a.out, not a.no_progress, a.scenes, a.sections)
     return 0

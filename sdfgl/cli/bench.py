@@ -20,5 +20,5 @@ def run(a: argparse.Namespace) -> int:
     """Run ``sdfgl bench``; its last step draws a plot, so matplotlib is checked first."""
     require_extra("plots", "matplotlib", purpose="the benchmark's Pareto plot")
     from ..bench import run as run_bench
-    run_bench(a.quick, a.size, a.out, not a.no_progress, a.scenes)
+    run_bench(a.quick, a.size, a.out, not a.no_progress, a.scenes, a.sections)
     return 0
