@@ -1,9 +1,11 @@
-"""Frame times of the viewer at 1280x720 while orbiting and when idle, adaptive on and off.
+"""Frame times of the viewer at 1280x720 while orbiting and when idle: adaptive resolution on
+and off, and the coarse pass on and off (idle figures, in alternating runs).
 
-Starts its own Xvfb, opens `sdfgl view` on the demo scene, drags the mouse in circles
-with xdotool for a few seconds, then lets it settle. Run from the repository root:
+Starts its own Xvfb, opens `sdfgl view` on the demo scene (soft shadows, AO, the ground),
+drags the mouse in circles with xdotool for a few seconds, then lets it settle. Run from the
+repository root:
 
-    python benchmarks/viewer_frametimes.py
+    python benchmarks/viewer_frametimes.py [rounds]
 """
 import statistics
 import subprocess
@@ -16,11 +18,18 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from tests.xserver import Driver, start_xvfb  # noqa: E402
 
 
-def measure(display: str, adaptive: bool, seconds: float = 6.0) -> dict:
+DEMO = ("from sdfgl.demo import demo_camera, demo_scene\n"
+        "scene, camera = demo_scene(), demo_camera()\n"
+        "settings = {{'ground': True, 'coarse': {coarse}}}\n")
+
+
+def measure(display: str, adaptive: bool, seconds: float = 6.0, coarse: bool = True) -> dict:
     with tempfile.TemporaryDirectory() as tmp:
         state = Path(tmp) / "state.json"
+        scene = Path(tmp) / "demo.py"
+        scene.write_text(DEMO.format(coarse=coarse))
         drv = Driver(display, state)
-        args = [sys.executable, "-m", "sdfgl.cli", "view", "--demo", "--size", "1280x720", "--state-file", str(state),
+        args = [sys.executable, "-m", "sdfgl.cli", "view", str(scene), "--size", "1280x720", "--state-file", str(state),
                 "--max-samples", "8"] + ([] if adaptive else ["--no-adaptive"])
         proc = subprocess.Popen(args, env=drv.env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         try:
@@ -47,13 +56,21 @@ def measure(display: str, adaptive: bool, seconds: float = 6.0) -> dict:
 
 
 def main() -> None:
+    rounds = int(sys.argv[1]) if len(sys.argv) > 1 else 1
     proc, display = start_xvfb()
+    idle: dict[bool, list[float]] = {True: [], False: []}
     try:
-        for adaptive in (True, False):
-            r = measure(display, adaptive)
-            print(f"adaptive {'on ' if adaptive else 'off'}: orbiting {r['moving_ms']:.1f} ms/frame at "
-                  f"{r['moving_scale']:.0%} resolution ({r['moving_frames']} frames); idle refinement "
-                  f"{r['idle_ms']:.1f} ms per full-resolution sample")
+        for _ in range(rounds):
+            for adaptive, coarse in ((True, True), (False, True), (False, False)):
+                r = measure(display, adaptive, coarse=coarse)
+                if not adaptive:
+                    idle[coarse].append(r["idle_ms"])
+                print(f"adaptive {'on ' if adaptive else 'off'}, coarse pass {'on ' if coarse else 'off'}: orbiting "
+                      f"{r['moving_ms']:.1f} ms/frame at {r['moving_scale']:.0%} resolution ({r['moving_frames']} "
+                      f"frames); idle refinement {r['idle_ms']:.1f} ms per full-resolution sample")
+        on, off = statistics.median(idle[True]), statistics.median(idle[False])
+        print(f"idle full-resolution sample, median of {rounds}: coarse pass {on:.1f} ms, without {off:.1f} ms "
+              f"({on / off:.2f}x)")
     finally:
         proc.terminate()
 

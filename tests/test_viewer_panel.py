@@ -162,8 +162,10 @@ def test_readouts_show_frame_time_and_mean_steps(viewer):
     assert readout["frame_ms"] > 0
     scene = sg.sphere(0.6).translate((-1, 0, 0)) | sg.box(1.2).translate((1, 0, 0))
     cam = OrbitCamera(target=tuple(st["target"]), distance=st["distance"], yaw=st["yaw"], pitch=st["pitch"])
-    ref = sg.render(scene, cam, (W - PANEL, H), shadows=False, ao=False, outputs=("color", "steps"),
-                    coarse=False)  # the window's frames have no coarse pass
+    ref = sg.render(scene, cam, (W - PANEL, H), shadows=False, ao=False, outputs=("color", "steps"))
+    # (the window's frames start from the coarse pass, as render()'s do)
     want = float(ref.steps.mean())
     assert want > 0.5
     assert abs(readout["mean_steps"] - want) < 0.1 * want, (readout, want)
+    plain = sg.render(scene, cam, (W - PANEL, H), shadows=False, ao=False, outputs=("color", "steps"), coarse=False)
+    assert readout["mean_steps"] < 0.9 * float(plain.steps.mean())  # the coarse pass saved the way to the scene

@@ -67,7 +67,9 @@ class _Uniform:
 class Job:
     """One compile: ``build`` makes the source (codegen runs off the window's thread too);
     ``scene`` and ``origin`` set the uniforms of the warm-up draw; ``meta`` comes back.
-    ``mesh_build``, when the view has raster meshes, makes the source of their program."""
+    ``mesh_build``, when the view has raster meshes, makes the source of their program;
+    ``coarse_build`` makes the source of the coarse pass before the image from the image's
+    source (None where the image has none)."""
 
     token: int
     build: Callable[[], ShaderSource]
@@ -75,6 +77,7 @@ class Job:
     origin: Any = None
     meta: Any = None
     mesh_build: Callable[[], ShaderSource] | None = None
+    coarse_build: Callable[[ShaderSource], ShaderSource | None] | None = None
 
 
 @dataclass

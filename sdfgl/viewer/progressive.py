@@ -18,7 +18,7 @@ from ..compiler.generate import generate
 from ..compiler.source import ShaderSource
 from ..errors import SdfglError
 from ..nodes.base import Node
-from ..render import shader_origin
+from ..render import coarse_source, shader_origin
 from ..settings import Settings
 from .programs import Job, Result
 from .render_thread import LANES, Exchange, Frame, FrameSpec, Lane, describe_error
@@ -80,8 +80,7 @@ class Progressive:
         if self.pending is not None and self.pending[2] == "reload" and why != "reload":
             why, file_settings = "reload", self.pending[4]
         origin = shader_origin(scene, v.camera.eye)
-        # steps: the panel's readout; no coarse pass: the window's frames draw the image alone
-        st = Settings.build(**{**settings, "outputs": ("color", "steps"), "coarse": False})
+        st = Settings.build(**{**settings, "outputs": ("color", "steps")})  # steps: the panel's readout
         hl = None
         if st.debug == "select":  # the scene tree's selection (else the whole scene) is tinted
             hl = v.highlight[1] if v.highlight and v.highlight[0] is scene else scene
@@ -92,8 +91,10 @@ class Progressive:
         if v.meshes:  # the march stops at the raster meshes' depth; their own program is built beside it
             job = Job(self.token, lambda: _codegen(scene, st, origin, projection, hl, "render_over_mesh"), scene,
                       origin, meta, lambda: _codegen(scene, st, origin, projection, None, "raster_mesh"))
-        else:
-            job = Job(self.token, lambda: _codegen(scene, st, origin, projection, hl), scene, origin, meta)
+        else:  # the image, and the coarse pass that proves where its rays may start
+            job = Job(self.token, lambda: _codegen(scene, st, origin, projection, hl), scene, origin, meta,
+                      coarse_build=lambda source: coarse_source(scene, source, st.resolved(scene.exactness), origin,
+                                                                projection))
         with self.exchange.cond:
             self.exchange.job = job  # a queued older request is dropped: the newest wins
             self.exchange.cond.notify_all()

@@ -38,8 +38,10 @@ from ..errors import SdfglError
 from ..gl.cache import default_budget
 from ..gl.data import DataTextures
 from ..nodes.base import Node
+from ..gl.coarse_pass import START, coarse_size
 from ..gl.raster_pass import RasterImages
-from ..render import bind_raster_images, camera_uniforms, raster_pass, scene_uniforms
+from ..gl.targets import Targets
+from ..render import bind_coarse, bind_raster_images, camera_uniforms, raster_pass, scene_uniforms
 from . import rawgl
 from .programs import Job, RawProgram, Result, link, link_raster, make_source, stamp
 
@@ -167,6 +169,9 @@ class Lane:
         self.warm: OrderedDict[str, RawProgram] = OrderedDict()  # linked here and drawn once here
         # program key -> the raster meshes' program that goes with it (views with meshes)
         self.raster_programs: dict[str, tuple[ShaderSource, moderngl.Program]] = {}
+        # program key -> the coarse pass drawn before it (linked here too), where it has one
+        self.coarse_programs: dict[str, tuple[ShaderSource, RawProgram]] = {}
+        self._tiles: Targets | None = None  # the coarse pass's tile starts (its lower left part at smaller sizes)
         self._raster: tuple[tuple[int, tuple[int, int]], RasterImages] | None = None  # (spec version, size), images
         self.failed = ""
         self._ready = threading.Event()
@@ -242,7 +247,7 @@ class Lane:
         if self._raster is not None:
             self._raster[1].release()
         self.data.clear()
-        for t in (self._accum, self._low, *self._warm_targets):
+        for t in (self._accum, self._low, self._tiles, *self._warm_targets):
             if t is not None:
                 t.release()
         for b in self._pool + self._retired:
@@ -309,23 +314,29 @@ class Lane:
                 stamp(res, t0, codegen_s=t1 - t0)
             else:
                 prog = link(self.gl, source, self.ctx)
-                raster = None
+                raster = coarse = None
                 try:
                     if job.mesh_build is not None:
                         mesh_source = make_source(job.mesh_build)
                         raster = (mesh_source, link_raster(mesh_source, self.ctx))
+                    coarse_build = job.coarse_build
+                    coarse_src = None if coarse_build is None else make_source(lambda: coarse_build(source))
+                    if coarse_src is not None:  # linked like the image: the link does not hold the Python lock
+                        coarse = (coarse_src, link(self.gl, coarse_src, self.ctx))
                     t2 = time.perf_counter()
-                    self._warm_up(prog, source, job)
+                    self._warm_up(prog, source, job, coarse)
                 except Exception:
-                    prog.release()
-                    if raster is not None:
-                        raster[1].release()
+                    for obj in (prog, raster and raster[1], coarse and coarse[1]):
+                        if obj:
+                            obj.release()
                     raise
                 t3 = time.perf_counter()
                 with ex.cond:
                     self.warm[source.text] = prog
                     if raster is not None:
                         self.raster_programs[source.text] = raster
+                    if coarse is not None:
+                        self.coarse_programs[source.text] = coarse
                     self._trim()
                 res.lane, res.compiled = self.index, True
                 stamp(res, t0, codegen_s=t1 - t0, link_s=t2 - t1, warm_s=t3 - t2)
@@ -335,12 +346,35 @@ class Lane:
             ex.results.append(res)
         glfw.post_empty_event()  # wake the window's wait_events
 
-    def _warm_up(self, prog: RawProgram, source: ShaderSource, job: Job) -> None:
-        """Draw once into 1x1 targets of both formats: llvmpipe builds the machine code of each now."""
+    def _warm_up(self, prog: RawProgram, source: ShaderSource, job: Job,
+                 coarse: tuple[ShaderSource, RawProgram] | None) -> None:
+        """Draw once into 1x1 targets of both formats (and the coarse pass once): llvmpipe builds
+        the machine code of each now."""
+        if coarse is not None:
+            self._coarse_pass(coarse, job.scene, OrbitCamera(), (1, 1), job.origin, (0.0, 0.0))
+            bind_coarse(prog, source, self._tiles)
         camera_uniforms(prog, OrbitCamera(), (1, 1), job.origin)
         scene_uniforms(prog, source, job.scene, job.origin, self.data)
         for target, blend in zip(self._warm_targets, (True, False)):
             self._draw(prog, target, (0.0, 0.0), blend)
+
+    def _coarse_pass(self, coarse: tuple[ShaderSource, RawProgram], scene: Node, camera: Camera,
+                     size: tuple[int, int], origin: np.ndarray, jitter: tuple[float, float]) -> None:
+        """Draw the coarse pass of an image of ``size`` (its rays offset by ``jitter``) into the
+        tile target."""
+        source, cprog = coarse
+        tiles = coarse_size(size, source.coarse_tile)
+        if self._tiles is None or self._tiles.size[0] < tiles[0] or self._tiles.size[1] < tiles[1]:
+            if self._tiles is not None:  # kept while big enough: moving frames change size every frame
+                self._tiles.release()
+            # odd sides of 3 or more, never a power of two: llvmpipe builds the image's machine code
+            # anew for a texture that is one, and the warm-up must have built the code frames use
+            self._tiles = Targets(self.ctx, (max(3, tiles[0] | 1), max(3, tiles[1] | 1)), START)
+        camera_uniforms(cprog, camera, size, origin, jitter)
+        scene_uniforms(cprog, source, scene, origin, self.data)
+        self._tiles.fbo.use()
+        self.ctx.viewport = (0, 0, *tiles)
+        cprog.render(self.vao)
 
     def _trim(self) -> None:
         """Release the least recently made programs beyond CACHE_SIZE (never one the window may show)."""
@@ -358,9 +392,9 @@ class Lane:
     def _release_program(self, text: str) -> None:
         """Release the warm program ``text`` and its raster meshes' program, if any."""
         self.warm.pop(text).release()
-        raster = self.raster_programs.pop(text, None)
-        if raster is not None:
-            raster[1].release()
+        for extra in (self.raster_programs.pop(text, None), self.coarse_programs.pop(text, None)):
+            if extra is not None:
+                extra[1].release()
 
     def _bind_meshes(self, spec: FrameSpec, prog: RawProgram, size: tuple[int, int]) -> None:
         """Draw the spec's raster meshes at ``size`` (once per spec and size: they do not take the
@@ -428,7 +462,8 @@ class Lane:
             camera_uniforms(prog, spec.camera, size, spec.origin, (0.0, 0.0))
             if spec.meshes:
                 self._bind_meshes(spec, prog, size)
-            ms = self._draw(prog, self._low, (0.0, 0.0), False, size)
+            ms = self._coarse_before(spec, prog, size, (0.0, 0.0))
+            ms += self._draw(prog, self._low, (0.0, 0.0), False, size)
             if spec.adaptive:  # area scales with scale^2; damp the correction
                 want = scale * math.sqrt(spec.target_ms / max(ms, 1e-3))
                 self._scale = float(min(1.0, max(0.1, 0.5 * scale + 0.5 * want)))
@@ -445,7 +480,8 @@ class Lane:
             camera_uniforms(prog, spec.camera, spec.size, spec.origin, r2(self._samples))
             if spec.meshes:
                 self._bind_meshes(spec, prog, spec.size)
-            ms = self._draw(prog, self._accum, r2(self._samples), True)
+            ms = self._coarse_before(spec, prog, spec.size, r2(self._samples))
+            ms += self._draw(prog, self._accum, r2(self._samples), True)
             self._samples += 1
             source, weight, samples = self._accum, 1.0 / self._samples, self._samples
             uv_scale = (1.0, 1.0)
@@ -467,6 +503,18 @@ class Lane:
         if samples >= spec.max_samples:
             self._deliver_shots()
         glfw.post_empty_event()
+
+    def _coarse_before(self, spec: FrameSpec, prog: RawProgram, size: tuple[int, int],
+                       jitter: tuple[float, float]) -> float:
+        """Draw the coarse pass of the spec's program (where it has one) for an image of ``size``
+        whose rays are offset by ``jitter``, and bind its tile starts for ``prog``; its ms."""
+        coarse = self.coarse_programs.get(spec.key)
+        if coarse is None:
+            return 0.0
+        t0 = time.perf_counter()
+        self._coarse_pass(coarse, spec.scene, spec.camera, size, spec.origin, jitter)
+        bind_coarse(prog, spec.source, self._tiles)
+        return 1000 * (time.perf_counter() - t0)
 
     def _mean_steps(self, target: _Target, samples: int, uv_scale: tuple[float, float]) -> float:
         if uv_scale == (1.0, 1.0):
