@@ -125,7 +125,7 @@ def _against_reference(scene: sg.Node) -> tuple[np.ndarray, np.ndarray, np.ndarr
     """(hit, reference hit, error, plain marcher's error) on the decided pixels hit by both
     (errors in pixel footprints), after checking the free way took fewer steps."""
     cam = sg.OrbitCamera(distance=5.5, yaw=80, pitch=30, fov=45)
-    size = (96, 72)
+    size = (80, 60)
     got = sg.Renderer().render(scene, cam, size, shadows=False, ao=False, outputs=("color", "depth", "steps"))
     assert "#define RAY_FREE" in got.source.text
     plain = sg.Renderer().render(scene, cam, size, shadows=False, ao=False, outputs=("color", "depth", "steps"),

@@ -145,7 +145,7 @@ def near_points(node: sg.Shape2D, rng: np.random.Generator, n: int) -> np.ndarra
 @pytest.mark.slow
 def test_twin_matches_a_dense_polyline_of_the_same_outlines(string, align):
     node = sg.text(string, size=1.0, align=align)
-    pts = near_points(node, np.random.default_rng(1), 3000)
+    pts = near_points(node, np.random.default_rng(1), 1500)
     ref = polyline_reference(node, Font(font_path(None)), pts)
     got = node.distance2(pts)
     assert np.abs(np.abs(got) - np.abs(ref)).max() <= 1e-5  # em = 1 here
@@ -157,7 +157,7 @@ def test_twin_matches_a_dense_polyline_of_the_same_outlines(string, align):
 def test_cubic_font_twin_matches_a_dense_polyline(tmp_path):
     path = cubic_font(tmp_path / "cubic.otf")
     node = sg.text("oc o", font=path, size=2.0)
-    pts = near_points(node, np.random.default_rng(2), 3000)
+    pts = near_points(node, np.random.default_rng(2), 1500)
     ref = polyline_reference(node, Font(font_path(path)), pts)
     got = node.distance2(pts)
     assert CUBIC_TOLERANCE <= 1e-7
