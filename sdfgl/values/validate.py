@@ -65,9 +65,14 @@ def _check_scalar(node: str, name: str, v: float, positive: bool, nonnegative: b
     return v
 
 
+_PLAIN = (float, int)  # exactly these types (bool is not one of them)
+
+
 def scalar(node: str, name: str, value: object, *, positive: bool = False,
            nonnegative: bool = False) -> Any:
     """``value`` as a finite float (or a live scalar), else ParameterError naming ``node.name``."""
+    if type(value) in _PLAIN:  # the most common call, checked without the ABC test of numbers.Real
+        return _check_scalar(node, name, as_float(node, name, value), positive, nonnegative)
     if isinstance(value, LiveValue):
         if value.dims != 1:
             raise ParameterError(f"{node}: parameter '{name}' must be a scalar, got a 3-vector parameter")
@@ -83,9 +88,6 @@ def _check_vector(node: str, name: str, arr: np.ndarray, positive: bool, nonzero
         _check_scalar(node, f"{name}[{i}]", float(x), positive, False)
     if nonzero and not np.any(arr):
         raise ParameterError(f"{node}: parameter '{name}' must not be the zero vector")
-
-
-_PLAIN = (float, int)  # exactly these types (bool is not one of them)
 
 
 def vector(node: str, name: str, value: object, n: int = 3, *, positive: bool = False,
