@@ -41,7 +41,10 @@ def owns_checks(init: Callable[..., None]) -> Callable[..., None]:
     discarded node never rejects a value, and rebuilt nodes do not pile up checks)."""
     @functools.wraps(init)
     def wrapper(self: Any, *args: Any, **kwargs: Any) -> None:
-        stack = _building.__dict__.setdefault("stack", [])
+        try:
+            stack = _building.stack
+        except AttributeError:  # this thread's first node (no list made per node: fewer collections)
+            stack = _building.stack = []
         stack.append(self)
         try:
             init(self, *args, **kwargs)
