@@ -484,6 +484,29 @@ def test_the_command_line_serves_the_document_until_interrupted(tmp_path):
         assert proc.wait(20) == 0
 
 
+def test_the_command_line_stops_on_sigterm_and_on_sigint_when_started_with_it_ignored(tmp_path):
+    # a shell without job control starts a background command with SIGINT ignored
+    import signal
+    import subprocess
+    import sys
+    doc = tmp_path / "part.json"
+    sg.save_scene(sg.sphere(0.7), doc)
+    for sig in (signal.SIGINT, signal.SIGTERM):
+        proc = subprocess.Popen([sys.executable, "-m", "sdfgl", "studio", str(doc), "--no-browser"],
+                                stdout=subprocess.PIPE, text=True,
+                                preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_IGN))
+        try:
+            assert proc.stdout.readline().startswith("sdfgl studio: http://127.0.0.1:")
+        finally:
+            proc.send_signal(sig)
+            try:
+                code = proc.wait(20)
+            except subprocess.TimeoutExpired:
+                proc.kill()
+                raise
+        assert code == 0, sig
+
+
 @pytest.mark.browser
 @pytest.mark.slow
 @pytest.mark.skipif(find_chromium() is None, reason="needs Chromium (./install.sh --test installs it)")

@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import argparse
+import signal
 import time
 from typing import Any
 
@@ -36,6 +37,10 @@ def run(a: argparse.Namespace) -> int:
         live.load(a.bindings)
     if live is not None and live.osc_port is not None:
         print(f"sdfgl studio: OSC on udp://127.0.0.1:{live.osc_port}", flush=True)
+    # Ctrl+C (SIGINT) and SIGTERM stop it however it was started: a shell without job control
+    # starts a background command with SIGINT ignored, and Python then leaves it ignored
+    signal.signal(signal.SIGINT, signal.default_int_handler)
+    signal.signal(signal.SIGTERM, signal.default_int_handler)
     print(f"sdfgl studio: {st.url}  (Ctrl+C stops it)", flush=True)
     try:
         while True:
