@@ -41,8 +41,8 @@ def run(a: argparse.Namespace) -> int:
     # starts a background command with SIGINT ignored, and Python then leaves it ignored
     signal.signal(signal.SIGINT, signal.default_int_handler)
     signal.signal(signal.SIGTERM, signal.default_int_handler)
-    print(f"sdfgl studio: {st.url}  (Ctrl+C stops it)", flush=True)
-    try:
+    try:  # (a signal may come as soon as the URL is out)
+        print(f"sdfgl studio: {st.url}  (Ctrl+C stops it)", flush=True)
         while True:
             time.sleep(3600)
     except KeyboardInterrupt:
