@@ -390,7 +390,7 @@ class Lane:
                 self._release_program(text)
 
     def _release_program(self, text: str) -> None:
-        """Release the warm program ``text`` and its raster meshes' program, if any."""
+        """Release the warm program ``text`` and those drawn with it (its raster meshes', its coarse pass)."""
         self.warm.pop(text).release()
         for extra in (self.raster_programs.pop(text, None), self.coarse_programs.pop(text, None)):
             if extra is not None:
