@@ -22,7 +22,7 @@ from .errors import ParameterError, SdfglError
 from .gl.cache import CacheBudget, default_budget
 from .gl.context import CurrentContext, GLThread, describe, gl_thread
 from .gl.buffer_texture import BufferTexture
-from .gl.coarse_pass import draw_coarse
+from .gl.coarse_pass import coarse_size, draw_coarse
 from .gl.data import DataTextures
 from .gl.programs import ProgramCache
 from .gl.raster_pass import RasterImages, draw_meshes, view_range
@@ -359,8 +359,9 @@ class Renderer:
     def _read_starts(self, scene: Node, cam: Camera, wh: tuple[int, int], coarse: ShaderSource,
                      origin: np.ndarray) -> np.ndarray:
         starts = self.coarse_pass(scene, cam, wh, coarse, origin)
-        try:
-            return starts.read("start")[..., 0]
+        cols, rows = coarse_size(wh, coarse.coarse_tile)
+        try:  # the tiles are the target's lower left part: the last rows once row 0 is on top
+            return starts.read("start")[-rows:, :cols, 0].copy()
         finally:
             starts.release()
 
@@ -372,7 +373,7 @@ class Renderer:
         prog, vao = self.programs.entry(coarse)
         camera_uniforms(prog, cam, wh, origin)
         scene_uniforms(prog, coarse, scene, origin, self.data)
-        return draw_coarse(self.ctx, vao, wh, coarse.coarse_tile)
+        return draw_coarse(self.ctx, lambda: vao.render(moderngl.TRIANGLES, vertices=3), wh, coarse.coarse_tile)
 
     def _render_meshes(self, scene: Node, cam: Camera, wh: tuple[int, int], st: Settings, origin: np.ndarray,
                        meshes: tuple[RasterMesh, ...], t0: float) -> RenderResult:

@@ -38,7 +38,7 @@ from ..errors import SdfglError
 from ..gl.cache import default_budget
 from ..gl.data import DataTextures
 from ..nodes.base import Node
-from ..gl.coarse_pass import START, coarse_size
+from ..gl.coarse_pass import draw_coarse
 from ..gl.raster_pass import RasterImages
 from ..gl.targets import Targets
 from ..render import bind_coarse, bind_raster_images, camera_uniforms, raster_pass, scene_uniforms
@@ -363,18 +363,11 @@ class Lane:
         """Draw the coarse pass of an image of ``size`` (its rays offset by ``jitter``) into the
         tile target."""
         source, cprog = coarse
-        tiles = coarse_size(size, source.coarse_tile)
-        if self._tiles is None or self._tiles.size[0] < tiles[0] or self._tiles.size[1] < tiles[1]:
-            if self._tiles is not None:  # kept while big enough: moving frames change size every frame
-                self._tiles.release()
-            # odd sides of 3 or more, never a power of two: llvmpipe builds the image's machine code
-            # anew for a texture that is one, and the warm-up must have built the code frames use
-            self._tiles = Targets(self.ctx, (max(3, tiles[0] | 1), max(3, tiles[1] | 1)), START)
         camera_uniforms(cprog, camera, size, origin, jitter)
         scene_uniforms(cprog, source, scene, origin, self.data)
-        self._tiles.fbo.use()
-        self.ctx.viewport = (0, 0, *tiles)
-        cprog.render(self.vao)
+        # kept while big enough (moving frames change size every frame); a failed draw releases it
+        tiles, self._tiles = self._tiles, None
+        self._tiles = draw_coarse(self.ctx, lambda: cprog.render(self.vao), size, source.coarse_tile, tiles)
 
     def _trim(self) -> None:
         """Release the least recently made programs beyond CACHE_SIZE (never one the window may show)."""
