@@ -16,6 +16,7 @@ from .settings import Settings
 ROW = 1024            # points per texture row
 BATCH_ROWS = 1024     # rows per draw: 1 M points (16 MB of input texture) a batch
 F32_MAX = float(np.finfo(np.float32).max)
+SORT_MIN = 4096       # points from which a data-driven field is evaluated in spatial order
 
 
 def evaluate(scene: Node, points: object, origin: object = (0.0, 0.0, 0.0),
@@ -65,7 +66,8 @@ def _run(scene: Node, points: object, origin: object, renderer: Renderer | None,
     if not isinstance(scene, Node):
         raise ParameterError(f"{caller}: 'scene' must be an sdfgl node, got {type(scene).__name__}")
     p = as_points(points)
-    shape = p.shape[:-1] + ((comps,) if comps > 1 else ())
+    per_point = (comps,) if comps > 1 else ()
+    shape = p.shape[:-1] + per_point
     flat = p.reshape(-1, 3)
     if flat.shape[0] == 0:
         return np.zeros(shape, dtype=np.float32)
@@ -74,7 +76,34 @@ def _run(scene: Node, points: object, origin: object, renderer: Renderer | None,
         raise ParameterError(f"{caller}: 'origin' must be 3 finite numbers, got {origin!r}")
     r = renderer or default_renderer()
     source = generate(scene, Settings(shadows=False, ao=False), org, target=target)
-    return r.run(_evaluate_gl, r, scene, source, org, flat, comps, caller).reshape(shape)
+    if not source.data or len(flat) < SORT_MIN or not np.all(np.isfinite(flat)):
+        return r.run(_evaluate_gl, r, scene, source, org, flat, comps, caller).reshape(shape)
+    order = spatial_order(flat)
+    vals = np.empty((len(flat),) + per_point, dtype=np.float32)
+    vals[order] = r.run(_evaluate_gl, r, scene, source, org, flat[order], comps, caller)
+    return vals.reshape(shape)
+
+
+def _spread_bits(v: np.ndarray) -> np.ndarray:
+    """The 10 low bits of each int64 in ``v`` moved to every third bit (0, 3, 6, ...)."""
+    v = (v | (v << 16)) & 0x30000FF
+    v = (v | (v << 8)) & 0x300F00F
+    v = (v | (v << 4)) & 0x30C30C3
+    return (v | (v << 2)) & 0x9249249
+
+
+def spatial_order(points: np.ndarray) -> np.ndarray:
+    """The order of (n, 3) points along a Morton (Z-order) curve over their box, 1024 cells a side.
+
+    A fragment shader runs neighbouring pixels together in SIMD lanes; where map() loops
+    over data (a mesh's hierarchy, a grid's cell lists) each lane walks its own way and the
+    block waits for the slowest, so points that lie near each other should sit in
+    neighbouring pixels. Random points in this order evaluate about twice as fast on
+    llvmpipe (a 100 000-triangle mesh)."""
+    lo, hi = points.min(axis=0), points.max(axis=0)
+    cell = np.clip((points - lo) * (1023.0 / np.maximum(hi - lo, 1e-300)), 0, 1023).astype(np.int64)
+    code = _spread_bits(cell[:, 0]) | (_spread_bits(cell[:, 1]) << 1) | (_spread_bits(cell[:, 2]) << 2)
+    return np.argsort(code, kind="stable")
 
 
 def _batch(flat: np.ndarray, org: np.ndarray, out: np.ndarray, caller: str) -> None:

@@ -50,6 +50,37 @@ def test_gpu_distance_matches_libigl(renderer, make):
     assert err <= 1e-5 and flips == 0
 
 
+def test_many_points_go_in_spatial_order_and_come_back_in_theirs(renderer):
+    from sdfgl.evaluate import SORT_MIN, spatial_order
+    rng = np.random.default_rng(2)
+    pts = rng.uniform(-1, 1, (3 * SORT_MIN, 3))
+    order = spatial_order(pts)
+    assert np.array_equal(np.sort(order), np.arange(len(pts)))
+    walk = np.linalg.norm(np.diff(pts[order], axis=0), axis=1).mean()
+    assert walk < 0.2 * np.linalg.norm(np.diff(pts, axis=0), axis=1).mean()
+    node = sg.from_mesh(torus())
+    together = sg.evaluate(node, pts.reshape(3, SORT_MIN, 3), renderer=renderer)  # sorted on the GPU
+    apart = [sg.evaluate(node, pts[k:k + SORT_MIN // 2], renderer=renderer) for k in range(0, len(pts), SORT_MIN // 2)]
+    assert together.shape == (3, SORT_MIN)
+    assert np.array_equal(together.reshape(-1), np.concatenate(apart))
+
+
+def test_two_meshes_in_one_scene_keep_their_own_distances(renderer):
+    # the walk starts from the last call's closest triangle; the other mesh's must not count
+    a, b = sg.from_mesh(torus(), name="torus"), sg.from_mesh(bumpy(3), name="ball")
+    scene = sg.union(a, b.translate((0.9, 0.3, 0)), k=0.05) - b.scale(0.5)
+    rng = np.random.default_rng(8)
+    lo, hi = scene.bounds
+    err, flips = figures(scene, rng.uniform(lo - 0.2, hi + 0.2, (6000, 3)), renderer)
+    assert err <= 1e-5 and flips == 0
+    cam = sg.OrbitCamera.framing(*scene.bounds, aspect=48 / 36)
+    res = renderer.render(scene, cam, (48, 36), outputs=("depth",), shadows=False, ao=False)
+    o, d = cam.rays(48, 36)
+    hit = np.isfinite(res.depth)
+    p = o[hit] + d[hit] * res.depth[hit][:, None].astype(np.float64)
+    assert hit.mean() > 0.1 and np.abs(scene.distance(p)).max() < 1e-3
+
+
 def test_hierarchy_is_balanced_and_lists_every_triangle_once():
     m = bumpy(5)
     bvh = build(np.asarray(m.vertices), np.asarray(m.faces))

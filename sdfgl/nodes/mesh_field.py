@@ -121,7 +121,8 @@ class MeshField(Node):
         bvh = self.bvh
         em.require("sd_mesh_bvh")
         nodes, tris = em.table(bvh.nodes), em.table(bvh.triangles)
-        return em.with_color(em.assign("float", f"sdMeshBVH({em.point(p)}, {nodes}, {tris})"))
+        end = tris + len(bvh.triangles)
+        return em.with_color(em.assign("float", f"sdMeshBVH({em.point(p)}, {nodes}, {tris}, {end})"))
 
     def _distance(self, p: np.ndarray) -> np.ndarray:
         from ..extras import require_extra

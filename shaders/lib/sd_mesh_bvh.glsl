@@ -5,7 +5,11 @@
 // pseudonormals of edges ab, bc, ca and of vertices a, b, c. The walk visits the nearer child first and skips boxes
 // farther than the closest triangle so far; the closest point is Ericson's (Real-Time
 // Collision Detection, 5.1.5) with the feature it lies on, whose angle-weighted pseudonormal
-// gives the sign (Baerentzen and Aanaes 2005).
+// gives the sign (Baerentzen and Aanaes 2005). The closest triangle of the last call
+// (meshHint) starts the walk: a ray's map() calls follow each other closely, so it is
+// usually still the closest one, or near it, and the walk skips nearly every box from the
+// start. The result does not depend on it (every triangle nearer than the hint is still
+// found); a hint from another mesh's table is ignored.
 // requires: data_table
 
 float meshBoxDist2(vec3 p, vec3 lo, vec3 hi) {
@@ -72,11 +76,15 @@ void meshLeaf(vec3 p, int tris, int code, inout float best, inout int bestTri, i
     if (count > 3) meshTriangle(p, t + 27, best, bestTri, bestFeature, bestPoint);
 }
 
-float sdMeshBVH(vec3 p, int nodes, int tris) {
+int meshHint = -1;  // the texel of the triangle record closest to the last point asked
+
+// `trisEnd`: the texel after the mesh's last triangle record.
+float sdMeshBVH(vec3 p, int nodes, int tris, int trisEnd) {
     float best = 3.0e38;
     int bestTri = tris;
     int bestFeature = 0;
     vec3 bestPoint = p;
+    if (meshHint >= tris && meshHint < trisEnd) meshTriangle(p, meshHint, best, bestTri, bestFeature, bestPoint);
     int stackNode[32];
     float stackDist[32];
     int sp = 1;
@@ -113,6 +121,7 @@ float sdMeshBVH(vec3 p, int nodes, int tris) {
             }
         }
     }
+    meshHint = bestTri;
     vec3 n;
     if (bestFeature == 0) {
         n = vec3(dataFetch(bestTri).w, dataFetch(bestTri + 1).w, dataFetch(bestTri + 2).w);
