@@ -61,7 +61,7 @@ def paired(out: Path, rounds: int, frames: int, size: tuple[int, int]) -> dict[s
 
 
 def distforge_clip(out: Path, frames: int, size: tuple[int, int], display: str) -> dict:
-    r = subprocess.run([sys.executable, str(HERE / "peers" / "distforge_demo.py"), str(out), str(frames), str(size[0]),
+    r = subprocess.run([sys.executable, "-m", "sdfgl.peers.distforge_demo", str(out), str(frames), str(size[0]),
                         str(size[1])], env={**os.environ, "DISPLAY": display}, capture_output=True, text=True,
                        timeout=1800)
     if r.returncode != 0:

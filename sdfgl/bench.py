@@ -361,7 +361,7 @@ def _json_value(o: object) -> object:
     return asdict(o) if is_dataclass(o) and not isinstance(o, type) else float(o)  # type: ignore[arg-type]
 
 
-SECTIONS = ("methods", "features", "model", "mesh", "mesh-field", "big")
+SECTIONS = ("methods", "features", "model", "mesh", "mesh-field", "big", "png")
 
 
 def run(quick: bool, size: tuple[int, int] | None, out: Path, progress: bool = True,
@@ -425,6 +425,10 @@ def run(quick: bool, size: tuple[int, int] | None, out: Path, progress: bool = T
         from .bench_mesh_field import run_mesh_field
         field_md, data["mesh_field"] = run_mesh_field(quick, renderer)
         md_parts.append(f"## A mesh as a field against libigl and rasterisation\n\n{field_md}")
+    if "png" in wanted:
+        from .bench_png import run_png
+        png_md, data["png"] = run_png(quick)
+        md_parts.append(f"## A PNG of the demo scene against DistForge\n\n{png_md}")
 
     out.mkdir(parents=True, exist_ok=True)
     md = "\n\n".join(md_parts)
