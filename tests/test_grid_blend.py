@@ -203,3 +203,30 @@ def test_the_benchmark_scenes_keep_their_blends_as_data():
     assert forest.grid is not None and forest.grid.blend is None and len(forest.grid.types) == 4
     slab, _ = bench_big.blend_slab(100)
     assert slab.grid.blend == Blend.of(0.1, "quadratic") and bench_big.blend_slab(100, 0.0)[0].grid.blend is None
+
+
+def test_neighbour_counts_of_many_boxes_are_exact_or_a_superset(monkeypatch):
+    from sdfgl.nodes import blend_reach
+    rng = np.random.default_rng(4)
+    n = blend_reach.PAIRWISE_MAX + 500
+    centre = np.concatenate([rng.uniform(0, 4, (n - 200, 3)), rng.uniform(0, 0.3, (200, 3))])  # a dense cluster too
+    half = rng.uniform(0.01, 0.1, n)[:, None] * np.array([1.0, 0.5, 2.0])
+    lo, hi = centre - half, centre + half
+    reach = rng.uniform(0, 0.4, n)
+    radius = reach + np.linalg.norm(hi - lo, axis=1) / 2 + (np.linalg.norm(hi - lo, axis=1) / 2).max()
+    apart = np.linalg.norm(centre[:, None] - centre[None], axis=-1)
+    exact = (apart <= radius[:, None]).sum(axis=1)
+    assert np.array_equal(blend_reach._neighbour_counts(lo, hi, reach), exact)
+    monkeypatch.setattr(blend_reach, "PAIRS_PER_PASS", 1000)  # many passes: the same counts
+    assert np.array_equal(blend_reach._neighbour_counts(lo, hi, reach), exact)
+    monkeypatch.setattr(blend_reach, "PAIRS_MOST", 1000)  # too many pairs: the 27 cells' boxes
+    assert np.all(blend_reach._neighbour_counts(lo, hi, reach) >= exact)
+
+
+def test_a_big_smooth_union_needs_no_scipy(monkeypatch):
+    import sys
+    monkeypatch.setitem(sys.modules, "scipy", None)  # the core install has no scipy
+    monkeypatch.setitem(sys.modules, "scipy.spatial", None)
+    s = blob(2000, k=0.05)
+    lo, hi = s.bounds
+    assert np.all(lo >= -2.6) and np.all(hi <= 2.6) and np.all(hi - lo > 0.5)

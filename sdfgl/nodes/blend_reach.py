@@ -23,21 +23,52 @@ from __future__ import annotations
 
 import numpy as np
 
-PAIRWISE_MAX = 1500  # up to this many children the box distances are counted exactly
+PAIRWISE_MAX = 1500     # up to this many children the box distances are counted exactly
+PAIRS_PER_PASS = 1 << 21  # candidate pairs measured in one numpy pass
+PAIRS_MOST = 1 << 23      # beyond this many candidate pairs the candidates are counted instead
 
 
 def _neighbour_counts(lo: np.ndarray, hi: np.ndarray, reach: np.ndarray) -> np.ndarray:
     """For every box i, how many boxes (itself included) lie within reach[i] of it, or a
-    superset of them (above PAIRWISE_MAX boxes, by their centres and half-diagonals)."""
+    superset of them: above PAIRWISE_MAX boxes, those whose centres lie within reach[i] plus
+    both half-diagonals of box i's centre, found through a uniform grid of that radius (the
+    boxes in the 27 cells around box i's), or where that would measure more than PAIRS_MOST
+    pairs, every box in those 27 cells."""
     n = len(lo)
     if n <= PAIRWISE_MAX:
         gap = np.maximum(0.0, np.maximum(lo[None, :, :] - hi[:, None, :], lo[:, None, :] - hi[None, :, :]))
         dist = np.sqrt((gap * gap).sum(axis=-1))
         return (dist < reach[:, None]).sum(axis=1)
-    from scipy.spatial import cKDTree
     centre, half = (lo + hi) / 2, np.linalg.norm(hi - lo, axis=1) / 2
-    tree = cKDTree(centre)
-    return np.asarray(tree.query_ball_point(centre, r=reach + half + half.max(), return_length=True))
+    radius = reach + half + half.max()
+    cell = max(float(radius.max()), 1e-300)
+    ijk = np.floor((centre - centre.min(axis=0)) / cell).astype(np.int64)
+    dims = ijk.max(axis=0) + 1
+    code = (ijk[:, 2] * dims[1] + ijk[:, 1]) * dims[0] + ijk[:, 0]
+    order = np.argsort(code, kind="stable")
+    ranked = code[order]
+    offsets = np.array([(i, j, k) for k in (-1, 0, 1) for j in (-1, 0, 1) for i in (-1, 0, 1)])
+    near = ijk[:, None, :] + offsets[None, :, :]  # (n, 27, 3)
+    inside = np.all((near >= 0) & (near < dims), axis=-1)
+    near_code = (near[..., 2] * dims[1] + near[..., 1]) * dims[0] + near[..., 0]
+    start = np.where(inside, np.searchsorted(ranked, near_code, side="left"), 0)
+    stop = np.where(inside, np.searchsorted(ranked, near_code, side="right"), 0)
+    candidates = (stop - start).sum(axis=1)
+    if candidates.sum() > PAIRS_MOST:
+        return candidates
+    counts = np.zeros(n, dtype=np.int64)
+    before = np.r_[0, np.cumsum(candidates)]  # candidate pairs of the boxes before each
+    first = 0
+    while first < n:  # boxes first .. last - 1: at most PAIRS_PER_PASS pairs (or one box)
+        last = max(first + 1, int(np.searchsorted(before, before[first] + PAIRS_PER_PASS, side="right")) - 1)
+        rows = np.arange(first, min(last, n))
+        first = int(rows[-1]) + 1
+        s, size = start[rows].ravel(), (stop[rows] - start[rows]).ravel()
+        who = np.repeat(np.repeat(rows, 27), size)
+        other = order[np.repeat(s - np.r_[0, np.cumsum(size)[:-1]], size) + np.arange(int(size.sum()))]
+        d2 = ((centre[who] - centre[other]) ** 2).sum(axis=1)
+        counts += np.bincount(who[d2 <= radius[who] ** 2], minlength=n)
+    return counts
 
 
 def blend_growth(lo: np.ndarray, hi: np.ndarray, t: float, lower: float, window: float, g: float) -> np.ndarray:
