@@ -233,18 +233,43 @@ def ray_mesh(o: np.ndarray, d: np.ndarray, tri: np.ndarray) -> np.ndarray:
     return out
 
 
-def test_render_hits_the_mesh_where_float64_rays_do(renderer):
+TURN = trimesh.transformations.rotation_matrix(0.7, (1, 2, 0.5))
+
+
+@pytest.mark.parametrize("moved, free_way", [(False, True), (False, False), (True, True)])
+def test_render_hits_the_mesh_where_float64_rays_do(renderer, moved, free_way):
+    # with the free way the march steps to where the ray meets the triangles (a cast through
+    # the hierarchy); moved: the mesh node under a rotation and a translation (the way is cast
+    # in the mesh's frame)
     m = torus()
-    res = renderer.render(sg.from_mesh(m), size=(64, 48), outputs=("color", "depth"), shadows=False, ao=False)
+    node = sg.from_mesh(m)
+    if moved:
+        node = node.rotate(np.degrees(0.7), (1, 2, 0.5)).translate((0.3, -0.2, 0.1))
+        m = m.copy().apply_transform(TURN)
+        m.apply_translation((0.3, -0.2, 0.1))
+    res = renderer.render(node, size=(64, 48), outputs=("color", "depth", "steps"), shadows=False, ao=False,
+                          free_way=free_way)
+    assert ("gFree = meshRayFree(" in res.source.text) == free_way
     o, d = res.camera.rays(64, 48)
     o, d = np.broadcast_to(o, d.shape).reshape(-1, 3), d.reshape(-1, 3)
     ref = ray_mesh(o, d / np.linalg.norm(d, axis=-1, keepdims=True), np.asarray(m.triangles))
     got = res.depth.reshape(-1).astype(np.float64)
     hit = np.isfinite(ref)
-    assert hit.mean() > 0.1 and np.mean(np.isfinite(got) == hit) >= 0.99  # silhouette pixels may differ
+    assert hit.mean() > 0.05 and np.mean(np.isfinite(got) == hit) >= 0.99  # silhouette pixels may differ
     both = hit & np.isfinite(got)
     off = np.abs(got[both] - ref[both]) / res.camera.footprint(ref[both], 48)
     assert np.mean(off <= 0.01) >= 0.99, np.quantile(off, [0.5, 0.99])
+    if free_way:
+        plain = renderer.render(node, size=(64, 48), outputs=("steps",), shadows=False, ao=False, free_way=False)
+        assert res.steps[hit.reshape(48, 64)].mean() < 0.8 * plain.steps[hit.reshape(48, 64)].mean()
+
+
+def test_only_the_scenes_own_mesh_casts_the_free_way():
+    part = sg.from_mesh(torus())
+    assert "gFree = meshRayFree(" in sg.compile(part.translate((1, 0, 0)).color("red"))
+    for scene in (part - sg.sphere(0.3), part.scale(2), sg.union(part, sg.sphere(0.1))):
+        assert "gFree = meshRayFree(" not in sg.compile(scene)
+    assert "gFree = meshRayFree(" not in sg.compile(part, method="newton")
 
 
 def test_the_twin_names_the_missing_extra(monkeypatch):

@@ -13,6 +13,7 @@ from typing import Any
 import numpy as np
 
 from ..nodes.base import Node
+from ..nodes.mesh_field import MeshField
 from ..nodes.traverse import FACTS, fact
 from ..settings import Settings
 from .data.instances import pack, unwrap
@@ -148,26 +149,29 @@ def coarse_tile(scene: Node, settings: Settings, target: str = "render", dialect
     return int(settings.coarse)
 
 
-def ray_free_grid(scene: Node, settings: Settings) -> tuple[Any, np.ndarray] | None:
-    """The grid whose free way along the ray (shaders/templates/grid_ray.glsl) the marcher
-    may step, and the rotation R (world = R @ local) from the grid's frame to the world's:
-    the scene's own union kept as data under translations, rotations and materials only
-    (they keep distances; the marcher turns its direction by R^T), any child beside the
-    instances bounding the way by its distance, marched by march_relaxed.glsl (sphere
+def ray_free(scene: Node, settings: Settings) -> tuple[Any, np.ndarray] | None:
+    """What leaves the free way along the ray that the marcher may step (shaders/lib/ray_free.glsl),
+    and the rotation R (world = R @ local) from its frame to the world's: the scene's own union
+    kept as data (its grid: shaders/templates/grid_ray.glsl; any child beside the instances
+    bounding the way by its distance) or the scene's own mesh (the MeshField: where the ray
+    meets its triangles), under translations, rotations and materials only (they keep
+    distances; the marcher turns its direction by R^T); marched by march_relaxed.glsl (sphere
     tracing and its relaxed variants: the marcher that reads gFree). None elsewhere."""
-    if MARCH_FILES.get(settings.method, settings.method) != "relaxed" or settings.grid is not True \
-            or not settings.free_way:
+    if MARCH_FILES.get(settings.method, settings.method) != "relaxed" or not settings.free_way:
         return None
     node, turn = scene, np.eye(3)
     while (step := node.distance_keeping()) is not None and not node.live_params():
         node, rotation = step
         if rotation is not None:
             turn = turn @ rotation
+    if isinstance(node, MeshField):
+        return node, turn
+    if settings.grid is not True:
+        return None
     grid = node.data_union()
     if grid is not None and not grid.free_way:
         return None
-    # children beside the grid (a floor) bound the way by their distance (Union._emit): the
-    # scene is a distance bound wherever a distance marcher runs (an implicit one is refused)
+    # the scene is a distance bound wherever a distance marcher runs (an implicit one is refused)
     return None if grid is None else (grid, turn)
 
 

@@ -67,7 +67,8 @@ class Emitter:
         self.shared_keys: set = parent.shared_keys if parent else set()
         self.helpers: dict[str, str] = parent.helpers if parent else {}
         self.detail = parent.detail if parent else False  # emitting the normals-only field
-        self.ray_free_grid: int | None = parent.ray_free_grid if parent else None  # see ray_free_grid()
+        # id of the grid or mesh whose free way along the ray map() leaves (see analysis.ray_free)
+        self.ray_free: int | None = parent.ray_free if parent else None
         self.grids: dict[int, tuple[str, Any, tuple[float, float, float]]] = parent.grids if parent else {}
         self.use_grids = parent.use_grids if parent else True
         self.data: DataPool = parent.data if parent else DataPool()  # tables the shader reads
@@ -145,8 +146,20 @@ class Emitter:
     def narrow_free_way(self, grid: Any, distance: str) -> None:
         """Beside ``grid``'s union, a child written as code bounds the free way along the ray
         by its distance (shaders/templates/grid_ray.glsl; map() of the ray-free grid only)."""
-        if id(grid) == self.ray_free_grid and self.mode == "dist" and not self.detail:
+        if self.leaves_free_way(grid):
             self.lines.append((f"    gFree = min(gFree, {distance});", self.owner))
+
+    def leaves_free_way(self, holder: Any) -> bool:
+        """Whether this pass's map() leaves ``holder``'s free way along the ray (a grid's or a
+        mesh's: see analysis.ray_free): the distance pass of the image, not the normals' field."""
+        return id(holder) == self.ray_free and self.mode == "dist" and not self.detail
+
+    def ask_free_way(self, holder: Any, way: str) -> None:
+        """In map() of the image, set gFree to ``way`` (GLSL) when the march asks for it
+        (gFreeAsk: shaders/lib/ray_free.glsl), where ``holder`` leaves the free way."""
+        if self.leaves_free_way(holder):
+            self.require("ray_free")
+            self.lines.append((f"    if (gFreeAsk) gFree = {way};", self.owner))
 
     def mark(self, node: Node, result: str) -> str:
         """Record the distance of the highlighted subtree in the global gSel (map() only); return ``result``."""

@@ -21,7 +21,7 @@ from ..nodes.base import IMPLICIT, Node, grid_min_as
 from ..nodes.traverse import run_deep
 from ..params import Param
 from ..settings import DISTANCE_METHODS, Settings
-from .analysis import analytic_shape, coarse_tile, material_channels, moving_origin, one_color, ray_free_grid, shared_subtrees
+from .analysis import analytic_shape, coarse_tile, material_channels, moving_origin, one_color, ray_free, shared_subtrees
 from .builder import SourceBuilder
 from .data.grid import GRID_MIN
 from .defines import coarse_defines, free_way_defines, light_positions, settings_defines
@@ -58,7 +58,7 @@ class Passes:
              highlight: Node | None = None, ray_free_id: int | None = None) -> tuple[Emitter, str]:
         """One pass over ``scene``: its Emitter and the result variable of map() (or its like)."""
         em = Emitter(mode, params=self.params, channel=channel)
-        em.ray_free_grid = ray_free_id
+        em.ray_free = ray_free_id
         em.origins = self.origins
         em.data = self.data
         em.data_min = self.data_min
@@ -188,7 +188,7 @@ def _write(scene: Node, settings: Settings, org: np.ndarray, row: Target, lang: 
     origins = OriginOffsets() if moving else None
     passes = Passes(org, [], shared_subtrees(scene, settings.grid), {}, settings.grid, {}, DataPool(), data_min,
                     origins)
-    free_way = ray_free_grid(scene, settings) if row.image else None
+    free_way = ray_free(scene, settings) if row.image else None
     dist, dist_result = passes.emit(scene, "dist", highlight=highlight if row.image else None,
                                     ray_free_id=None if free_way is None else id(free_way[0]))
     job = Job(scene, settings, row, SourceBuilder(), coarse=coarse)

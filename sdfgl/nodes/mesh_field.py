@@ -24,6 +24,9 @@ if TYPE_CHECKING:  # pragma: no cover
     from ..compiler.emitter import Emitter
     from ..meshin.source import MeshFile
 
+RAY_BOX_PAD = 1e-5
+"""How much the free way's ray-box tests widen the hierarchy's boxes, of the mesh's extent
+(float32 rounding of the box entry must not skip the box of the triangle the ray meets)."""
 MAX_TRIANGLES = 1_500_000
 """The most triangles a mesh node holds (its GPU tables fill the data texture's 2^24 texels)."""
 
@@ -122,7 +125,10 @@ class MeshField(Node):
         em.require("sd_mesh_bvh")
         nodes, tris = em.table(bvh.nodes), em.table(bvh.triangles)
         end = tris + len(bvh.triangles)
-        return em.with_color(em.assign("float", f"sdMeshBVH({em.point(p)}, {nodes}, {tris}, {end})"))
+        q = em.point(p)
+        pad = em.num(RAY_BOX_PAD * float(np.abs(self.vertices).max()))
+        em.ask_free_way(self, f"meshRayFree({q}, gRayDir, gRayInv, {nodes}, {tris}, {pad})")  # the scene's own mesh
+        return em.with_color(em.assign("float", f"sdMeshBVH({q}, {nodes}, {tris}, {end})"))
 
     def _distance(self, p: np.ndarray) -> np.ndarray:
         from ..extras import require_extra

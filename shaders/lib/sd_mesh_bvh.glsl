@@ -132,3 +132,90 @@ float sdMeshBVH(vec3 p, int nodes, int tris, int trisEnd) {
     }
     return dot(p - bestPoint, n) < 0.0 ? -sqrt(best) : sqrt(best);
 }
+
+// Where the ray from p along unit d (inv = 1 / d) first meets a triangle of the mesh, or
+// 3e38 where it meets none: the free way along the ray (lib/ray_free.glsl). The walk
+// visits the nearer box first and skips boxes the ray enters beyond the nearest hit so
+// far. Each triangle is widened by MESH_RAY_SLACK of its edges (barycentric) and each box
+// by as much of the scene, so a ray through an edge or a vertex, which float32 may let
+// slip between the triangles that share it, still meets one; a hit is taken a little
+// early for the same reason. The way is therefore never longer than the true one.
+#define MESH_RAY_SLACK 1e-4
+
+float meshRayBox(vec3 p, vec3 inv, vec3 lo, vec3 hi, float pad) {
+    vec3 a = (lo - pad - p) * inv;
+    vec3 b = (hi + pad - p) * inv;
+    vec3 near = min(a, b);
+    vec3 far = max(a, b);
+    float enter = max(max(near.x, near.y), max(near.z, 0.0));
+    float leave = min(min(far.x, far.y), far.z);
+    return leave < enter ? 3.0e38 : enter;
+}
+
+// Moller-Trumbore against triangle record t, widened: the ray parameter of the hit or 3e38.
+float meshRayTriangle(vec3 p, vec3 d, int t) {
+    vec3 a = dataFetch(t).xyz;
+    vec3 e1 = dataFetch(t + 1).xyz - a;
+    vec3 e2 = dataFetch(t + 2).xyz - a;
+    vec3 pv = cross(d, e2);
+    float det = dot(e1, pv);
+    if (abs(det) < 1e-30) return 3.0e38;
+    float inv = 1.0 / det;
+    vec3 tv = p - a;
+    float u = dot(tv, pv) * inv;
+    vec3 qv = cross(tv, e1);
+    float v = dot(d, qv) * inv;
+    float s = dot(e2, qv) * inv;
+    bool inside = u >= -MESH_RAY_SLACK && v >= -MESH_RAY_SLACK && u + v <= 1.0 + MESH_RAY_SLACK;
+    return inside && s >= 0.0 ? s : 3.0e38;
+}
+
+void meshRayLeaf(vec3 p, vec3 d, int tris, int code, inout float best) {
+    int t = tris + 9 * ((-code) >> 3);
+    int count = (-code) & 7;
+    best = min(best, meshRayTriangle(p, d, t));
+    if (count > 1) best = min(best, meshRayTriangle(p, d, t + 9));
+    if (count > 2) best = min(best, meshRayTriangle(p, d, t + 18));
+    if (count > 3) best = min(best, meshRayTriangle(p, d, t + 27));
+}
+
+float meshRayFree(vec3 p, vec3 d, vec3 inv, int nodes, int tris, float pad) {
+    float best = 3.0e38;
+    int stackNode[32];
+    float stackDist[32];
+    int sp = 1;
+    stackNode[0] = 0;
+    stackDist[0] = 0.0;
+    while (sp > 0) {
+        sp--;
+        int code = stackNode[sp];
+        if (stackDist[sp] < best && code < 0) {
+            meshRayLeaf(p, d, tris, code, best);
+        } else if (stackDist[sp] < best) {
+            int at = nodes + 4 * code;
+            vec4 loA = dataFetch(at);
+            vec4 hiA = dataFetch(at + 1);
+            vec4 loB = dataFetch(at + 2);
+            vec4 hiB = dataFetch(at + 3);
+            float tNear = meshRayBox(p, inv, loA.xyz, hiA.xyz, pad);
+            float tFar = meshRayBox(p, inv, loB.xyz, hiB.xyz, pad);
+            int kNear = int(loA.w);
+            int kFar = int(hiA.w);
+            if (tFar < tNear) {
+                float x = tNear; tNear = tFar; tFar = x;
+                int k = kNear; kNear = kFar; kFar = k;
+            }
+            if (tFar < best) {
+                stackNode[sp] = kFar;
+                stackDist[sp] = tFar;
+                sp++;
+            }
+            if (tNear < best) {
+                stackNode[sp] = kNear;
+                stackDist[sp] = tNear;
+                sp++;
+            }
+        }
+    }
+    return best < 3.0e38 ? best * (1.0 - MESH_RAY_SLACK) : best;
+}

@@ -73,9 +73,13 @@ float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
     for (int i = uZero; i < 2 * MAX_STEPS * (SETTLE_CALLS + 1); i++) {
         if (settling == 0 && (marchRounds >= 2 * MAX_STEPS || marchRounds - nearRounds >= MAX_STEPS)) break;
         float c = settling == 0 ? t : settlePoint(S);
+#ifdef RAY_FREE
+        gFreeAsk = settling == 0;
+#endif
         float r = map(ro + rd * c);
 #ifdef RAY_FREE
-        float free = settling == 0 ? gFree : 0.0;  // the way proven empty from t (grid_ray.glsl)
+        gFreeAsk = false;
+        float free = settling == 0 ? gFree : 0.0;  // the way proven empty from t (lib/ray_free.glsl)
 #endif
         steps++;
         float s = 0.0;

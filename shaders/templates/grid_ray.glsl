@@ -10,10 +10,7 @@
 // cell's far side plus the margin. Children of the union written as code beside the
 // grid (a floor) narrow gFree to their distance in map() (Emitter.narrow_free_way).
 // Outside the grid box it is the field's value (a plain distance). The marcher may step
-// that far at once: the segment is proven empty.
-vec3 gRayDir = vec3(0.0, 0.0, 1.0);  // the marcher's ray direction (unit)
-vec3 gRayInv = vec3(1.0);            // 1 / gRayDir, set once a ray (a 0 component as 1e-30)
-float gFree = 0.0;
+// that far at once: the segment is proven empty. The globals are shaders/lib/ray_free.glsl's.
 
 // Along the ray (inv = 1 / its direction) from p: the way to the far side of p's cell (low
 // corner lo, from GRIDIDCell) plus the margin, or -1.0 where p lies outside the cell

@@ -68,6 +68,7 @@ def _cell_function(grid: Grid, em: "Emitter", fn: str, color: bool, loops: list[
     defs = _grid_defines(grid, em, gid, [f"#define {gid}_MARGIN {em.num(grid.margin)}"])
     ray = _ray_free(grid, em, color)
     if ray:
+        em.require("ray_free")
         head += "\n" + shaderlib.read("templates/grid_ray").replace("GRIDID", gid)
     em.helper(f"{gid}_grid", defs + "\n" + head)
     rtype = "vec4" if color else "float"
@@ -128,7 +129,7 @@ def _blend_step(grid: Grid, em: "Emitter", d: str, rgb: str | None) -> list[str]
 def _ray_free(grid: Grid, em: "Emitter", color: bool) -> bool:
     """Whether this grid's distance function also leaves the free way along the ray
     (shaders/templates/grid_ray.glsl): for the marchers' primary rays where the scene is this union."""
-    return not color and not em.detail and em.ray_free_grid == id(grid)
+    return not color and em.leaves_free_way(grid)
 
 
 def _free_way(grid: Grid, em: "Emitter", t: InstanceType, move: str, d: str) -> str:

@@ -1,0 +1,10 @@
+// The free way along the ray, for the marchers (RAY_FREE: the scene is one grid union or
+// one mesh, perhaps moved as a whole; sdfgl.compiler.analysis.ray_free). The marcher sets
+// gRayDir and gRayInv once a ray, and gFreeAsk before each map() call of its march; map()
+// leaves in gFree how far along gRayDir from its point the scene is proven empty
+// (shaders/templates/grid_ray.glsl, sd_mesh_bvh.glsl's meshRayFree). The marcher may step
+// that far at once: the segment is proven empty.
+vec3 gRayDir = vec3(0.0, 0.0, 1.0);  // the marcher's ray direction (unit)
+vec3 gRayInv = vec3(1.0);            // 1 / gRayDir, set once a ray (a 0 component as 1e-30)
+float gFree = 0.0;
+bool gFreeAsk = false;               // whether this map() call is the march's (a mesh casts only then)
