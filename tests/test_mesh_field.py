@@ -264,6 +264,24 @@ def test_render_hits_the_mesh_where_float64_rays_do(renderer, moved, free_way):
         assert res.steps[hit.reshape(48, 64)].mean() < 0.8 * plain.steps[hit.reshape(48, 64)].mean()
 
 
+@pytest.mark.parametrize("moved", [False, True])
+def test_normals_of_a_lone_mesh_are_its_fields_gradient(renderer, moved):
+    # one map() call at the hit: the closest triangle's normal, turned into the world, against
+    # the central differences the renderer takes for any other scene (the mesh beside a far speck)
+    node = sg.from_mesh(torus())
+    if moved:
+        node = node.rotate(40, (1, 2, 0.5)).translate((0.3, -0.2, 0.1))
+    cam = sg.OrbitCamera.framing(*node.bounds, aspect=4 / 3)
+    kw = dict(outputs=("normal", "depth"), shadows=False, ao=False)
+    own = renderer.render(node, cam, (96, 72), **kw)
+    diff = renderer.render(node | sg.sphere(0.01).translate((50, 0, 0)), cam, (96, 72), **kw)
+    assert "#define MESH_NORMAL" in own.source.text and "#define MESH_NORMAL" not in diff.source.text
+    hit = np.isfinite(own.depth) & np.isfinite(diff.depth)
+    cos = (own.normal[hit][:, :3] * diff.normal[hit][:, :3]).sum(-1)
+    angle = np.degrees(np.arccos(np.clip(cos, -1, 1)))
+    assert hit.sum() > 500 and np.mean(angle < 1.0) > 0.97 and angle.max() < 20
+
+
 def test_only_the_scenes_own_mesh_casts_the_free_way():
     part = sg.from_mesh(torus())
     assert "gFree = meshRayFree(" in sg.compile(part.translate((1, 0, 0)).color("red"))

@@ -149,25 +149,41 @@ def coarse_tile(scene: Node, settings: Settings, target: str = "render", dialect
     return int(settings.coarse)
 
 
-def ray_free(scene: Node, settings: Settings) -> tuple[Any, np.ndarray] | None:
-    """What leaves the free way along the ray that the marcher may step (shaders/lib/ray_free.glsl),
-    and the rotation R (world = R @ local) from its frame to the world's: the scene's own union
-    kept as data (its grid: shaders/templates/grid_ray.glsl; any child beside the instances
-    bounding the way by its distance) or the scene's own mesh (the MeshField: where the ray
-    meets its triangles), under translations, rotations and materials only (they keep
-    distances; the marcher turns its direction by R^T); marched by march_relaxed.glsl (sphere
-    tracing and its relaxed variants: the marcher that reads gFree). None elsewhere."""
-    if MARCH_FILES.get(settings.method, settings.method) != "relaxed" or not settings.free_way:
-        return None
+def _under_moves(scene: Node) -> tuple[Node, np.ndarray]:
+    """(the node under the scene's translations, rotations and materials, the rotation R
+    with world = R @ that node's frame): the moves keep distances."""
     node, turn = scene, np.eye(3)
     while (step := node.distance_keeping()) is not None and not node.live_params():
         node, rotation = step
         if rotation is not None:
             turn = turn @ rotation
-    if isinstance(node, MeshField):
-        return node, turn
+    return node, turn
+
+
+def own_mesh(scene: Node) -> tuple[MeshField, np.ndarray] | None:
+    """(the mesh, R with world = R @ the mesh's frame) where the scene is one mesh under
+    translations, rotations and materials: its field's gradient is the closest triangle's
+    (sd_mesh_bvh.glsl's gMeshNormal), and the ray meets it where it meets a triangle."""
+    node, turn = _under_moves(scene)
+    return (node, turn) if isinstance(node, MeshField) else None
+
+
+def ray_free(scene: Node, settings: Settings) -> tuple[Any, np.ndarray] | None:
+    """What leaves the free way along the ray that the marcher may step (shaders/lib/ray_free.glsl),
+    and the rotation R (world = R @ local) from its frame to the world's: the scene's own union
+    kept as data (its grid: shaders/templates/grid_ray.glsl; any child beside the instances
+    bounding the way by its distance) or the scene's own mesh (:func:`own_mesh`: where the ray
+    meets its triangles), under translations, rotations and materials only (they keep
+    distances; the marcher turns its direction by R^T); marched by march_relaxed.glsl (sphere
+    tracing and its relaxed variants: the marcher that reads gFree). None elsewhere."""
+    if MARCH_FILES.get(settings.method, settings.method) != "relaxed" or not settings.free_way:
+        return None
+    mesh = own_mesh(scene)
+    if mesh is not None:
+        return mesh
     if settings.grid is not True:
         return None
+    node, turn = _under_moves(scene)
     grid = node.data_union()
     if grid is not None and not grid.free_way:
         return None

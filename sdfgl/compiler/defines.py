@@ -73,6 +73,11 @@ def settings_defines(scene: Node, settings: Settings, origin: np.ndarray, live: 
     return d
 
 
+def glsl_mat3(m: np.ndarray) -> str:
+    """The GLSL mat3 of the 3x3 matrix ``m`` (GLSL's constructor takes the columns)."""
+    return f"mat3({', '.join(glsl_float(float(x)) for x in np.asarray(m).T.ravel())})"
+
+
 def free_way_defines(free_way: tuple[Any, np.ndarray] | None) -> list[str]:
     """The defines of the free way along the ray: RAY_FREE, and RAY_FREE_TURN (R^T, which
     turns the ray's direction into the grid's frame) where the union is rotated."""
@@ -81,8 +86,19 @@ def free_way_defines(free_way: tuple[Any, np.ndarray] | None) -> list[str]:
     turn = free_way[1]
     if np.array_equal(turn, np.eye(3)):
         return ["#define RAY_FREE"]
-    # GLSL's mat3 constructor is column-major: R's row-major entries build R^T
-    return ["#define RAY_FREE", f"#define RAY_FREE_TURN mat3({', '.join(glsl_float(float(x)) for x in turn.ravel())})"]
+    return ["#define RAY_FREE", f"#define RAY_FREE_TURN {glsl_mat3(turn.T)}"]
+
+
+def mesh_normal_defines(mesh: tuple[Any, np.ndarray] | None) -> list[str]:
+    """The defines of normals from the closest triangle (shaders/stages/normal.glsl) where the
+    scene is one mesh (analysis.own_mesh): MESH_NORMAL, and MESH_NORMAL_TURN (R, which turns
+    the mesh's gradient into the world) where it is rotated."""
+    if mesh is None:
+        return []
+    turn = mesh[1]
+    if np.array_equal(turn, np.eye(3)):
+        return ["#define MESH_NORMAL"]
+    return ["#define MESH_NORMAL", f"#define MESH_NORMAL_TURN {glsl_mat3(turn)}"]
 
 
 def coarse_defines(scene: Node, tile: int) -> list[str]:

@@ -21,10 +21,10 @@ from ..nodes.base import IMPLICIT, Node, grid_min_as
 from ..nodes.traverse import run_deep
 from ..params import Param
 from ..settings import DISTANCE_METHODS, Settings
-from .analysis import analytic_shape, coarse_tile, material_channels, moving_origin, one_color, ray_free, shared_subtrees
+from .analysis import analytic_shape, coarse_tile, material_channels, moving_origin, one_color, own_mesh, ray_free, shared_subtrees
 from .builder import SourceBuilder
 from .data.grid import GRID_MIN
-from .defines import coarse_defines, free_way_defines, light_positions, settings_defines
+from .defines import coarse_defines, free_way_defines, light_positions, mesh_normal_defines, settings_defines
 from .emitter import DATA_MIN, Emitter
 from .source import ShaderSource, comment_text
 from .tables import DataPool, OriginOffsets
@@ -189,6 +189,7 @@ def _write(scene: Node, settings: Settings, org: np.ndarray, row: Target, lang: 
     passes = Passes(org, [], shared_subtrees(scene, settings.grid), {}, settings.grid, {}, DataPool(), data_min,
                     origins)
     free_way = ray_free(scene, settings) if row.image else None
+    mesh_normal = own_mesh(scene) if row.image and not scene.has_detail else None
     dist, dist_result = passes.emit(scene, "dist", highlight=highlight if row.image else None,
                                     ray_free_id=None if free_way is None else id(free_way[0]))
     job = Job(scene, settings, row, SourceBuilder(), coarse=coarse)
@@ -210,7 +211,8 @@ def _write(scene: Node, settings: Settings, org: np.ndarray, row: Target, lang: 
     b.add(lang.header(), "(codegen)")
     b.add(f"// sdfgl scene: {comment_text(scene.label())}  [{scene.exactness}, L={scene.lipschitz:g}]", "(codegen)")
     b.add("\n".join(settings_defines(scene, settings, org, live, projection, moving)
-                     + free_way_defines(free_way) + coarse_defines(scene, coarse)), "(settings)")
+                     + free_way_defines(free_way) + mesh_normal_defines(mesh_normal) + coarse_defines(scene, coarse)),
+          "(settings)")
     for i, prm in enumerate(params):
         b.add(f"uniform {'vec3' if prm.dims == 3 else 'float'} uP{i};  // param {comment_text(prm.label)}", "(live parameters)")
     if live:

@@ -77,6 +77,7 @@ void meshLeaf(vec3 p, int tris, int code, inout float best, inout int bestTri, i
 }
 
 int meshHint = -1;  // the texel of the triangle record closest to the last point asked
+vec3 gMeshNormal = vec3(0.0, 1.0, 0.0);  // the field's unit gradient at the last point asked
 
 // `trisEnd`: the texel after the mesh's last triangle record.
 float sdMeshBVH(vec3 p, int nodes, int tris, int trisEnd) {
@@ -122,15 +123,18 @@ float sdMeshBVH(vec3 p, int nodes, int tris, int trisEnd) {
         }
     }
     meshHint = bestTri;
-    vec3 n;
-    if (bestFeature == 0) {
-        n = vec3(dataFetch(bestTri).w, dataFetch(bestTri + 1).w, dataFetch(bestTri + 2).w);
-    } else if (bestFeature <= 3) {
+    vec3 face = vec3(dataFetch(bestTri).w, dataFetch(bestTri + 1).w, dataFetch(bestTri + 2).w);
+    vec3 n = face;
+    if (bestFeature >= 1 && bestFeature <= 3) {
         n = dataFetch(bestTri + 5 + bestFeature).xyz;
-    } else {
+    } else if (bestFeature > 3) {
         n = dataFetch(bestTri + bestFeature - 1).xyz;
     }
-    return dot(p - bestPoint, n) < 0.0 ? -sqrt(best) : sqrt(best);
+    float sgn = dot(p - bestPoint, n) < 0.0 ? -1.0 : 1.0;
+    // the gradient: the face's normal on a face, else the way from the closest point (the
+    // feature's pseudonormal where the point lies on it)
+    gMeshNormal = bestFeature == 0 ? face : (best > 0.0 ? sgn * (p - bestPoint) * inversesqrt(best) : n);
+    return sgn * sqrt(best);
 }
 
 // Where the ray from p along unit d (inv = 1 / d) first meets a triangle of the mesh, or

@@ -13,7 +13,8 @@
 // tilts the normal. (The four-tap tetrahedron technique is cheaper, but its error is
 // first order in h wherever the Hessian has off-diagonal terms.) A gradient that
 // vanishes or is not finite (at the centre of a sphere, an overflowing implicit field)
-// falls back to facing the viewer, never NaN.
+// falls back to facing the viewer, never NaN. Where the scene is one mesh (MESH_NORMAL), the
+// normal is the field's gradient that the closest-triangle walk leaves, one map() call.
 #ifdef DETAIL_NORMALS
 #define NORMAL_FIELD mapDetail  // a field with more detail than the one marched
 #else
@@ -24,6 +25,17 @@
 #define NORMAL_SHRINKS 3    // times h may shrink eightfold
 
 vec3 calcNormal(vec3 pos, float t, vec3 rd) {
+#ifdef MESH_NORMAL
+    // the scene is one mesh: its field's gradient is the closest triangle's (sd_mesh_bvh.glsl)
+    map(pos);
+#ifdef MESH_NORMAL_TURN
+    vec3 g = MESH_NORMAL_TURN * gMeshNormal;
+#else
+    vec3 g = gMeshNormal;
+#endif
+    float len = length(g);
+    return len > 0.5 && len < 2.0 ? g / len : -rd;
+#else
     float floorH = max(2e-5 * length(pos), 1e-5 * pixelAngle() * t);
     float h = max(min(0.02 * pixelAngle() * t, 1e-4 * SCENE_SCALE), floorH);
     float minH = 0.1 * floorH;
@@ -52,4 +64,5 @@ vec3 calcNormal(vec3 pos, float t, vec3 rd) {
     vec3 n = g / len;
     bool ok = len > 1e-20 && len < 1e30 && !any(isnan(n));
     return ok ? n : -rd;
+#endif
 }
