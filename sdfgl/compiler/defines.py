@@ -78,27 +78,24 @@ def glsl_mat3(m: np.ndarray) -> str:
     return f"mat3({', '.join(glsl_float(float(x)) for x in np.asarray(m).T.ravel())})"
 
 
+def _flag_and_turn(flag: str, turn_flag: str, turn: np.ndarray, matrix: np.ndarray) -> list[str]:
+    """``#define flag``, and ``#define turn_flag`` as the mat3 ``matrix`` where ``turn`` is no identity."""
+    if np.array_equal(turn, np.eye(3)):
+        return [f"#define {flag}"]
+    return [f"#define {flag}", f"#define {turn_flag} {glsl_mat3(matrix)}"]
+
+
 def free_way_defines(free_way: tuple[Any, np.ndarray] | None) -> list[str]:
     """The defines of the free way along the ray: RAY_FREE, and RAY_FREE_TURN (R^T, which
-    turns the ray's direction into the grid's frame) where the union is rotated."""
-    if free_way is None:
-        return []
-    turn = free_way[1]
-    if np.array_equal(turn, np.eye(3)):
-        return ["#define RAY_FREE"]
-    return ["#define RAY_FREE", f"#define RAY_FREE_TURN {glsl_mat3(turn.T)}"]
+    turns the ray's direction into the grid's or mesh's frame) where it is rotated."""
+    return [] if free_way is None else _flag_and_turn("RAY_FREE", "RAY_FREE_TURN", free_way[1], free_way[1].T)
 
 
 def mesh_normal_defines(mesh: tuple[Any, np.ndarray] | None) -> list[str]:
     """The defines of normals from the closest triangle (shaders/stages/normal.glsl) where the
     scene is one mesh (analysis.own_mesh): MESH_NORMAL, and MESH_NORMAL_TURN (R, which turns
     the mesh's gradient into the world) where it is rotated."""
-    if mesh is None:
-        return []
-    turn = mesh[1]
-    if np.array_equal(turn, np.eye(3)):
-        return ["#define MESH_NORMAL"]
-    return ["#define MESH_NORMAL", f"#define MESH_NORMAL_TURN {glsl_mat3(turn)}"]
+    return [] if mesh is None else _flag_and_turn("MESH_NORMAL", "MESH_NORMAL_TURN", mesh[1], mesh[1])
 
 
 def coarse_defines(scene: Node, tile: int) -> list[str]:

@@ -17,6 +17,22 @@ float meshBoxDist2(vec3 p, vec3 lo, vec3 hi) {
     return dot(d, d);
 }
 
+// The walks' stack (the closest triangle's and the ray's): a child goes on it unless its box
+// lies beyond `best` by `key` (the walk's measure of a box: squared distance, or where the ray
+// enters it); of two children the farther goes first, so the nearer one is popped next.
+#define MESH_PUSH(key, k) if (key < best) { stackNode[sp] = k; stackDist[sp] = key; sp++; }
+#define MESH_PUSH_BOTH(keyA, kA, keyB, kB) { float keyN = keyA; float keyF = keyB; int kN = kA; int kF = kB; if (keyF < keyN) { keyN = keyB; keyF = keyA; kN = kB; kF = kA; } MESH_PUSH(keyF, kF) MESH_PUSH(keyN, kN) }
+
+// The boxes of node `code`'s two children: (lo, child code) and (hi, other child's code) of
+// the first, (lo, 0) and (hi, 0) of the second.
+void meshNodeBoxes(int nodes, int code, out vec4 loA, out vec4 hiA, out vec4 loB, out vec4 hiB) {
+    int at = nodes + 4 * code;
+    loA = dataFetch(at);
+    hiA = dataFetch(at + 1);
+    loB = dataFetch(at + 2);
+    hiB = dataFetch(at + 3);
+}
+
 // The point of triangle abc closest to p; `feature`: 0 the face, 1..3 vertex a, b, c,
 // 4..6 edge ab, bc, ca.
 vec3 meshClosest(vec3 p, vec3 a, vec3 b, vec3 c, out int feature) {
@@ -97,29 +113,11 @@ float sdMeshBVH(vec3 p, int nodes, int tris, int trisEnd) {
         if (stackDist[sp] < best && code < 0) {
             meshLeaf(p, tris, code, best, bestTri, bestFeature, bestPoint);
         } else if (stackDist[sp] < best) {
-            int at = nodes + 4 * code;
-            vec4 loA = dataFetch(at);
-            vec4 hiA = dataFetch(at + 1);
-            vec4 loB = dataFetch(at + 2);
-            vec4 hiB = dataFetch(at + 3);
-            float dNear = meshBoxDist2(p, loA.xyz, hiA.xyz);
-            float dFar = meshBoxDist2(p, loB.xyz, hiB.xyz);
-            int kNear = int(loA.w);
-            int kFar = int(hiA.w);
-            if (dFar < dNear) {
-                float d = dNear; dNear = dFar; dFar = d;
-                int k = kNear; kNear = kFar; kFar = k;
-            }
-            if (dFar < best) {  // the farther child first: the nearer one is popped next
-                stackNode[sp] = kFar;
-                stackDist[sp] = dFar;
-                sp++;
-            }
-            if (dNear < best) {
-                stackNode[sp] = kNear;
-                stackDist[sp] = dNear;
-                sp++;
-            }
+            vec4 loA, hiA, loB, hiB;
+            meshNodeBoxes(nodes, code, loA, hiA, loB, hiB);
+            float keyA = meshBoxDist2(p, loA.xyz, hiA.xyz);
+            float keyB = meshBoxDist2(p, loB.xyz, hiB.xyz);
+            MESH_PUSH_BOTH(keyA, int(loA.w), keyB, int(hiA.w))
         }
     }
     meshHint = bestTri;
@@ -196,29 +194,11 @@ float meshRayFree(vec3 p, vec3 d, vec3 inv, int nodes, int tris, float pad) {
         if (stackDist[sp] < best && code < 0) {
             meshRayLeaf(p, d, tris, code, best);
         } else if (stackDist[sp] < best) {
-            int at = nodes + 4 * code;
-            vec4 loA = dataFetch(at);
-            vec4 hiA = dataFetch(at + 1);
-            vec4 loB = dataFetch(at + 2);
-            vec4 hiB = dataFetch(at + 3);
-            float tNear = meshRayBox(p, inv, loA.xyz, hiA.xyz, pad);
-            float tFar = meshRayBox(p, inv, loB.xyz, hiB.xyz, pad);
-            int kNear = int(loA.w);
-            int kFar = int(hiA.w);
-            if (tFar < tNear) {
-                float x = tNear; tNear = tFar; tFar = x;
-                int k = kNear; kNear = kFar; kFar = k;
-            }
-            if (tFar < best) {
-                stackNode[sp] = kFar;
-                stackDist[sp] = tFar;
-                sp++;
-            }
-            if (tNear < best) {
-                stackNode[sp] = kNear;
-                stackDist[sp] = tNear;
-                sp++;
-            }
+            vec4 loA, hiA, loB, hiB;
+            meshNodeBoxes(nodes, code, loA, hiA, loB, hiB);
+            float keyA = meshRayBox(p, inv, loA.xyz, hiA.xyz, pad);
+            float keyB = meshRayBox(p, inv, loB.xyz, hiB.xyz, pad);
+            MESH_PUSH_BOTH(keyA, int(loA.w), keyB, int(hiA.w))
         }
     }
     return best < 3.0e38 ? best * (1.0 - MESH_RAY_SLACK) : best;
