@@ -19,7 +19,7 @@ vec3 noiseGradient(ivec3 cell) {
     return vec3(float(h & 1u), float((h >> 1u) & 1u), float((h >> 2u) & 1u)) * 2.0 - 1.0;
 }
 
-float noise3(vec3 p) {
+float gradientNoise3(vec3 p) {  // not "noise3": desktop GLSL has a built-in vec3 noise3()
     ivec3 i = ivec3(floor(p));
     vec3 f = p - floor(p);
     vec3 u = f * f * f * (f * (f * 6.0 - 15.0) + 10.0);
@@ -41,7 +41,7 @@ float fbm3(vec3 p, int octaves) {
     float sum = 0.0;
     float amp = 1.0;
     for (int o = 0; o < octaves; o++) {
-        sum += amp * noise3(p + float(o) * vec3(17.13, 31.71, 47.37));
+        sum += amp * gradientNoise3(p + float(o) * vec3(17.13, 31.71, 47.37));
         p *= 2.0;
         amp *= 0.5;
     }
