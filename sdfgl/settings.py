@@ -75,9 +75,9 @@ class Settings:
         them out as code, to compare; "bvh" traverses a bounding volume hierarchy instead
         of the cells: the measured alternative, slower here, see the benchmark).
     analytic: intersect a lone sphere or plane in closed form instead of marching it.
-    free_way: where the scene is a union kept as data, sphere tracing and its relaxed
-        variants also step the way its lists prove empty along the ray (False: their own
-        steps only, to compare).
+    free_way: where the scene is a union kept as data or one triangle mesh, sphere tracing
+        and its relaxed variants also step the way its lists (or a cast through the mesh's
+        triangles) prove empty along the ray (False: their own steps only, to compare).
     grid_min: the fewest instances a hard union keeps as data (None: automatic, 32, or 8
         once the scene's code passes code_budget; the result's settings say which).
     code_budget: characters of generated scene code (map(), mapColor() and their
