@@ -282,6 +282,21 @@ def test_normals_of_a_lone_mesh_are_its_fields_gradient(renderer, moved):
     assert hit.sum() > 500 and np.mean(angle < 1.0) > 0.97 and angle.max() < 20
 
 
+def test_hard_shadows_of_a_lone_mesh_cast_once_and_look_the_same(renderer):
+    ball = sg.from_mesh(bumpy(3))
+    scene = sg.union(ball, ball.translate((1.4, 0.2, 0.3)))  # a union of meshes: no cast
+    kw = dict(size=(96, 72), shadows="hard", ao=False, ground=True)
+    cast = renderer.render(ball, **kw)
+    plain = renderer.render(ball, free_way=False, **kw)
+    assert "#define RAY_FREE_HIT" in cast.source.text and "#define RAY_FREE" not in plain.source.text
+    assert "#define RAY_FREE_HIT" not in renderer.render(scene, **kw).source.text
+    differ = np.abs(cast.color.astype(int) - plain.color.astype(int)).max(axis=-1) > 8
+    assert differ.mean() <= 0.002
+    grid = sg.union(*[sg.sphere(0.1).translate((i % 8 * 0.3, 0, i // 8 * 0.3)) for i in range(64)])
+    src = sg.compile(grid)  # a grid's way is a bound: its hard shadows march as before
+    assert "#define RAY_FREE" in src and "#define RAY_FREE_HIT" not in src
+
+
 def test_only_the_scenes_own_mesh_casts_the_free_way():
     part = sg.from_mesh(torus())
     assert "gFree = meshRayFree(" in sg.compile(part.translate((1, 0, 0)).color("red"))

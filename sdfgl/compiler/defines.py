@@ -6,6 +6,7 @@ from typing import Any, Sequence
 import numpy as np
 
 from ..nodes.base import IMPLICIT, Node
+from ..nodes.mesh_field import MeshField
 from ..settings import DEFAULT_OMEGA, Settings
 from .analysis import (BOUNDS_PAD, GLSL_FAR, analytic_relative, analytic_shape, max_steps_of, ref_step, scene_frame,
                        unbounded)
@@ -87,8 +88,13 @@ def _flag_and_turn(flag: str, turn_flag: str, turn: np.ndarray, matrix: np.ndarr
 
 def free_way_defines(free_way: tuple[Any, np.ndarray] | None) -> list[str]:
     """The defines of the free way along the ray: RAY_FREE, and RAY_FREE_TURN (R^T, which
-    turns the ray's direction into the grid's or mesh's frame) where it is rotated."""
-    return [] if free_way is None else _flag_and_turn("RAY_FREE", "RAY_FREE_TURN", free_way[1], free_way[1].T)
+    turns the ray's direction into the grid's or mesh's frame) where it is rotated;
+    RAY_FREE_HIT where the way ends where the ray meets the surface (a mesh's cast), so hard
+    shadows step it too (a grid's way, a bound, did not pay there)."""
+    if free_way is None:
+        return []
+    hit = ["#define RAY_FREE_HIT"] if isinstance(free_way[0], MeshField) else []
+    return _flag_and_turn("RAY_FREE", "RAY_FREE_TURN", free_way[1], free_way[1].T) + hit
 
 
 def mesh_normal_defines(mesh: tuple[Any, np.ndarray] | None) -> list[str]:

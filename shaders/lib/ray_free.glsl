@@ -8,3 +8,13 @@ vec3 gRayDir = vec3(0.0, 0.0, 1.0);  // the marcher's ray direction (unit)
 vec3 gRayInv = vec3(1.0);            // 1 / gRayDir, set once a ray (a 0 component as 1e-30)
 float gFree = 0.0;
 bool gFreeAsk = false;               // whether this map() call is the march's (a mesh casts only then)
+
+// Set the free way's ray direction (turned into the grid's or mesh's frame where it is rotated).
+void rayFreeStart(vec3 rd) {
+#ifdef RAY_FREE_TURN
+    gRayDir = RAY_FREE_TURN * rd;
+#else
+    gRayDir = rd;
+#endif
+    gRayInv = 1.0 / (gRayDir + vec3(equal(gRayDir, vec3(0.0))) * 1e-30);
+}

@@ -63,12 +63,7 @@ float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
     float ms = 0.0;          // a near probe's minimum step
     float sProbe = 0.0;      // a shallow-angle probe's slope
 #ifdef RAY_FREE
-#ifdef RAY_FREE_TURN
-    gRayDir = RAY_FREE_TURN * rd;  // the direction in the rotated union's frame
-#else
-    gRayDir = rd;
-#endif
-    gRayInv = 1.0 / (gRayDir + vec3(equal(gRayDir, vec3(0.0))) * 1e-30);
+    rayFreeStart(rd);
 #endif
     for (int i = uZero; i < 2 * MAX_STEPS * (SETTLE_CALLS + 1); i++) {
         if (settling == 0 && (marchRounds >= 2 * MAX_STEPS || marchRounds - nearRounds >= MAX_STEPS)) break;
