@@ -25,8 +25,9 @@ if TYPE_CHECKING:  # pragma: no cover
     from ..meshin.source import MeshFile
 
 RAY_BOX_PAD = 1e-5
-"""How much the free way's ray-box tests widen the hierarchy's boxes, of the mesh's extent
-(float32 rounding of the box entry must not skip the box of the triangle the ray meets)."""
+"""How much the free way's ray-box tests widen the hierarchy's boxes, of the largest vertex
+coordinate (float32 rounds relative to it: the box entry must not skip the box of the
+triangle the ray meets)."""
 MAX_TRIANGLES = 1_500_000
 """The most triangles a mesh node holds (its GPU tables fill the data texture's 2^24 texels)."""
 
