@@ -221,6 +221,9 @@ def test_neighbour_counts_of_many_boxes_are_exact_or_a_superset(monkeypatch):
     assert np.array_equal(blend_reach._neighbour_counts(lo, hi, reach), exact)
     monkeypatch.setattr(blend_reach, "PAIRS_MOST", 1000)  # too many pairs: the 27 cells' boxes
     assert np.all(blend_reach._neighbour_counts(lo, hi, reach) >= exact)
+    pytest.importorskip("scipy")
+    monkeypatch.setattr(blend_reach, "KDTREE_FROM", n)  # scipy's k-d tree: the same counts
+    assert np.array_equal(blend_reach._neighbour_counts(lo, hi, reach), exact)
 
 
 def test_a_big_smooth_union_needs_no_scipy(monkeypatch):

@@ -21,9 +21,12 @@ little more than one fold's reach.
 """
 from __future__ import annotations
 
+import importlib.util
+
 import numpy as np
 
 PAIRWISE_MAX = 1500     # up to this many children the box distances are counted exactly
+KDTREE_FROM = 30000     # from this many children, scipy's k-d tree counts where scipy is installed
 PAIRS_PER_PASS = 1 << 21  # candidate pairs measured in one numpy pass
 PAIRS_MOST = 1 << 23      # beyond this many candidate pairs the candidates are counted instead
 
@@ -32,8 +35,9 @@ def _neighbour_counts(lo: np.ndarray, hi: np.ndarray, reach: np.ndarray) -> np.n
     """For every box i, how many boxes (itself included) lie within reach[i] of it, or a
     superset of them: above PAIRWISE_MAX boxes, those whose centres lie within reach[i] plus
     both half-diagonals of box i's centre, found through a uniform grid of that radius (the
-    boxes in the 27 cells around box i's), or where that would measure more than PAIRS_MOST
-    pairs, every box in those 27 cells."""
+    boxes in the 27 cells around box i's; from KDTREE_FROM boxes by scipy's k-d tree where
+    it is installed), or where that would measure more than PAIRS_MOST pairs, every box in
+    those 27 cells."""
     n = len(lo)
     if n <= PAIRWISE_MAX:
         gap = np.maximum(0.0, np.maximum(lo[None, :, :] - hi[:, None, :], lo[:, None, :] - hi[None, :, :]))
@@ -41,6 +45,10 @@ def _neighbour_counts(lo: np.ndarray, hi: np.ndarray, reach: np.ndarray) -> np.n
         return (dist < reach[:, None]).sum(axis=1)
     centre, half = (lo + hi) / 2, np.linalg.norm(hi - lo, axis=1) / 2
     radius = reach + half + half.max()
+    if n >= KDTREE_FROM and importlib.util.find_spec("scipy") is not None:
+        # the same count, about 5x faster at 10^5 boxes; below this its 0.6 s import costs more
+        from scipy.spatial import cKDTree
+        return np.asarray(cKDTree(centre).query_ball_point(centre, r=radius, return_length=True))
     cell = max(float(radius.max()), 1e-300)
     ijk = np.floor((centre - centre.min(axis=0)) / cell).astype(np.int64)
     dims = ijk.max(axis=0) + 1
