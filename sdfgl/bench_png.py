@@ -27,6 +27,7 @@ import time
 from pathlib import Path
 from typing import Any
 
+from .extras import installed
 from .xdisplay import start_xvfb, stop_xvfb
 
 FULL = {"size": (1920, 1080), "rounds": 3}
@@ -60,11 +61,6 @@ def _last_json(stdout: str) -> dict[str, Any]:
     return json.loads(stdout.strip().splitlines()[-1])
 
 
-def _available(module: str) -> bool:
-    import importlib.util
-    return importlib.util.find_spec(module) is not None
-
-
 def run_png(quick: bool) -> tuple[str, dict[str, Any]]:
     """The PNG rows (sizes :data:`FULL` or :data:`QUICK`): (markdown, data)."""
     sizes = QUICK if quick else FULL
@@ -72,7 +68,7 @@ def run_png(quick: bool) -> tuple[str, dict[str, Any]]:
     notes: list[str] = []
     runs: dict[str, list[float]] = {}
     xvfb, display = None, ""
-    if not _available("distforge"):
+    if not installed("distforge"):
         notes.append("DistForge skipped: not installed (pip install distforge)")
     else:
         xvfb, display = start_xvfb(f"{w}x{h}x24")
@@ -112,11 +108,11 @@ def run_png(quick: bool) -> tuple[str, dict[str, Any]]:
             cells = [f"{x:.3f}" if x is not None else "-" for x in (ours, theirs)]
             ratio = f"{ours / theirs:.2f}" if ours is not None and theirs is not None else "-"
             lines.append(f"| {label} | {cache} | {cells[0]} | {cells[1]} | {ratio} |")
-    md = (f"The demo scene as a {w}x{h} PNG (soft shadows, AO, ground, 1 sample a pixel), each run a fresh "
-          f"process, {sizes['rounds']} interleaved round(s), medians; load average {os.getloadavg()[0]:.1f} on "
-          f"{os.cpu_count()} cores. A cold shader cache is a first run (Mesa's on-disk cache off: every "
-          f"program is compiled, and llvmpipe generates its machine code at the first draw); a warm one is "
-          f"a run after one with the same shaders, as repeated renders of a scene are.\n\n" + "\n".join(lines))
+    md = (f"`sdfgl bench --sections png`: each tool writes the demo scene as a {w}x{h} PNG (soft shadows, AO, "
+          f"ground, 1 sample a pixel) in a fresh process; the runs take turns, {sizes['rounds']} times, and the "
+          f"table gives medians. A cold shader cache is a first run (Mesa's on-disk cache off: every program is "
+          f"compiled, and llvmpipe generates its machine code at the first draw); a warm one follows a run with "
+          f"the same shaders, as repeated renders of a scene do.\n\n" + "\n".join(lines))
     if notes:
         md += "\n\n" + "\n".join(f"- {n}" for n in dict.fromkeys(notes))
     return md, {"size": [w, h], "rounds": sizes["rounds"], "runs_s": runs, "median_s": med, "notes": notes}

@@ -25,6 +25,7 @@ from typing import Callable
 
 import numpy as np
 
+from ..extras import installed
 from ..nodes.base import Node
 from ..xdisplay import start_xvfb, stop_xvfb
 
@@ -81,11 +82,6 @@ def _peer(code: str, samples: int, bounds: tuple, env: dict | None = None) -> tu
         return (wall, cpu), np.load(out)
 
 
-def _available(module: str) -> bool:
-    import importlib.util
-    return importlib.util.find_spec(module) is not None
-
-
 def _accuracy(scene: Node, corners: np.ndarray) -> dict:
     """Vertices, |f| max and p99 (units and cells of the tool's own lattice), from triangle corners."""
     v = np.unique(np.round(corners, 9), axis=0)
@@ -133,12 +129,12 @@ def run_mesh(samples: int = 2 ** 22, rounds: int = 3, big: int | None = 1024,
             return r[0]
         return run
 
-    if _available("sdf"):
+    if installed("sdf"):
         tools["fogleman/sdf"] = peer("fogleman/sdf", FOGLEMAN)
     else:
         notes.append("fogleman/sdf skipped: not installed (pip install sdf-fork)")
     xvfb = None
-    if _available("distforge"):
+    if installed("distforge"):
         xvfb, display = start_xvfb()
         if xvfb is None:
             notes.append(f"DistForge skipped: it needs a display and {display}")
@@ -173,10 +169,11 @@ def run_mesh(samples: int = 2 ** 22, rounds: int = 3, big: int | None = 1024,
                      f"{r['max_f']:.1e} | {r['p99_f']:.1e} | {r['max_f'] / r['cell']:.3f} |")
     data: dict = {"samples": samples, "rounds": rounds, "rows": rows, "notes": notes,
                   "load": os.getloadavg()}
-    md = (f"fogleman/sdf's CSG example at {samples} samples in the box {np.round(box[0], 4).tolist()} .. "
-          f"{np.round(box[1], 4).tolist()} ({rounds} interleaved rounds, medians; load "
-          f"average {data['load'][0]:.1f} on {os.cpu_count()} cores). CPU is the process's CPU time over "
-          f"all its threads (llvmpipe's and numpy's), a measure of work the load does not inflate.\n\n"
+    md = (f"`sdfgl bench --sections mesh`: each tool meshes fogleman/sdf's CSG example (a sphere and a box "
+          f"minus three cylinders) with {samples} samples in the same box, {np.round(box[0], 4).tolist()} .. "
+          f"{np.round(box[1], 4).tolist()}; the tools take turns, {rounds} times, and the table gives each one's "
+          f"median. CPU is the process's CPU time over all its threads (llvmpipe's and numpy's), which other "
+          f"work on the machine does not inflate; |f| is the float64 twin's value at the tool's vertices.\n\n"
           + "\n".join(lines))
     if big:
         say(f"mesh bench: {big}^3 effective")
@@ -233,9 +230,9 @@ def run_adaptive(samples: int = 2 ** 22, rounds: int = 3,
                          f"{fc / step:.4f} | {med[kind]:.3f} | {med[kind] / med['uniform mc']:.2f} | "
                          f"{med[kind] / med['uniform sharp']:.2f} |")
         data[name] = {"step": step, "tolerance": tol, "rows": rows}
-    md = (f"Adaptive meshes (tolerance {ADAPTIVE_SHARE} of the uniform cell at {samples} samples; {rounds} "
-          f"interleaved rounds, medians; |f| of the float64 twin, in cells of the uniform mesh):\n\n"
-          + "\n".join(lines))
+    md = (f"Adaptive meshes (`tolerance=`) at {ADAPTIVE_SHARE} of the cell of the uniform mesh of {samples} "
+          f"samples, against the uniform meshes; the meshes take turns, {rounds} times, and the table gives "
+          f"medians; |f| is the float64 twin's value, in cells of the uniform mesh:\n\n" + "\n".join(lines))
     return md, data
 
 
