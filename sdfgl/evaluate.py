@@ -10,7 +10,8 @@ from .compiler.analysis import material_channels
 from .compiler.targets import EVALUATE_CHANNELS
 from .errors import ParameterError
 from .nodes.base import Node, as_points
-from .render import Renderer, default_renderer, scene_uniforms
+from .render import Renderer, default_renderer
+from .uniforms import scene_uniforms
 from .settings import Settings
 
 ROW = 1024            # points per texture row

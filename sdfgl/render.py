@@ -15,21 +15,19 @@ import numpy as np
 from .camera import Camera, OrbitCamera
 from .compiler.generate import generate
 from .compiler.source import ShaderSource
-from .compiler.analysis import (BOUNDS_PAD, GLSL_FAR, analytic_relative, analytic_shape, moving_origin, near_work,
-                                scene_frame)
-from .compiler.tables import origin_values
+from .compiler.analysis import moving_origin, near_work
 from .errors import ParameterError, SdfglError
 from .gl.cache import CacheBudget, default_budget
 from .gl.context import CurrentContext, GLThread, describe, gl_thread
-from .gl.buffer_texture import BufferTexture
-from .gl.coarse_pass import coarse_size, draw_coarse
+from .gl.coarse_pass import TILES_VERTEX, coarse_size, draw_coarse, draw_tiles, empty_tiles_source, tile_uniforms
 from .gl.data import DataTextures
-from .gl.programs import ProgramCache
+from .gl.programs import FULLSCREEN, ProgramCache
 from .gl.raster_pass import RasterImages, draw_meshes, view_range
 from .gl.targets import TargetCache, Targets
 from .nodes.base import Node
 from .raster import RasterMesh
 from .settings import OUTPUTS, Settings
+from .uniforms import bind_coarse, bind_raster_images, camera_uniforms, origin_uniforms, scene_uniforms, set_uniform
 
 T = TypeVar("T")
 
@@ -107,11 +105,6 @@ class RenderResult:
         return write_image(self.color, path, **options)
 
 
-def _set_uniform(prog: moderngl.Program, name: str, value: object) -> None:
-    if name in prog:  # the driver drops uniforms the code does not use
-        prog[name].value = value
-
-
 def checked_size(size: Sequence[int], what: str = "render", limit: int = 16384) -> tuple[int, int]:
     """(width, height) from ``size``, refused (naming ``what``) unless two whole numbers in 1..limit."""
     try:
@@ -130,82 +123,6 @@ def check_float32_camera(camera: Camera, origin: np.ndarray) -> None:
     if not np.all(np.abs(rel) < 1e30):
         raise ParameterError(f"render: camera eye {tuple(np.asarray(camera.eye).tolist())} is {float(np.max(np.abs(rel))):g} "
                              f"from the scene, beyond what the shader's float32 can hold (1e30)")
-
-
-def camera_uniforms(prog: moderngl.Program, camera: Camera, size: tuple[int, int], origin: np.ndarray,
-                    jitter: tuple[float, float] = (0.0, 0.0)) -> None:
-    """Set the camera uniforms common.glsl declares."""
-    r, u, f = camera.basis()
-    _set_uniform(prog, "uResolution", (float(size[0]), float(size[1])))
-    _set_uniform(prog, "uEye", tuple((camera.eye - origin).tolist()))
-    _set_uniform(prog, "uRight", tuple(r.tolist()))
-    _set_uniform(prog, "uUp", tuple(u.tolist()))
-    _set_uniform(prog, "uForward", tuple(f.tolist()))
-    _set_uniform(prog, "uTanHalfFov", camera.tan_half_fov)
-    _set_uniform(prog, "uOrthoHalfHeight", 0.5 * camera.ortho_height)
-    _set_uniform(prog, "uJitter", jitter)
-    _set_uniform(prog, "uZero", 0)
-
-
-DATA_UNIT = 1  # first texture unit of scene data (unit 0 is evaluate()'s points)
-
-
-def scene_uniforms(prog: moderngl.Program, source: ShaderSource, scene: Node, origin: np.ndarray,
-                   data: DataTextures | None = None) -> None:
-    """Set the uniforms of live parameters (and the scene box they move) to their current values,
-    and bind the textures of unions kept as data (uploaded once into ``data``, by default a
-    cache kept per context). Call on the context's thread."""
-    if source.data:
-        bind_data(prog, source, data)
-    for i, prm in enumerate(source.params):
-        val = prm.value
-        _set_uniform(prog, f"uP{i}", float(val) if np.ndim(val) == 0 else tuple(float(x) for x in val))
-    if source.live_bounds:
-        for name, value in live_frame(scene, origin).items():
-            _set_uniform(prog, name, value)
-    for name, value in origin_uniforms(source, scene, origin).items():
-        _set_uniform(prog, name, value)
-
-
-def origin_uniforms(source: ShaderSource, scene: Node, origin: np.ndarray) -> dict[str, tuple]:
-    """The uniforms of a moving origin (uOrgN, uAnalytic) for ``origin``, at the current parameter values."""
-    if source.origin_offsets is None:
-        return {}
-    out: dict[str, tuple] = dict(origin_values(source.origin_offsets, origin))
-    worst = max((max(abs(x) for x in v) for v in out.values()), default=0.0)
-    if not worst < 1e30:
-        raise ParameterError(f"render: the shader origin {tuple(np.asarray(origin).tolist())} (the eye of an unbounded "
-                             f"scene) lies {worst:g} from the scene's parts, beyond what float32 can hold (1e30)")
-    shape = analytic_shape(scene)
-    if shape is not None:
-        out["uAnalytic"] = tuple(float(x) for x in analytic_relative(shape[0], shape[1], origin))
-    return out
-
-
-def live_frame(scene: Node, origin: np.ndarray) -> dict[str, object]:
-    """The uniforms a shader with live parameters reads for the scene box, at the current values."""
-    lo, hi, scale = scene_frame(scene)
-    pad = BOUNDS_PAD * scale
-    return {"uBoundsLo": tuple((lo - pad - origin).tolist()), "uBoundsHi": tuple((hi + pad - origin).tolist()),
-            "uGroundY": float((lo[1] if lo[1] > -GLSL_FAR else 0.0) - origin[1]), "uSceneScale": float(scale)}
-
-
-_data_by_ctx: "weakref.WeakKeyDictionary[moderngl.Context, DataTextures]" = weakref.WeakKeyDictionary()
-
-
-def bind_data(prog: moderngl.Program, source: ShaderSource, data: DataTextures | None = None) -> None:
-    """Upload (once per source) and bind the data textures a shader samples."""
-    if data is None:
-        data = _data_by_ctx.get(prog.ctx)
-        if data is None:
-            data = _data_by_ctx[prog.ctx] = DataTextures(default_budget)
-    texs = data.textures(prog.ctx, source)
-    for unit, ((name, _), tex) in enumerate(zip(source.data, texs), start=DATA_UNIT):
-        tex.use(unit)
-        if isinstance(tex, BufferTexture):
-            tex.point(prog, name, unit)  # moderngl cannot set a samplerBuffer uniform
-        else:
-            _set_uniform(prog, name, unit)
 
 
 def check_size(ctx: moderngl.Context, size: tuple[int, int], what: str = "render: 'size'") -> None:
@@ -435,23 +352,17 @@ class Renderer:
                     starts: Targets | None) -> RenderResult:
         """The image's draw (after the coarse pass, whose tile ``starts`` it reads) and its read-back."""
         ctx = self.ctx
-        prog, vao = self.programs.entry(source)
-        compile_s = self.programs.last_compile_s
+        draws, compile_s = image_draws(self.programs, source, starts is not None)
         try:
             targets = self.targets.get(ctx, wh, st.outputs)
         except moderngl.Error as exc:
             raise SdfglError(f"render: cannot allocate {wh[0]}x{wh[1]} targets for {', '.join(st.outputs)}: "
                              f"{exc}") from None
-        camera_uniforms(prog, cam, wh, origin)
-        scene_uniforms(prog, source, scene, origin, self.data)
-        if meshes is not None:
-            bind_raster_images(prog, source, *meshes)
-        if starts is not None:
-            bind_coarse(prog, source, starts)
+        bind_image(draws, scene, cam, wh, origin, self.data, meshes, starts)
         targets.fbo.use()
         ctx.viewport = (0, 0, *wh)
         t2 = time.perf_counter()
-        vao.render(moderngl.TRIANGLES, vertices=3)
+        draw_image(ctx, draws, wh)
         ctx.finish()
         t3 = time.perf_counter()
         res = RenderResult(color=targets.read("color", 4 if st.alpha else 3), source=source,
@@ -466,6 +377,58 @@ class Renderer:
             res.steps = targets.read("steps")[..., 0].astype(np.int32)
         res.timings = {"compile_s": compile_s, "draw_s": t3 - t2, "read_s": time.perf_counter() - t3}
         return res
+
+
+@dataclass
+class ImageDraw:
+    """One program drawing an image: the image's own over the whole view (``empty`` None), or
+    after a coarse pass one kind of its tiles (``empty``: those the pass proved empty, drawn by
+    the image's source without its march; else the others, by the image's source)."""
+
+    prog: moderngl.Program
+    vao: moderngl.VertexArray
+    source: ShaderSource
+    empty: bool | None = None
+
+
+def image_draws(programs: ProgramCache, source: ShaderSource, tiled: bool) -> tuple[list[ImageDraw], float]:
+    """The programs that draw the image of ``source`` (tile by tile after a coarse pass where
+    ``tiled``) from the cache ``programs``, and the seconds their links took. Call on the
+    context's thread."""
+    kinds = [(source, False), (empty_tiles_source(source), True)] if tiled else [(source, None)]
+    draws, seconds = [], 0.0
+    for src, empty in kinds:
+        prog, vao = programs.entry(src, FULLSCREEN if empty is None else TILES_VERTEX)
+        seconds += programs.last_compile_s
+        draws.append(ImageDraw(prog, vao, src, empty))
+    return draws, seconds
+
+
+def bind_image(draws: Sequence[ImageDraw], scene: Node, cam: Camera, wh: tuple[int, int], origin: np.ndarray,
+               data: DataTextures, meshes: tuple[moderngl.Texture, moderngl.Texture] | None = None,
+               starts: Targets | None = None) -> None:
+    """Set the uniforms and bind the textures of every program of an image (the scene's data,
+    the raster meshes' images, the coarse pass's tile ``starts``). Call on the context's thread."""
+    for d in draws:
+        camera_uniforms(d.prog, cam, wh, origin)
+        scene_uniforms(d.prog, d.source, scene, origin, data)
+        if meshes is not None:
+            bind_raster_images(d.prog, d.source, *meshes)
+        if starts is not None:
+            bind_coarse(d.prog, d.source, starts)
+        if d.empty is not None:
+            for name, value in tile_uniforms(wh, d.source.coarse_tile, d.empty).items():
+                set_uniform(d.prog, name, value)
+
+
+def draw_image(ctx: moderngl.Context, draws: Sequence[ImageDraw], wh: tuple[int, int]) -> None:
+    """Draw an image of size ``wh`` by its programs (bound by :func:`bind_image`) into the bound
+    target. Call on the context's thread."""
+    for d in draws:
+        if d.empty is None:
+            d.vao.render(moderngl.TRIANGLES, vertices=3)
+        else:
+            draw_tiles(ctx, lambda n, vao=d.vao: vao.render(moderngl.POINTS, vertices=n), wh, d.source.coarse_tile)
 
 
 RASTER_VERTEX = "mains/raster_mesh.vert"
@@ -485,18 +448,9 @@ def raster_pass(prog: moderngl.Program, mesh_source: ShaderSource, scene: Node, 
     current context) through ``cam`` at ``size``: the textures the march then reads."""
     camera_uniforms(prog, cam, size, origin)
     scene_uniforms(prog, mesh_source, scene, origin, data)
-    _set_uniform(prog, "uOrtho", 1.0 if cam.orthographic else 0.0)
-    _set_uniform(prog, "uNearFar", view_range(cam, meshes))
+    set_uniform(prog, "uOrtho", 1.0 if cam.orthographic else 0.0)
+    set_uniform(prog, "uNearFar", view_range(cam, meshes))
     return draw_meshes(prog.ctx, prog, meshes, size, origin)
-
-
-def bind_raster_images(prog: moderngl.Program, source: ShaderSource, depth: moderngl.Texture, color: moderngl.Texture) -> None:
-    """Bind the raster meshes' t and colour textures for the march ``prog`` of ``source`` (a
-    moderngl program or the viewer's RawProgram), on the texture units after the scene's data."""
-    first = DATA_UNIT + len(source.data)
-    for unit, (name, tex) in enumerate(zip(("uMeshDepth", "uMeshColor"), (depth, color)), start=first):
-        tex.use(unit)
-        _set_uniform(prog, name, unit)
 
 
 def coarse_source(scene: Node, source: ShaderSource, st: Settings, origin: np.ndarray,
@@ -507,14 +461,6 @@ def coarse_source(scene: Node, source: ShaderSource, st: Settings, origin: np.nd
         return None
     return generate(scene, dataclasses.replace(st, debug=None, outputs=("color",)), origin, target="coarse",
                     projection=projection)
-
-
-def bind_coarse(prog: moderngl.Program, source: ShaderSource, starts: Targets) -> None:
-    """Bind the coarse pass's tile starts for the image ``prog`` (of ``source``) on the unit
-    after the scene's data. Call on the context's thread."""
-    unit = DATA_UNIT + len(source.data)
-    starts.textures["start"].use(unit)
-    _set_uniform(prog, "uCoarseStart", unit)
 
 
 _default: Renderer | None = None

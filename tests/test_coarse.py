@@ -106,3 +106,46 @@ def test_coarse_setting():
     for bad in (3, 8.0, "8", None):
         with pytest.raises(ParameterError, match="coarse"):
             Settings(coarse=bad)
+
+
+@pytest.mark.parametrize("tile", [4, 16])
+def test_each_tile_drawn_once_by_its_kind(renderer, tile):
+    """After the pass the image is drawn tile by tile: the program without the march covers
+    exactly the tiles proven empty (partial tiles at the edges included), the image's program
+    exactly the others, and together they give render()'s image."""
+    from sdfgl.gl.coarse_pass import empty_tiles_source
+    from sdfgl.render import bind_image, coarse_source, draw_image, image_draws, shader_origin
+    from sdfgl.compiler.generate import generate
+    from sdfgl.settings import Settings
+    scene, cam, _ = low_scene()
+    size = (101, 67)  # neither side a multiple of a tile
+    st = Settings(coarse=tile).resolved(scene.exactness)
+    origin = shader_origin(scene, cam.eye)
+    src = sg.compile(scene, coarse=tile)
+    assert "#define EMPTY_TILES" not in src
+    source = generate(scene, st, origin, projection=cam.projection)
+    assert "#define EMPTY_TILES" in empty_tiles_source(source).text
+    coarse = coarse_source(scene, source, st, origin, cam.projection)
+    starts = renderer.coarse_starts(scene, cam, size, coarse=tile)
+    empty = np.repeat(np.repeat(starts >= EMPTY, tile, axis=0), tile, axis=1)[-size[1]:, :size[0]]
+    assert 0.01 < empty.mean() < 0.99  # both kinds of tile
+
+    def draw(kinds):
+        ctx = renderer.ctx
+        tiles = renderer.coarse_pass(scene, cam, size, coarse, origin)
+        fbo = ctx.simple_framebuffer(size, components=4)
+        try:
+            draws = [d for d in image_draws(renderer.programs, source, True)[0] if d.empty in kinds]
+            bind_image(draws, scene, cam, size, origin, renderer.data, starts=tiles)
+            fbo.use()
+            fbo.clear(0.0, 0.0, 0.0, 0.0)
+            draw_image(ctx, draws, size)
+            return np.frombuffer(fbo.read(components=4), np.uint8).reshape(size[1], size[0], 4)[::-1]
+        finally:
+            fbo.release()
+            tiles.release()
+
+    only_empty, only_open, both = (renderer.run(draw, k) for k in ({True}, {False}, {True, False}))
+    assert np.array_equal(only_empty[..., 3] > 0, empty) and np.array_equal(only_open[..., 3] > 0, ~empty)
+    full = renderer.render(scene, cam, size, coarse=tile).color
+    assert np.array_equal(both[..., :3], full) and np.all(both[..., 3] == 255)

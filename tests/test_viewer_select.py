@@ -6,7 +6,8 @@ import pytest
 import sdfgl as sg
 from sdfgl.compiler.generate import generate
 from sdfgl.gl.targets import Targets
-from sdfgl.render import camera_uniforms, default_renderer, scene_uniforms
+from sdfgl.render import default_renderer
+from sdfgl.uniforms import camera_uniforms, scene_uniforms
 from sdfgl.settings import Settings
 
 

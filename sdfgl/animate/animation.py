@@ -2,8 +2,8 @@
 
 Per frame only uniforms change: the clock (every ``sg.time()`` in the scene), the camera
 (from a path) and the live parameters over them. The program cache is keyed by source,
-and the source does not depend on either, so the first frame compiles (the image's program and,
-where the image has one, its coarse pass's) and the rest draw.
+and the source does not depend on either, so the first frame compiles (the image's program, or
+where the image has a coarse pass that pass's and the image's two tile programs) and the rest draw.
 """
 from __future__ import annotations
 
@@ -34,7 +34,7 @@ class AnimationResult:
     frames: int
     fps: float
     size: tuple[int, int]
-    compiles: int                        # shader programs compiled during the clip (the first frame's: 2 at most)
+    compiles: int                        # shader programs compiled during the clip (the first frame's: 3 at most)
     seconds: float                       # wall time of the whole clip
     render_s: list[float] = field(default_factory=list)   # per frame: render() incl. read-back
     write_s: list[float] = field(default_factory=list)    # per frame: handing the frame to the writer
@@ -132,7 +132,8 @@ def animate(scene: Node, output: str | Path | FrameWriter, seconds: float = 4.0,
         settings: render()'s settings (``aa``, ``shadows``, ``ao``, ``ground``, ...).
 
     Returns an :class:`AnimationResult`: the path written, frame count, fps, size, shader
-    compiles during the clip (the first frame's: the image and its coarse pass, 2 at most) and wall
+    compiles during the clip (the first frame's: the coarse pass and the image's two tile programs,
+    3 at most) and wall
     times per frame.
 
     Example:
@@ -142,7 +143,7 @@ def animate(scene: Node, output: str | Path | FrameWriter, seconds: float = 4.0,
         ...     res = sg.animate(sg.sphere(1 + 0.2 * sg.sin(t)), pathlib.Path(d) / "pulse.gif",
         ...                      seconds=0.5, fps=4, size=(16, 16))
         >>> res.frames, res.compiles
-        (2, 2)
+        (2, 3)
     """
     if not isinstance(scene, Node):
         raise ParameterError(f"animate: 'scene' must be an sdfgl node, got {type(scene).__name__}")

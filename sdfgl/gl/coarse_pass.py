@@ -1,14 +1,20 @@
 """The coarse pass of a render: one fragment per tile of pixels, drawn before the image, writing
-the ray parameter from which the tile's rays march (shaders/mains/coarse_main.glsl)."""
+the ray parameter from which the tile's rays march (shaders/mains/coarse_main.glsl); and the
+image drawn after it tile by tile (shaders/mains/tiles.vert.glsl): the image's program on the
+tiles the pass left open, the same program without its march on the tiles it proved empty."""
 from __future__ import annotations
 
+import dataclasses
 from typing import Callable
 
 import moderngl
 
+from ..compiler.source import ShaderSource
 from .targets import Targets
 
 START = ("start",)  # the coarse pass's one output: a float per tile
+TILES_VERTEX = "mains/tiles.vert"
+"""The vertex shader that draws an image's tiles of one kind (open or proven empty)."""
 
 
 def coarse_size(size: tuple[int, int], tile: int) -> tuple[int, int]:
@@ -44,3 +50,32 @@ def draw_coarse(ctx: moderngl.Context, draw: Callable[[], None], size: tuple[int
         target.release()
         raise
     return target
+
+
+def empty_tiles_source(source: ShaderSource) -> ShaderSource:
+    """The image ``source`` for the tiles its coarse pass proved empty: the same shader without
+    the march (what those pixels still show: background, ground, raster meshes)."""
+    head, rest = source.text.split("\n", 1)  # the #version line stays first
+    return dataclasses.replace(source, text=f"{head}\n#define EMPTY_TILES\n{rest}",
+                               owners=(source.owners[0], "(coarse pass: empty tiles)") + source.owners[1:])
+
+
+def tile_uniforms(size: tuple[int, int], tile: int, empty: bool) -> dict[str, object]:
+    """The uniforms of TILES_VERTEX for an image of ``size`` in ``tile``-pixel tiles, drawing the
+    tiles proven empty (``empty``) or the others."""
+    return {"uTiles": coarse_size(size, tile), "uTileSide": tile, "uEmptyTiles": int(empty)}
+
+
+def draw_tiles(ctx: moderngl.Context, draw: Callable[[int], None], size: tuple[int, int], tile: int) -> None:
+    """Draw the tiles of one kind of an image of ``size``: ``draw(count)`` draws ``count`` points
+    with a TILES_VERTEX program (its :func:`tile_uniforms` set) into the bound target. The viewport
+    spans whole tiles (the target clips the part past its edge), so no tile's point is clipped away.
+    Call on the context's thread."""
+    cols, rows = coarse_size(size, tile)
+    ctx.viewport = (0, 0, cols * tile, rows * tile)
+    ctx.enable(moderngl.PROGRAM_POINT_SIZE)
+    try:
+        draw(cols * rows)
+    finally:
+        ctx.disable(moderngl.PROGRAM_POINT_SIZE)
+        ctx.viewport = (0, 0, *size)

@@ -12,7 +12,8 @@ import numpy as np
 from ..compiler.generate import generate
 from ..gl.context import finish
 from ..nodes.base import Node
-from ..render import Renderer, default_renderer, scene_uniforms, shader_origin
+from ..render import Renderer, default_renderer, shader_origin
+from ..uniforms import scene_uniforms
 from ..settings import Settings
 
 MAX_TEXELS = 1 << 22  # samples per draw: 16 MiB of float32 read back at a time

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field
-from typing import Any, Callable
+from typing import Any, Callable, Union
 
 import moderngl
 
@@ -17,7 +17,8 @@ from .. import shaderlib
 from ..compiler.source import ShaderSource
 from ..errors import SdfglError
 from ..gl.dialect import of_source
-from ..gl.programs import explain_compile_error
+from ..gl.coarse_pass import TILES_VERTEX, draw_tiles, empty_tiles_source, tile_uniforms
+from ..gl.programs import FULLSCREEN, explain_compile_error
 from . import rawgl
 
 
@@ -36,12 +37,21 @@ class RawProgram:
     def __getitem__(self, name: str) -> "_Uniform":
         return _Uniform(self, name)
 
-    def render(self, vao: int) -> None:
+    def set(self, name: str, value: Any) -> None:
+        """Set uniform ``name`` (one the program has) to ``value``."""
+        loc, typ = self._uniforms[name]
+        self.gl.set_uniform(self.glo, loc, typ, value)
+
+    def render(self, vao: int, size: tuple[int, int] | None = None) -> None:
         """Draw the full-screen triangle into the bound framebuffer (the interpreter lock is released
         meanwhile: llvmpipe builds a program's machine code at its first draw in each context)."""
+        self.draw(vao, rawgl.TRIANGLES, 3)
+
+    def draw(self, vao: int, mode: int, count: int) -> None:
+        """Draw ``count`` vertices of primitive ``mode`` with no vertex buffer."""
         self.gl.glUseProgram(self.glo)
         self.gl.glBindVertexArray(vao)
-        self.gl.glDrawArrays(rawgl.TRIANGLES, 0, 3)
+        self.gl.glDrawArrays(mode, 0, count)
 
     def release(self) -> None:
         if self.glo:
@@ -49,8 +59,47 @@ class RawProgram:
             self.glo = 0
 
 
+class TiledProgram:
+    """An image drawn tile by tile after its coarse pass (see :mod:`sdfgl.gl.coarse_pass`): the
+    program of the open tiles and the program without the march of the tiles proven empty,
+    behind RawProgram's API. A uniform is set on both; a draw draws both."""
+
+    def __init__(self, open_tiles: RawProgram, empty_tiles: RawProgram, tile: int) -> None:
+        self.parts = ((open_tiles, False), (empty_tiles, True))
+        self.tile, self.ctx = tile, open_tiles.ctx
+
+    def __contains__(self, name: str) -> bool:
+        return any(name in p for p, _ in self.parts)
+
+    def __getitem__(self, name: str) -> "_Uniform":
+        return _Uniform(self, name)
+
+    def set(self, name: str, value: Any) -> None:
+        for p, _ in self.parts:
+            if name in p:
+                p.set(name, value)
+
+    def render(self, vao: int, size: tuple[int, int] | None = None) -> None:
+        """Draw the image's tiles of an image of ``size`` into the bound framebuffer."""
+        if size is None:
+            raise SdfglError("render: a tiled image needs its size to be drawn")
+        for p, empty in self.parts:
+            for name, value in tile_uniforms(size, self.tile, empty).items():
+                if name in p:
+                    p.set(name, value)
+            draw_tiles(self.ctx, lambda n, p=p: p.draw(vao, rawgl.POINTS, n), size, self.tile)
+
+    def release(self) -> None:
+        for p, _ in self.parts:
+            p.release()
+
+
+ImageProgram = Union[RawProgram, TiledProgram]
+"""What draws a view's image in the render threads."""
+
+
 class _Uniform:
-    def __init__(self, prog: RawProgram, name: str) -> None:
+    def __init__(self, prog: ImageProgram, name: str) -> None:
         self.prog, self.name = prog, name
 
     @property
@@ -59,8 +108,7 @@ class _Uniform:
 
     @value.setter
     def value(self, v: Any) -> None:
-        loc, typ = self.prog._uniforms[self.name]
-        self.prog.gl.set_uniform(self.prog.glo, loc, typ, v)
+        self.prog.set(self.name, v)
 
 
 @dataclass
@@ -104,14 +152,29 @@ def make_source(build: Callable[[], ShaderSource]) -> ShaderSource:
         raise SdfglError(f"code generation failed: {type(exc).__name__}: {exc}") from exc
 
 
-def link(gl: rawgl.GL, source: ShaderSource, ctx: moderngl.Context) -> RawProgram:
-    """Link ``source`` in the current context (the calling thread's); SdfglError with the driver's log."""
+def link(gl: rawgl.GL, source: ShaderSource, ctx: moderngl.Context, vertex_shader: str = FULLSCREEN) -> RawProgram:
+    """Link ``source`` under the vertex shader ``shaders/<vertex_shader>.glsl`` in the current context
+    (the calling thread's); SdfglError with the driver's log."""
     try:
-        vertex = of_source(source.text).convert(shaderlib.read("mains/fullscreen.vert"))
+        vertex = of_source(source.text).convert(shaderlib.read(vertex_shader))
         glo = gl.link(vertex, source.text)
     except rawgl.GLError as exc:
         raise SdfglError(explain_compile_error(source, str(exc))) from None
     return RawProgram(gl, glo, gl.uniforms(glo), ctx)
+
+
+def link_image(gl: rawgl.GL, source: ShaderSource, ctx: moderngl.Context,
+               tiled: bool) -> ImageProgram:
+    """The image of ``source`` linked in the current context: one full-screen program, or where
+    ``tiled`` (it has a coarse pass) the two programs of its tiles."""
+    if not tiled:
+        return link(gl, source, ctx)
+    open_tiles = link(gl, source, ctx, TILES_VERTEX)
+    try:
+        return TiledProgram(open_tiles, link(gl, empty_tiles_source(source), ctx, TILES_VERTEX), source.coarse_tile)
+    except BaseException:
+        open_tiles.release()
+        raise
 
 
 def link_raster(source: ShaderSource, ctx: moderngl.Context) -> moderngl.Program:

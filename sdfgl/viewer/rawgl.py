@@ -19,8 +19,9 @@ VERTEX_SHADER, FRAGMENT_SHADER = 0x8B31, 0x8B30
 COMPILE_STATUS, LINK_STATUS, INFO_LOG_LENGTH = 0x8B81, 0x8B82, 0x8B84
 ACTIVE_UNIFORMS = 0x8B86
 FLOAT, FLOAT_VEC2, FLOAT_VEC3, FLOAT_VEC4, INT, SAMPLER_2D = 0x1406, 0x8B50, 0x8B51, 0x8B52, 0x1404, 0x8B5E
+INT_VEC2 = 0x8B53
 SAMPLER_BUFFER = 0x8DC2
-TRIANGLES = 0x0004
+POINTS, TRIANGLES = 0x0000, 0x0004
 TEXTURE_2D, TEXTURE0 = 0x0DE1, 0x84C0
 
 _SIGNATURES: dict[str, tuple[Any, ...]] = {
@@ -44,6 +45,7 @@ _SIGNATURES: dict[str, tuple[Any, ...]] = {
     "glProgramUniform3f": (None, c_uint, c_int, c_float, c_float, c_float),
     "glProgramUniform4f": (None, c_uint, c_int, c_float, c_float, c_float, c_float),
     "glProgramUniform1i": (None, c_uint, c_int, c_int),
+    "glProgramUniform2i": (None, c_uint, c_int, c_int, c_int),
     "glUseProgram": (None, c_uint),
     "glGenVertexArrays": (None, c_int, POINTER(c_uint)),
     "glBindVertexArray": (None, c_uint),
@@ -121,11 +123,13 @@ class GL:
         return out
 
     def set_uniform(self, prog: int, location: int, typ: int, value: Any) -> None:
-        """Set a float/vecN/int/sampler uniform of ``prog`` (no binding needed)."""
+        """Set a float/vecN/int/ivec2/sampler uniform of ``prog`` (no binding needed)."""
         if typ in (INT, SAMPLER_2D, SAMPLER_BUFFER):
             self.glProgramUniform1i(prog, location, int(value))
         elif typ == FLOAT:
             self.glProgramUniform1f(prog, location, float(value))
+        elif typ == INT_VEC2:
+            self.glProgramUniform2i(prog, location, *(int(x) for x in value))
         else:
             setter = {FLOAT_VEC2: self.glProgramUniform2f, FLOAT_VEC3: self.glProgramUniform3f,
                       FLOAT_VEC4: self.glProgramUniform4f}.get(typ)

@@ -41,9 +41,10 @@ from ..nodes.base import Node
 from ..gl.coarse_pass import draw_coarse
 from ..gl.raster_pass import RasterImages
 from ..gl.targets import Targets
-from ..render import bind_coarse, bind_raster_images, camera_uniforms, raster_pass, scene_uniforms
+from ..render import raster_pass
+from ..uniforms import bind_coarse, bind_raster_images, camera_uniforms, scene_uniforms
 from . import rawgl
-from .programs import Job, RawProgram, Result, link, link_raster, make_source, stamp
+from .programs import ImageProgram, Job, RawProgram, Result, link, link_image, link_raster, make_source, stamp
 
 LANES = 2
 CACHE_SIZE = 12          # warm programs kept per lane, for instant toggling back
@@ -166,7 +167,7 @@ class Lane:
         glfw.make_context_current(window)
         if not self._hidden:
             raise SdfglError("glfw could not create a render thread's shared context")
-        self.warm: OrderedDict[str, RawProgram] = OrderedDict()  # linked here and drawn once here
+        self.warm: OrderedDict[str, ImageProgram] = OrderedDict()  # linked here and drawn once here
         # program key -> the raster meshes' program that goes with it (views with meshes)
         self.raster_programs: dict[str, tuple[ShaderSource, moderngl.Program]] = {}
         # program key -> the coarse pass drawn before it (linked here too), where it has one
@@ -313,14 +314,14 @@ class Lane:
                 res.lane = found[0]
                 stamp(res, t0, codegen_s=t1 - t0)
             else:
-                prog = link(self.gl, source, self.ctx)
+                coarse_build = job.coarse_build
+                coarse_src = None if coarse_build is None else make_source(lambda: coarse_build(source))
+                prog = link_image(self.gl, source, self.ctx, tiled=coarse_src is not None)
                 raster = coarse = None
                 try:
                     if job.mesh_build is not None:
                         mesh_source = make_source(job.mesh_build)
                         raster = (mesh_source, link_raster(mesh_source, self.ctx))
-                    coarse_build = job.coarse_build
-                    coarse_src = None if coarse_build is None else make_source(lambda: coarse_build(source))
                     if coarse_src is not None:  # linked like the image: the link does not hold the Python lock
                         coarse = (coarse_src, link(self.gl, coarse_src, self.ctx))
                     t2 = time.perf_counter()
@@ -346,7 +347,7 @@ class Lane:
             ex.results.append(res)
         glfw.post_empty_event()  # wake the window's wait_events
 
-    def _warm_up(self, prog: RawProgram, source: ShaderSource, job: Job,
+    def _warm_up(self, prog: ImageProgram, source: ShaderSource, job: Job,
                  coarse: tuple[ShaderSource, RawProgram] | None) -> None:
         """Draw once into 1x1 targets of both formats (and the coarse pass once): llvmpipe builds
         the machine code of each now."""
@@ -389,7 +390,7 @@ class Lane:
             if extra is not None:
                 extra[1].release()
 
-    def _bind_meshes(self, spec: FrameSpec, prog: RawProgram, size: tuple[int, int]) -> None:
+    def _bind_meshes(self, spec: FrameSpec, prog: ImageProgram, size: tuple[int, int]) -> None:
         """Draw the spec's raster meshes at ``size`` (once per spec and size: they do not take the
         samples' jitter) and bind their textures for the march ``prog``."""
         key = (spec.version, size)
@@ -407,7 +408,7 @@ class Lane:
         bind_raster_images(prog, spec.source, images.depth_texture, images.color_texture)
 
     # -- frames (active lane) -------------------------------------------------------------
-    def _draw(self, prog: RawProgram, target: _Target, jitter: tuple[float, float], blend: bool,
+    def _draw(self, prog: ImageProgram, target: _Target, jitter: tuple[float, float], blend: bool,
               size: tuple[int, int] | None = None) -> float:
         target.fbo.use()
         self.ctx.viewport = (0, 0, *(size or target.size))
@@ -415,7 +416,7 @@ class Lane:
             self.ctx.enable(moderngl.BLEND)
             self.ctx.blend_func = moderngl.ONE, moderngl.ONE
         t0 = time.perf_counter()
-        prog.render(self.vao)
+        prog.render(self.vao, size or target.size)
         self.gl.glFinish()
         ms = 1000 * (time.perf_counter() - t0)
         if blend:
@@ -497,7 +498,7 @@ class Lane:
             self._deliver_shots()
         glfw.post_empty_event()
 
-    def _coarse_before(self, spec: FrameSpec, prog: RawProgram, size: tuple[int, int],
+    def _coarse_before(self, spec: FrameSpec, prog: ImageProgram, size: tuple[int, int],
                        jitter: tuple[float, float]) -> float:
         """Draw the coarse pass of the spec's program (where it has one) for an image of ``size``
         whose rays are offset by ``jitter``, and bind its tile starts for ``prog``; its ms."""

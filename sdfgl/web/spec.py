@@ -28,7 +28,8 @@ from ..errors import ParameterError
 from ..gl.dialect import WEBGL2
 from ..nodes.base import IMPLICIT, Node
 from ..params import Param
-from ..render import live_frame, shader_origin
+from ..render import shader_origin
+from ..uniforms import live_frame
 from ..settings import Settings
 from .. import shaderlib
 

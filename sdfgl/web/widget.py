@@ -21,7 +21,7 @@ from ..camera import Camera, OrbitCamera
 from ..errors import ParameterError, SdfglError
 from ..nodes.base import Node
 from ..params import Param
-from ..render import live_frame
+from ..uniforms import live_frame
 from . import assets
 from .spec import orbit_state, build, camera_from_state
 

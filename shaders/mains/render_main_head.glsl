@@ -34,10 +34,12 @@ Hit tracePrimary(vec3 ro, vec3 rd) {
 #endif
     if (tg > 0.0) range.y = min(range.y, tg);
 #endif
+#ifndef EMPTY_TILES  // drawn only where the coarse pass proved the tile empty: no march there
     if (range.x <= range.y) {
         h.t = march(ro, rd, range.x, range.y, h.steps);
         if (isnan(h.t) || isinf(h.t)) h.t = -1.0;  // a field that overflows (x^1000) is no hit, never NaN
     }
+#endif
 #ifdef GROUND
     if (h.t < 0.0 && tg > 0.0) {
         h.t = tg;
@@ -48,10 +50,14 @@ Hit tracePrimary(vec3 ro, vec3 rd) {
 }
 
 vec3 hitNormal(vec3 ro, vec3 rd, Hit h) {
+#if defined(EMPTY_TILES)
+    return vec3(0.0, 1.0, 0.0);  // only the ground can be hit on an empty tile
+#else
 #ifdef GROUND
     if (h.ground) return vec3(0.0, 1.0, 0.0);
 #endif
     return calcNormal(ro + rd * h.t, h.t, rd);
+#endif
 }
 
 vec3 radiance(vec3 ro, vec3 rd, Hit h) {
