@@ -20,7 +20,6 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable, Sequence
 
-import moderngl
 import numpy as np
 
 from .errors import ParameterError, SdfglError
@@ -33,7 +32,7 @@ from .gl.cache import CacheBudget
 from .gl.context import describe
 from .nodes.base import IMPLICIT, Node
 from .reference import Reference, compare, trace
-from .render import Renderer, bind_coarse, camera_uniforms, coarse_source, scene_uniforms, shader_origin
+from .render import Renderer, bind_image, coarse_source, draw_image, image_draws, shader_origin
 from .settings import DISTANCE_METHODS, Settings
 
 
@@ -74,8 +73,8 @@ class Progress:
 class FrameTimer:
     """Times single draws of prepared programs on one renderer."""
 
-    def __init__(self, renderer: Renderer, size: tuple[int, int]) -> None:
-        self.r, self.size = renderer, size
+    def __init__(self, renderer: Renderer, size: tuple[int, int], read_back: bool = False) -> None:
+        self.r, self.size, self.read_back = renderer, size, read_back  # read_back: each draw reads its RGB back
         self.fbo = renderer.run(lambda: renderer.ctx.simple_framebuffer(size))
 
     def prepare(self, v: Variant) -> tuple[float, float]:
@@ -89,10 +88,10 @@ class FrameTimer:
         source = generate(v.node, st, origin, projection=v.camera.projection)
         if v.source is not None:
             source = v.source(source)
-        prog = self.r.programs.get(source)
         coarse = coarse_source(v.node, source, st.resolved(v.node.exactness), origin, v.camera.projection)
+        draws, _ = image_draws(self.r.programs, source, coarse is not None)
         t1 = time.perf_counter()
-        v.result["_prog"] = (prog, origin, source, coarse)
+        v.result["_prog"] = (draws, origin, coarse)
         first = self.draw(v)
         return t1 - t0, first
 
@@ -101,16 +100,16 @@ class FrameTimer:
         return self.r.run(self._draw, v)
 
     def _draw(self, v: Variant) -> float:
-        prog, origin, source, coarse = v.result["_prog"]
+        draws, origin, coarse = v.result["_prog"]
         t0 = time.perf_counter()
+        # the coarse pass first, as render() draws it
         starts = None if coarse is None else self.r.coarse_pass(v.node, v.camera, self.size, coarse, origin)
-        if starts is not None:  # the coarse pass, as render() draws it first
-            bind_coarse(prog, source, starts)
-        camera_uniforms(prog, v.camera, self.size, origin)
-        scene_uniforms(prog, source, v.node, origin)
+        bind_image(draws, v.node, v.camera, self.size, origin, self.r.data, starts=starts)
         self.fbo.use()
         self.r.ctx.viewport = (0, 0, *self.size)
-        self.r.vao(prog).render(moderngl.TRIANGLES, vertices=3)
+        draw_image(self.r.ctx, draws, self.size)
+        if self.read_back:
+            v.result["_image"] = self.fbo.read(components=3)
         self.r.ctx.finish()
         dt = time.perf_counter() - t0
         if starts is not None:
@@ -411,9 +410,12 @@ def run(quick: bool, size: tuple[int, int] | None, out: Path, progress: bool = T
         data["features"] = [{"label": v.label, "settings": v.settings,
                              **{k: val for k, val in v.result.items() if not k.startswith("_")}} for v in features]
     if "model" in wanted:
-        from .bench_model import run_model
+        from .bench_model import run_model, run_whole
         md_parts.append("## Model only what a scene needs\n\n" + run_model(
             small, min(frames, 5), warmup, (16, 64, 256) if quick else (16, 64, 256, 1024), progress))
+        whole = run_whole((320, 180) if quick else (1280, 720), min(frames, 7), warmup)
+        if whole:
+            md_parts.append("## Against whole shaders written by hand\n\n" + whole)
     if "big" in wanted:
         from .bench_big import run_big, run_phases
         md_parts.append("## Big scenes\n\n" + run_big(quick, small) + "\n\n" + run_phases(quick, small))

@@ -67,6 +67,46 @@ def handwritten(name: str) -> Callable[[ShaderSource], ShaderSource]:
     return rewrite
 
 
+WHOLE_SHADERS = {"csg": csg_scene}
+"""Scenes with a whole fragment shader written by hand (benchmarks/baselines/whole/<name>.glsl)."""
+
+
+def whole_handwritten(name: str) -> Callable[[ShaderSource], ShaderSource]:
+    """Replace the generated shader by the whole one written by hand for scene ``name``."""
+    text = "#version 330 core\n" + (BASELINES / "whole" / f"{name}.glsl").read_text(encoding="utf-8")
+    return lambda src: ShaderSource(text, ("(hand-written)",) * (text.count("\n") + 1))
+
+
+def run_whole(size: tuple[int, int], frames: int, warmup: int) -> str:
+    """Generated shaders against whole shaders written by hand for the same scene, lights and
+    look, default settings (soft shadows and AO): a frame with its read-back, interleaved; and
+    how many pixels differ. Return the markdown table (empty without the baselines)."""
+    if not (BASELINES / "whole").is_dir():
+        return ""
+    renderer = Renderer(budget=CacheBudget(programs=None))
+    timer = FrameTimer(renderer, size, read_back=True)
+    groups = []
+    for name, make in WHOLE_SHADERS.items():
+        cam = HANDWRITTEN[name][1]()
+        groups.append([Variant(name, "generated", {}, make(), cam),
+                       Variant(name, "generated, no coarse pass", {"coarse": False}, make(), cam),
+                       Variant(name, "whole shader written by hand", {}, make(), cam, source=whole_handwritten(name))])
+    rows = ["| scene | variant | frame ms incl. read-back (median / p95) | ratio to the hand-written | "
+            "pixels > 8/255 from the generated image |", "|---|---|---|---|---|"]
+    for vs in groups:
+        time_interleaved(timer, vs, frames, warmup, Progress(0, False))
+        images = [np.frombuffer(v.result["_image"], np.uint8).astype(int) for v in vs]
+        hand = vs[-1].result["frame_ms_median"]
+        for v, img in zip(vs, images):
+            differ = float(np.mean(np.abs(img - images[0]).reshape(-1, 3).max(axis=1) > 8))
+            rows.append(f"| {v.scene} | {v.label} | {v.result['frame_ms_median']:.1f} / {v.result['frame_ms_p95']:.1f} | "
+                        f"{v.result['frame_ms_median'] / hand:.2f} | {100 * differ:.2f} % |")
+    return (f"Whole shaders, {size[0]}x{size[1]}, default settings (soft shadows and AO), {frames} timed frames "
+            f"after {warmup} warm-up, interleaved: each frame drawn and read back. The hand-written shader "
+            "(benchmarks/baselines/whole/) marches a fixed 128 steps with the same lights and look; the generated "
+            "one adds its coarse pass and draws the tiles it proves empty without the march.\n\n" + "\n".join(rows))
+
+
 def scattered(n: int, seed: int = 0) -> tuple[Node, Camera]:
     """n spheres, boxes and tori scattered in a cube whose volume grows with n."""
     rng = np.random.default_rng(seed)

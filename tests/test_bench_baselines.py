@@ -19,3 +19,13 @@ def test_missing_baselines_skip_their_rows_with_a_message(tmp_path, monkeypatch)
     monkeypatch.setattr(bench_model, "BASELINES", tmp_path / "absent")
     assert hand_labels() == ["generated"] * len(bench_model.HANDWRITTEN)
     assert "source checkout" in bench_model.MISSING_BASELINES
+
+
+def test_whole_hand_written_shader_draws_the_same_image():
+    """The whole shader written by hand for the CSG scene shows what the generated one shows
+    (same lights and look), so the bench's frame-time ratio compares like with like."""
+    table = bench_model.run_whole((96, 54), frames=1, warmup=0)
+    rows = [r for r in table.splitlines() if r.startswith("| csg |")]
+    assert [r.split(" | ")[1] for r in rows] == ["generated", "generated, no coarse pass", "whole shader written by hand"]
+    assert float(rows[1].split(" | ")[-1].rstrip(" %|")) < 0.5   # the coarse pass does not change the image
+    assert float(rows[2].split(" | ")[-1].rstrip(" %|")) < 3.0   # nor does writing the shader by hand
