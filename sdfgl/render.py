@@ -19,7 +19,7 @@ from .compiler.analysis import moving_origin, near_work
 from .errors import ParameterError, SdfglError
 from .gl.cache import CacheBudget, default_budget
 from .gl.context import CurrentContext, GLThread, describe, gl_thread
-from .gl.coarse_pass import TILES_VERTEX, coarse_size, draw_coarse, draw_tiles, empty_tiles_source, tile_uniforms
+from .gl.coarse_pass import TILES_VERTEX, coarse_size, draw_coarse, draw_tiles, tile_sources, tile_uniforms
 from .gl.data import DataTextures
 from .gl.programs import FULLSCREEN, ProgramCache
 from .gl.raster_pass import RasterImages, draw_meshes, view_range
@@ -381,26 +381,25 @@ class Renderer:
 
 @dataclass
 class ImageDraw:
-    """One program drawing an image: the image's own over the whole view (``empty`` None), or
-    after a coarse pass one kind of its tiles (``empty``: those the pass proved empty, drawn by
-    the image's source without its march; else the others, by the image's source)."""
+    """One program drawing an image: the image's own over the whole view (``kind`` None), or
+    after a coarse pass the program of one kind of tile (sdfgl.gl.coarse_pass: OPEN, EMPTY, SKY)."""
 
     prog: moderngl.Program
     vao: moderngl.VertexArray
     source: ShaderSource
-    empty: bool | None = None
+    kind: int | None = None
 
 
 def image_draws(programs: ProgramCache, source: ShaderSource, tiled: bool) -> tuple[list[ImageDraw], float]:
     """The programs that draw the image of ``source`` (tile by tile after a coarse pass where
     ``tiled``) from the cache ``programs``, and the seconds their links took. Call on the
     context's thread."""
-    kinds = [(source, False), (empty_tiles_source(source), True)] if tiled else [(source, None)]
+    kinds = tile_sources(source) if tiled else [(source, None)]
     draws, seconds = [], 0.0
-    for src, empty in kinds:
-        prog, vao = programs.entry(src, FULLSCREEN if empty is None else TILES_VERTEX)
+    for src, kind in kinds:
+        prog, vao = programs.entry(src, FULLSCREEN if kind is None else TILES_VERTEX)
         seconds += programs.last_compile_s
-        draws.append(ImageDraw(prog, vao, src, empty))
+        draws.append(ImageDraw(prog, vao, src, kind))
     return draws, seconds
 
 
@@ -416,8 +415,8 @@ def bind_image(draws: Sequence[ImageDraw], scene: Node, cam: Camera, wh: tuple[i
             bind_raster_images(d.prog, d.source, *meshes)
         if starts is not None:
             bind_coarse(d.prog, d.source, starts)
-        if d.empty is not None:
-            for name, value in tile_uniforms(wh, d.source.coarse_tile, d.empty).items():
+        if d.kind is not None:
+            for name, value in tile_uniforms(wh, d.source.coarse_tile, d.kind).items():
                 set_uniform(d.prog, name, value)
 
 
@@ -425,7 +424,7 @@ def draw_image(ctx: moderngl.Context, draws: Sequence[ImageDraw], wh: tuple[int,
     """Draw an image of size ``wh`` by its programs (bound by :func:`bind_image`) into the bound
     target. Call on the context's thread."""
     for d in draws:
-        if d.empty is None:
+        if d.kind is None:
             d.vao.render(moderngl.TRIANGLES, vertices=3)
         else:
             draw_tiles(ctx, lambda n, vao=d.vao: vao.render(moderngl.POINTS, vertices=n), wh, d.source.coarse_tile)

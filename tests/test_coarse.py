@@ -10,7 +10,8 @@ from sdfgl.hardcases import case
 from sdfgl.reference import trace
 
 SIZE = (64, 48)
-EMPTY = 1e37  # a start at or past this: the tile's cone crossed the scene without meeting it
+EMPTY_START = 1e37  # a start at or past this: the tile's cone crossed the scene without meeting it
+SKY_START = 2e38  # ... and no ray of the tile meets the ground either
 
 
 def tile_of(starts: np.ndarray, size: tuple[int, int], tile: int, sub: int) -> np.ndarray:
@@ -41,8 +42,8 @@ def test_starts_lie_before_every_hit(renderer, name, tile):
     late = hit & (start > ref.t * (1 + 1e-6))
     assert not late.any(), f"{late.sum()} rays hit before their tile's start, by up to " \
                            f"{np.max((start - ref.t)[late]):.3g}"
-    assert np.all(start[hit & (start >= EMPTY)] < 0), "a tile proven empty has hits"
-    assert (starts[starts < EMPTY] > 0).any(), "the pass proves nothing: every start at the eye"
+    assert np.all(start[hit & (start >= EMPTY_START)] < 0), "a tile proven empty has hits"
+    assert (starts[starts < EMPTY_START] > 0).any(), "the pass proves nothing: every start at the eye"
 
 
 def test_orthographic_starts(renderer):
@@ -53,7 +54,7 @@ def test_orthographic_starts(renderer):
     ref = trace(scene, cam, (2 * SIZE[0], 2 * SIZE[1]))
     start = tile_of(starts, SIZE, 4, 2)
     hit = ref.hit & ~ref.undecided
-    assert hit.any() and (starts >= EMPTY).any() and (starts[starts < EMPTY] > 3).any()
+    assert hit.any() and (starts >= EMPTY_START).any() and (starts[starts < EMPTY_START] > 3).any()
     assert not (hit & (start > ref.t * (1 + 1e-6))).any()
 
 
@@ -109,33 +110,36 @@ def test_coarse_setting():
 
 
 @pytest.mark.parametrize("tile", [4, 16])
-def test_each_tile_drawn_once_by_its_kind(renderer, tile):
-    """After the pass the image is drawn tile by tile: the program without the march covers
-    exactly the tiles proven empty (partial tiles at the edges included), the image's program
-    exactly the others, and together they give render()'s image."""
-    from sdfgl.gl.coarse_pass import empty_tiles_source
-    from sdfgl.render import bind_image, coarse_source, draw_image, image_draws, shader_origin
+@pytest.mark.parametrize("ground", [False, True])
+def test_each_tile_drawn_once_by_its_kind(renderer, tile, ground):
+    """After the pass the image is drawn tile by tile, each tile by the program of its kind: the
+    image's on the open tiles, without the march on the tiles proven empty, without the ground
+    too where none of their rays meets it (partial tiles at the edges included); together they
+    give render()'s image."""
     from sdfgl.compiler.generate import generate
+    from sdfgl.gl.coarse_pass import EMPTY, OPEN, SKY, tile_sources
+    from sdfgl.render import bind_image, coarse_source, draw_image, image_draws, shader_origin
     from sdfgl.settings import Settings
-    scene, cam, _ = low_scene()
+    scene = sg.union(*[sg.box(0.4).translate((x, 0.4, z)) for x in (-3, 0, 3) for z in (-3, 0, 3)])
+    cam = sg.OrbitCamera(target=(0, 0.3, 0), distance=8, yaw=20, pitch=12)
     size = (101, 67)  # neither side a multiple of a tile
-    st = Settings(coarse=tile).resolved(scene.exactness)
+    st = Settings(coarse=tile, ground=ground).resolved(scene.exactness)
     origin = shader_origin(scene, cam.eye)
-    src = sg.compile(scene, coarse=tile)
-    assert "#define EMPTY_TILES" not in src
     source = generate(scene, st, origin, projection=cam.projection)
-    assert "#define EMPTY_TILES" in empty_tiles_source(source).text
+    assert [k for _, k in tile_sources(source)] == ([OPEN, EMPTY, SKY] if ground else [OPEN, SKY])
+    assert "#define EMPTY_TILES" not in sg.compile(scene, coarse=tile)
     coarse = coarse_source(scene, source, st, origin, cam.projection)
-    starts = renderer.coarse_starts(scene, cam, size, coarse=tile)
-    empty = np.repeat(np.repeat(starts >= EMPTY, tile, axis=0), tile, axis=1)[-size[1]:, :size[0]]
-    assert 0.01 < empty.mean() < 0.99  # both kinds of tile
+    starts = renderer.coarse_starts(scene, cam, size, coarse=tile, ground=ground)
+    kind = np.where(starts < EMPTY_START, OPEN, np.where(starts < SKY_START, EMPTY, SKY))
+    kind = np.repeat(np.repeat(kind, tile, axis=0), tile, axis=1)[-size[1]:, :size[0]]
+    assert np.any(kind == OPEN) and np.any(kind == SKY) and np.any(kind == EMPTY) == ground
 
     def draw(kinds):
         ctx = renderer.ctx
         tiles = renderer.coarse_pass(scene, cam, size, coarse, origin)
         fbo = ctx.simple_framebuffer(size, components=4)
         try:
-            draws = [d for d in image_draws(renderer.programs, source, True)[0] if d.empty in kinds]
+            draws = [d for d in image_draws(renderer.programs, source, True)[0] if d.kind in kinds]
             bind_image(draws, scene, cam, size, origin, renderer.data, starts=tiles)
             fbo.use()
             fbo.clear(0.0, 0.0, 0.0, 0.0)
@@ -145,7 +149,11 @@ def test_each_tile_drawn_once_by_its_kind(renderer, tile):
             fbo.release()
             tiles.release()
 
-    only_empty, only_open, both = (renderer.run(draw, k) for k in ({True}, {False}, {True, False}))
-    assert np.array_equal(only_empty[..., 3] > 0, empty) and np.array_equal(only_open[..., 3] > 0, ~empty)
-    full = renderer.render(scene, cam, size, coarse=tile).color
+    for k in (OPEN, EMPTY, SKY):
+        assert np.array_equal(renderer.run(draw, {k})[..., 3] > 0, kind == k), k
+    both = renderer.run(draw, {OPEN, EMPTY, SKY})
+    full = renderer.render(scene, cam, size, coarse=tile, ground=ground).color
     assert np.array_equal(both[..., :3], full) and np.all(both[..., 3] == 255)
+    if ground:  # the sky tiles' rays all miss the ground: drawing them with it changes nothing
+        off = renderer.render(scene, cam, size, coarse=False, ground=True).color
+        assert np.mean(np.abs(full.astype(int) - off.astype(int)).max(axis=-1) > 8) < 1e-3

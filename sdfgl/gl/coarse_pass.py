@@ -1,7 +1,8 @@
 """The coarse pass of a render: one fragment per tile of pixels, drawn before the image, writing
 the ray parameter from which the tile's rays march (shaders/mains/coarse_main.glsl); and the
 image drawn after it tile by tile (shaders/mains/tiles.vert.glsl): the image's program on the
-tiles the pass left open, the same program without its march on the tiles it proved empty."""
+tiles the pass left open, the same program without its march on the tiles it proved empty
+(and without the ground where no ray of the tile meets it)."""
 from __future__ import annotations
 
 import dataclasses
@@ -52,18 +53,35 @@ def draw_coarse(ctx: moderngl.Context, draw: Callable[[], None], size: tuple[int
     return target
 
 
-def empty_tiles_source(source: ShaderSource) -> ShaderSource:
-    """The image ``source`` for the tiles its coarse pass proved empty: the same shader without
-    the march (what those pixels still show: background, ground, raster meshes)."""
-    head, rest = source.text.split("\n", 1)  # the #version line stays first
-    return dataclasses.replace(source, text=f"{head}\n#define EMPTY_TILES\n{rest}",
-                               owners=(source.owners[0], "(coarse pass: empty tiles)") + source.owners[1:])
+OPEN, EMPTY, SKY = 0, 1, 2
+"""Kinds of tile after a coarse pass: left open (marched), proven empty (no march: background,
+ground, raster meshes), proven empty with no ray meeting the ground (no march, no ground)."""
+_KIND_DEFINES = {OPEN: (), EMPTY: ("EMPTY_TILES",), SKY: ("EMPTY_TILES", "SKY_TILES")}
 
 
-def tile_uniforms(size: tuple[int, int], tile: int, empty: bool) -> dict[str, object]:
+def tile_sources(source: ShaderSource) -> list[tuple[ShaderSource, int]]:
+    """The programs that draw the image ``source`` tile by tile after its coarse pass, each with
+    its kind of tile: the image's own on the open tiles, then the same shader with less on the
+    empty ones (without the ground where the image has none: one kind of empty tile)."""
+    kinds = (OPEN, EMPTY, SKY) if "\n#define GROUND\n" in source.text else (OPEN, SKY)
+    return [(with_defines(source, _KIND_DEFINES[k]), k) for k in kinds]
+
+
+def with_defines(source: ShaderSource, names: tuple[str, ...]) -> ShaderSource:
+    """``source`` with ``#define`` lines for ``names`` after its #version line."""
+    if not names:
+        return source
+    head, rest = source.text.split("\n", 1)
+    lines = "".join(f"#define {n}\n" for n in names)
+    return dataclasses.replace(source, text=f"{head}\n{lines}{rest}",
+                               owners=(source.owners[0],) + ("(coarse pass: tile kind)",) * len(names)
+                               + source.owners[1:])
+
+
+def tile_uniforms(size: tuple[int, int], tile: int, kind: int) -> dict[str, object]:
     """The uniforms of TILES_VERTEX for an image of ``size`` in ``tile``-pixel tiles, drawing the
-    tiles proven empty (``empty``) or the others."""
-    return {"uTiles": coarse_size(size, tile), "uTileSide": tile, "uEmptyTiles": int(empty)}
+    tiles of ``kind`` (OPEN, EMPTY or SKY)."""
+    return {"uTiles": coarse_size(size, tile), "uTileSide": tile, "uTileKind": kind}
 
 
 def draw_tiles(ctx: moderngl.Context, draw: Callable[[int], None], size: tuple[int, int], tile: int) -> None:

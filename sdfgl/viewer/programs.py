@@ -17,7 +17,7 @@ from .. import shaderlib
 from ..compiler.source import ShaderSource
 from ..errors import SdfglError
 from ..gl.dialect import of_source
-from ..gl.coarse_pass import TILES_VERTEX, draw_tiles, empty_tiles_source, tile_uniforms
+from ..gl.coarse_pass import TILES_VERTEX, draw_tiles, tile_sources, tile_uniforms
 from ..gl.programs import FULLSCREEN, explain_compile_error
 from . import rawgl
 
@@ -60,13 +60,12 @@ class RawProgram:
 
 
 class TiledProgram:
-    """An image drawn tile by tile after its coarse pass (see :mod:`sdfgl.gl.coarse_pass`): the
-    program of the open tiles and the program without the march of the tiles proven empty,
-    behind RawProgram's API. A uniform is set on both; a draw draws both."""
+    """An image drawn tile by tile after its coarse pass (see :mod:`sdfgl.gl.coarse_pass`): one
+    program per kind of tile, behind RawProgram's API. A uniform is set on each that has it; a
+    draw draws them all."""
 
-    def __init__(self, open_tiles: RawProgram, empty_tiles: RawProgram, tile: int) -> None:
-        self.parts = ((open_tiles, False), (empty_tiles, True))
-        self.tile, self.ctx = tile, open_tiles.ctx
+    def __init__(self, parts: list[tuple[RawProgram, int]], tile: int) -> None:
+        self.parts, self.tile, self.ctx = parts, tile, parts[0][0].ctx
 
     def __contains__(self, name: str) -> bool:
         return any(name in p for p, _ in self.parts)
@@ -83,8 +82,8 @@ class TiledProgram:
         """Draw the image's tiles of an image of ``size`` into the bound framebuffer."""
         if size is None:
             raise SdfglError("render: a tiled image needs its size to be drawn")
-        for p, empty in self.parts:
-            for name, value in tile_uniforms(size, self.tile, empty).items():
+        for p, kind in self.parts:
+            for name, value in tile_uniforms(size, self.tile, kind).items():
                 if name in p:
                     p.set(name, value)
             draw_tiles(self.ctx, lambda n, p=p: p.draw(vao, rawgl.POINTS, n), size, self.tile)
@@ -169,12 +168,15 @@ def link_image(gl: rawgl.GL, source: ShaderSource, ctx: moderngl.Context,
     ``tiled`` (it has a coarse pass) the two programs of its tiles."""
     if not tiled:
         return link(gl, source, ctx)
-    open_tiles = link(gl, source, ctx, TILES_VERTEX)
+    parts: list[tuple[RawProgram, int]] = []
     try:
-        return TiledProgram(open_tiles, link(gl, empty_tiles_source(source), ctx, TILES_VERTEX), source.coarse_tile)
+        for src, kind in tile_sources(source):
+            parts.append((link(gl, src, ctx, TILES_VERTEX), kind))
     except BaseException:
-        open_tiles.release()
+        for p, _ in parts:
+            p.release()
         raise
+    return TiledProgram(parts, source.coarse_tile)
 
 
 def link_raster(source: ShaderSource, ctx: moderngl.Context) -> moderngl.Program:

@@ -27,7 +27,7 @@ Hit tracePrimary(vec3 ro, vec3 rd) {
     float tm = meshDepth();  // a raster mesh in front ends the march
     range.y = min(range.y, tm);
 #endif
-#ifdef GROUND
+#if defined(GROUND) && !defined(SKY_TILES)  // no ray of a sky tile meets the ground
     float tg = groundHit(ro, rd);
 #ifdef MESH_DEPTH
     if (tg >= tm) tg = -1.0;
@@ -40,7 +40,7 @@ Hit tracePrimary(vec3 ro, vec3 rd) {
         if (isnan(h.t) || isinf(h.t)) h.t = -1.0;  // a field that overflows (x^1000) is no hit, never NaN
     }
 #endif
-#ifdef GROUND
+#if defined(GROUND) && !defined(SKY_TILES)
     if (h.t < 0.0 && tg > 0.0) {
         h.t = tg;
         h.ground = true;

@@ -8,6 +8,7 @@
 #define CONE_CLOSE 0.5       // a cone stops once its step falls below this share of its radius
 #define CONE_BACK 2.0         // a tile's start lies this many cone radii before where the cone stopped
 #define EMPTY_TILE 1.0e38    // the start of a tile whose cone crossed the scene without meeting it
+#define SKY_TILE 3.0e38      // ... and none of whose rays can meet the ground plane either
 
 struct Cone {
     vec3 ro;       // the axis's origin
@@ -68,4 +69,18 @@ float coneStart(Cone c) {
         if (t >= far) return EMPTY_TILE;
     }
     return back;
+}
+
+// Whether a ray of the tile with corners lo and hi may meet the analytic ground plane: one
+// going down from above it. The ray origins' heights (parallel rays) or the directions' y
+// (a pinhole: linear across the image plane before normalising) are extreme at the corners;
+// a direction within 1e-4 of level counts as going down.
+bool tileSeesGround(vec2 lo, vec2 hi) {
+#ifdef GROUND
+    for (int k = 0; k < 4; k++) {
+        vec2 corner = vec2(k == 1 || k == 3 ? hi.x : lo.x, k >= 2 ? hi.y : lo.y);
+        if (rayDir(corner).y < 1e-4 && rayOrigin(corner).y > GROUND_Y) return true;
+    }
+#endif
+    return false;
 }
