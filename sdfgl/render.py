@@ -19,7 +19,7 @@ from .compiler.analysis import moving_origin, near_work
 from .errors import ParameterError, SdfglError
 from .gl.cache import CacheBudget, default_budget
 from .gl.context import CurrentContext, GLThread, describe, gl_thread
-from .gl.coarse_pass import TILES_VERTEX, coarse_size, draw_coarse, draw_tiles, tile_sources, tile_uniforms
+from .gl.coarse_pass import TILES_VERTEX, coarse_size, draw_coarse, WHOLE, draw_tiles, tile_sources, tile_uniforms
 from .gl.data import DataTextures
 from .gl.programs import FULLSCREEN, ProgramCache
 from .gl.raster_pass import RasterImages, draw_meshes, view_range
@@ -261,8 +261,8 @@ class Renderer:
                       **settings: object) -> np.ndarray | None:
         """The coarse pass of ``render(scene, camera, size, **settings)`` alone: per tile of pixels
         (``Settings.coarse`` a side; row 0 on top) the float32 ray parameter before which no surface
-        lies on any of the tile's rays (1e38 where the tile is proven empty), or None where that
-        render has no coarse pass."""
+        lies on any of the tile's rays (1e38 or more where the tile is proven empty: 3e38 where no ray
+        of it meets the ground either), or None where that render has no coarse pass."""
         st = Settings.build(**settings).resolved(scene.exactness)
         wh = checked_size(size)
         cam = camera if camera is not None else OrbitCamera.framing(*scene.bounds, aspect=wh[0] / wh[1])
@@ -382,7 +382,8 @@ class Renderer:
 @dataclass
 class ImageDraw:
     """One program drawing an image: the image's own over the whole view (``kind`` None), or
-    after a coarse pass the program of one kind of tile (sdfgl.gl.coarse_pass: OPEN, EMPTY, SKY)."""
+    after a coarse pass the program of one kind of tile (sdfgl.gl.coarse_pass: OPEN, EMPTY, SKY,
+    or WHOLE: the image's program over every tile)."""
 
     prog: moderngl.Program
     vao: moderngl.VertexArray
@@ -391,10 +392,17 @@ class ImageDraw:
 
 
 def image_draws(programs: ProgramCache, source: ShaderSource, tiled: bool) -> tuple[list[ImageDraw], float]:
-    """The programs that draw the image of ``source`` (tile by tile after a coarse pass where
-    ``tiled``) from the cache ``programs``, and the seconds their links took. Call on the
-    context's thread."""
-    kinds = tile_sources(source) if tiled else [(source, None)]
+    """The programs that draw the image of ``source`` from the cache ``programs``, and the
+    seconds their links took. After a coarse pass (``tiled``) the image is drawn tile by tile,
+    one program per kind of tile, except in its first frame: then the image's program (not yet
+    linked) draws every pixel, so a single image links and builds one program, not three.
+    Call on the context's thread."""
+    if not tiled:
+        kinds: list[tuple[ShaderSource, int | None]] = [(source, None)]
+    elif not programs.cached(source, TILES_VERTEX):
+        kinds = [(source, WHOLE)]
+    else:
+        kinds = list(tile_sources(source))
     draws, seconds = [], 0.0
     for src, kind in kinds:
         prog, vao = programs.entry(src, FULLSCREEN if kind is None else TILES_VERTEX)
@@ -427,7 +435,7 @@ def draw_image(ctx: moderngl.Context, draws: Sequence[ImageDraw], wh: tuple[int,
         if d.kind is None:
             d.vao.render(moderngl.TRIANGLES, vertices=3)
         else:
-            draw_tiles(ctx, lambda n, vao=d.vao: vao.render(moderngl.POINTS, vertices=n), wh, d.source.coarse_tile)
+            draw_tiles(ctx, lambda mode, n, vao=d.vao: vao.render(mode, vertices=n), wh, d.source.coarse_tile, d.kind)
 
 
 RASTER_VERTEX = "mains/raster_mesh.vert"

@@ -117,10 +117,11 @@ def test_each_tile_drawn_once_by_its_kind(renderer, tile, ground):
     too where none of their rays meets it (partial tiles at the edges included); together they
     give render()'s image."""
     from sdfgl.compiler.generate import generate
-    from sdfgl.gl.coarse_pass import EMPTY, OPEN, SKY, tile_sources
+    from sdfgl.gl.coarse_pass import EMPTY, OPEN, SKY, TILES_VERTEX, tile_sources
     from sdfgl.render import bind_image, coarse_source, draw_image, image_draws, shader_origin
     from sdfgl.settings import Settings
-    scene = sg.union(*[sg.box(0.4).translate((x, 0.4, z)) for x in (-3, 0, 3) for z in (-3, 0, 3)])
+    side = 0.4 + 0.01 * tile + 0.001 * ground  # a scene of its own: no program of it is cached yet
+    scene = sg.union(*[sg.box(side).translate((x, 0.4, z)) for x in (-3, 0, 3) for z in (-3, 0, 3)])
     cam = sg.OrbitCamera(target=(0, 0.3, 0), distance=8, yaw=20, pitch=12)
     size = (101, 67)  # neither side a multiple of a tile
     st = Settings(coarse=tile, ground=ground).resolved(scene.exactness)
@@ -133,6 +134,13 @@ def test_each_tile_drawn_once_by_its_kind(renderer, tile, ground):
     kind = np.where(starts < EMPTY_START, OPEN, np.where(starts < SKY_START, EMPTY, SKY))
     kind = np.repeat(np.repeat(kind, tile, axis=0), tile, axis=1)[-size[1]:, :size[0]]
     assert np.any(kind == OPEN) and np.any(kind == SKY) and np.any(kind == EMPTY) == ground
+
+    # the first frame links the image's program alone and draws every pixel with it; the next, the rest
+    first = renderer.render(scene, cam, size, coarse=tile, ground=ground).color
+    assert not any(renderer.programs.cached(src, TILES_VERTEX) for src, k in tile_sources(source) if k != OPEN)
+    full = renderer.render(scene, cam, size, coarse=tile, ground=ground).color
+    assert all(renderer.programs.cached(src, TILES_VERTEX) for src, _ in tile_sources(source))
+    assert np.array_equal(first, full)
 
     def draw(kinds):
         ctx = renderer.ctx
@@ -152,7 +160,6 @@ def test_each_tile_drawn_once_by_its_kind(renderer, tile, ground):
     for k in (OPEN, EMPTY, SKY):
         assert np.array_equal(renderer.run(draw, {k})[..., 3] > 0, kind == k), k
     both = renderer.run(draw, {OPEN, EMPTY, SKY})
-    full = renderer.render(scene, cam, size, coarse=tile, ground=ground).color
     assert np.array_equal(both[..., :3], full) and np.all(both[..., 3] == 255)
     if ground:  # the sky tiles' rays all miss the ground: drawing them with it changes nothing
         off = renderer.render(scene, cam, size, coarse=False, ground=True).color

@@ -40,7 +40,8 @@ def radius_scene():
 def test_osc_message_moves_the_param_and_the_next_render_shows_it_without_a_recompile():
     r, scene = radius_scene()
     cam = sg.OrbitCamera(distance=4, yaw=0, pitch=0)
-    before = sg.render(scene, camera=cam, size=(64, 64), shadows=False, ao=False).color
+    sg.render(scene, camera=cam, size=(64, 64), shadows=False, ao=False)
+    before = sg.render(scene, camera=cam, size=(64, 64), shadows=False, ao=False).color  # a second frame links the other tile programs
     programs = default_renderer().programs
     compiles = programs.compiles
     with sg.live_control(scene, osc=0) as ctl:
@@ -57,7 +58,8 @@ def test_osc_message_moves_the_param_and_the_next_render_shows_it_without_a_reco
 def test_a_burst_of_osc_while_rendering_ends_at_the_last_value_with_one_program():
     r, scene = radius_scene()
     cam = sg.OrbitCamera(distance=4, yaw=0, pitch=0)
-    sg.render(scene, camera=cam, size=(32, 32), shadows=False, ao=False)
+    for _ in range(2):  # a second frame links the other tile programs
+        sg.render(scene, camera=cam, size=(32, 32), shadows=False, ao=False)
     programs = default_renderer().programs
     compiles = programs.compiles
     values = [round(0.2 + i / 100, 2) for i in range(101)]

@@ -71,7 +71,8 @@ def test_render_follows_a_live_radius_without_recompiling(renderer):
     r = sg.param(0.5, "radius")
     s = sg.sphere(r)
     cam = sg.OrbitCamera(distance=4, yaw=0, pitch=0, fov=40)
-    a = renderer.render(s, cam, (33, 33), outputs=("color", "depth"))
+    renderer.render(s, cam, (33, 33), outputs=("color", "depth"))
+    a = renderer.render(s, cam, (33, 33), outputs=("color", "depth"))  # a second frame links the other tile programs
     compiles = renderer.programs.compiles
     r.value = 1.2  # grows past the bounds the first program saw: the box is a uniform too
     b = renderer.render(s, cam, (33, 33), outputs=("color", "depth"))
@@ -82,7 +83,8 @@ def test_render_follows_a_live_radius_without_recompiling(renderer):
 
 def test_moving_the_camera_never_recompiles(renderer):
     s = sg.box(1) - sg.sphere(0.6)
-    renderer.render(s, sg.OrbitCamera(distance=4, yaw=10), (16, 16))
+    for _ in range(2):  # a second frame links the other tile programs
+        renderer.render(s, sg.OrbitCamera(distance=4, yaw=10), (16, 16))
     compiles = renderer.programs.compiles
     for yaw in (20, 40, 80):
         renderer.render(s, sg.OrbitCamera(distance=3 + yaw / 40, yaw=yaw), (16, 16))

@@ -56,6 +56,8 @@ def draw_coarse(ctx: moderngl.Context, draw: Callable[[], None], size: tuple[int
 OPEN, EMPTY, SKY = 0, 1, 2
 """Kinds of tile after a coarse pass: left open (marched), proven empty (no march: background,
 ground, raster meshes), proven empty with no ray meeting the ground (no march, no ground)."""
+WHOLE = -1
+"""The image's program drawing every pixel (its first frame, before the other kinds are linked)."""
 _KIND_DEFINES = {OPEN: (), EMPTY: ("EMPTY_TILES",), SKY: ("EMPTY_TILES", "SKY_TILES")}
 
 
@@ -80,20 +82,25 @@ def with_defines(source: ShaderSource, names: tuple[str, ...]) -> ShaderSource:
 
 def tile_uniforms(size: tuple[int, int], tile: int, kind: int) -> dict[str, object]:
     """The uniforms of TILES_VERTEX for an image of ``size`` in ``tile``-pixel tiles, drawing the
-    tiles of ``kind`` (OPEN, EMPTY or SKY)."""
+    tiles of ``kind`` (OPEN, EMPTY or SKY; WHOLE: every pixel, as one triangle)."""
     return {"uTiles": coarse_size(size, tile), "uTileSide": tile, "uTileKind": kind}
 
 
-def draw_tiles(ctx: moderngl.Context, draw: Callable[[int], None], size: tuple[int, int], tile: int) -> None:
-    """Draw the tiles of one kind of an image of ``size``: ``draw(count)`` draws ``count`` points
-    with a TILES_VERTEX program (its :func:`tile_uniforms` set) into the bound target. The viewport
+def draw_tiles(ctx: moderngl.Context, draw: Callable[[int, int], None], size: tuple[int, int], tile: int,
+               kind: int) -> None:
+    """Draw the tiles of ``kind`` of an image of ``size``: ``draw(mode, count)`` draws ``count``
+    vertices of primitive ``mode`` (moderngl's constants) with a TILES_VERTEX program (its
+    :func:`tile_uniforms` set) into the bound target: points, or for WHOLE one triangle. The viewport
     spans whole tiles (the target clips the part past its edge), so no tile's point is clipped away.
     Call on the context's thread."""
+    if kind == WHOLE:
+        draw(moderngl.TRIANGLES, 3)
+        return
     cols, rows = coarse_size(size, tile)
     ctx.viewport = (0, 0, cols * tile, rows * tile)
     ctx.enable(moderngl.PROGRAM_POINT_SIZE)
     try:
-        draw(cols * rows)
+        draw(moderngl.POINTS, cols * rows)
     finally:
         ctx.disable(moderngl.PROGRAM_POINT_SIZE)
         ctx.viewport = (0, 0, *size)

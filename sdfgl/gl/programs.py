@@ -68,6 +68,11 @@ class ProgramCache:
         (default: the full-screen triangle, which the vertex array draws); call on the context's thread."""
         return self._get(source, vertex)
 
+    def cached(self, source: ShaderSource, vertex: str = FULLSCREEN) -> bool:
+        """Whether the program for ``source`` under ``vertex`` is linked and cached (in this context)."""
+        self.sync()
+        return self._lru.get(self._key(source, vertex)) is not None
+
     def vao(self, prog: moderngl.Program) -> moderngl.VertexArray:
         """The buffer-less vertex array that draws the full-screen triangle with cached ``prog``."""
         vao = self._vaos.get(id(prog))
@@ -88,10 +93,14 @@ class ProgramCache:
             self._vaos.clear()
             self._epoch = self.gl.epoch
 
+    @staticmethod
+    def _key(source: ShaderSource, vertex: str) -> str:
+        return source.text if vertex == FULLSCREEN else f"{vertex}\n{source.text}"
+
     def _get(self, source: ShaderSource, vertex: str = FULLSCREEN) -> tuple[moderngl.Program, moderngl.VertexArray]:
         ctx = self.gl.ctx
         self.sync()
-        key = source.text if vertex == FULLSCREEN else f"{vertex}\n{source.text}"
+        key = self._key(source, vertex)
         entry = self._lru.get(key)
         if entry is not None:
             self.last_compile_s = 0.0

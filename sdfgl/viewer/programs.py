@@ -86,7 +86,7 @@ class TiledProgram:
             for name, value in tile_uniforms(size, self.tile, kind).items():
                 if name in p:
                     p.set(name, value)
-            draw_tiles(self.ctx, lambda n, p=p: p.draw(vao, rawgl.POINTS, n), size, self.tile)
+            draw_tiles(self.ctx, lambda mode, n, p=p: p.draw(vao, mode, n), size, self.tile, kind)
 
     def release(self) -> None:
         for p, _ in self.parts:
