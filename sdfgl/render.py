@@ -19,7 +19,7 @@ from .compiler.analysis import moving_origin, near_work
 from .errors import ParameterError, SdfglError
 from .gl.cache import CacheBudget, default_budget
 from .gl.context import CurrentContext, GLThread, describe, gl_thread
-from .gl.coarse_pass import TILES_VERTEX, coarse_size, draw_coarse, WHOLE, draw_tiles, tile_sources, tile_uniforms
+from .gl.coarse_pass import TILES_VERTEX, WHOLE, coarse_size, draw_coarse, draw_tiles, tile_sources
 from .gl.data import DataTextures
 from .gl.programs import FULLSCREEN, ProgramCache
 from .gl.raster_pass import RasterImages, draw_meshes, view_range
@@ -423,9 +423,6 @@ def bind_image(draws: Sequence[ImageDraw], scene: Node, cam: Camera, wh: tuple[i
             bind_raster_images(d.prog, d.source, *meshes)
         if starts is not None:
             bind_coarse(d.prog, d.source, starts)
-        if d.kind is not None:
-            for name, value in tile_uniforms(wh, d.source.coarse_tile, d.kind).items():
-                set_uniform(d.prog, name, value)
 
 
 def draw_image(ctx: moderngl.Context, draws: Sequence[ImageDraw], wh: tuple[int, int]) -> None:
@@ -435,7 +432,8 @@ def draw_image(ctx: moderngl.Context, draws: Sequence[ImageDraw], wh: tuple[int,
         if d.kind is None:
             d.vao.render(moderngl.TRIANGLES, vertices=3)
         else:
-            draw_tiles(ctx, lambda mode, n, vao=d.vao: vao.render(mode, vertices=n), wh, d.source.coarse_tile, d.kind)
+            draw_tiles(ctx, lambda name, value, prog=d.prog: set_uniform(prog, name, value),
+                       lambda mode, n, vao=d.vao: vao.render(mode, vertices=n), wh, d.source.coarse_tile, d.kind)
 
 
 RASTER_VERTEX = "mains/raster_mesh.vert"

@@ -80,27 +80,30 @@ def with_defines(source: ShaderSource, names: tuple[str, ...]) -> ShaderSource:
                                + source.owners[1:])
 
 
-def tile_uniforms(size: tuple[int, int], tile: int, kind: int) -> dict[str, object]:
-    """The uniforms of TILES_VERTEX for an image of ``size`` in ``tile``-pixel tiles, drawing the
-    tiles of ``kind`` (OPEN, EMPTY or SKY; WHOLE: every pixel, as one triangle)."""
-    return {"uTiles": coarse_size(size, tile), "uTileSide": tile, "uTileKind": kind}
-
-
-def draw_tiles(ctx: moderngl.Context, draw: Callable[[int, int], None], size: tuple[int, int], tile: int,
-               kind: int) -> None:
-    """Draw the tiles of ``kind`` of an image of ``size``: ``draw(mode, count)`` draws ``count``
-    vertices of primitive ``mode`` (moderngl's constants) with a TILES_VERTEX program (its
-    :func:`tile_uniforms` set) into the bound target: points, or for WHOLE one triangle. The viewport
-    spans whole tiles (the target clips the part past its edge), so no tile's point is clipped away.
-    Call on the context's thread."""
+def draw_tiles(ctx: moderngl.Context, set_uniform: Callable[[str, object], None], draw: Callable[[int, int], None],
+               size: tuple[int, int], tile: int, kind: int) -> None:
+    """Draw the tiles of ``kind`` (OPEN, EMPTY or SKY; WHOLE: every pixel, as one triangle) of an
+    image of ``size`` in ``tile``-pixel tiles with a TILES_VERTEX program into the bound target:
+    ``set_uniform(name, value)`` sets the program's uniforms, ``draw(mode, count)`` draws ``count``
+    vertices of primitive ``mode`` (moderngl's constants). An empty kind is drawn first as points
+    two tiles a side over each 2x2 block of its tiles, then tile by tile where a block is mixed
+    (fewer, larger points: less of llvmpipe's work per point). The viewport spans whole blocks
+    (the target clips the part past its edge), so no point is clipped away. Call on the context's
+    thread."""
+    cols, rows = coarse_size(size, tile)
+    blocks = (-(-cols // 2), -(-rows // 2))
+    view = (2 * tile * blocks[0], 2 * tile * blocks[1])
+    for name, value in (("uTiles", (cols, rows)), ("uTileSide", tile), ("uTileKind", kind), ("uView", view)):
+        set_uniform(name, value)
     if kind == WHOLE:
         draw(moderngl.TRIANGLES, 3)
         return
-    cols, rows = coarse_size(size, tile)
-    ctx.viewport = (0, 0, cols * tile, rows * tile)
+    ctx.viewport = (0, 0, *view)
     ctx.enable(moderngl.PROGRAM_POINT_SIZE)
     try:
-        draw(moderngl.POINTS, cols * rows)
+        for block in ((2, 1) if kind != OPEN else (1,)):
+            set_uniform("uBlock", block)
+            draw(moderngl.POINTS, blocks[0] * blocks[1] if block == 2 else cols * rows)
     finally:
         ctx.disable(moderngl.PROGRAM_POINT_SIZE)
         ctx.viewport = (0, 0, *size)

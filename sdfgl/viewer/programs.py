@@ -17,7 +17,7 @@ from .. import shaderlib
 from ..compiler.source import ShaderSource
 from ..errors import SdfglError
 from ..gl.dialect import of_source
-from ..gl.coarse_pass import TILES_VERTEX, draw_tiles, tile_sources, tile_uniforms
+from ..gl.coarse_pass import TILES_VERTEX, draw_tiles, tile_sources
 from ..gl.programs import FULLSCREEN, explain_compile_error
 from . import rawgl
 
@@ -83,10 +83,8 @@ class TiledProgram:
         if size is None:
             raise SdfglError("render: a tiled image needs its size to be drawn")
         for p, kind in self.parts:
-            for name, value in tile_uniforms(size, self.tile, kind).items():
-                if name in p:
-                    p.set(name, value)
-            draw_tiles(self.ctx, lambda mode, n, p=p: p.draw(vao, mode, n), size, self.tile, kind)
+            draw_tiles(self.ctx, lambda name, value, p=p: p.set(name, value) if name in p else None,
+                       lambda mode, n, p=p: p.draw(vao, mode, n), size, self.tile, kind)
 
     def release(self) -> None:
         for p, _ in self.parts:

@@ -1,20 +1,37 @@
 #version 330 core
-// The image drawn tile by tile after the coarse pass: one point the size of a tile per tile of
-// pixels (gl_VertexID numbers the tiles, row by row from the bottom), moved off the view where
-// the tile is not of the kind this draw covers. The image's program draws the tiles the coarse
-// pass left open; the same program without the march draws the tiles it proved empty, and
-// without the ground too those where no ray meets the ground. llvmpipe pays for every
-// instruction of a fragment shader whatever its branches take, so a pixel must not run code it
-// cannot need. (A point, not two triangles: llvmpipe shades the 4x4 blocks a triangle's edge
-// crosses once per triangle.) The viewport spans whole tiles, so every tile's centre lies in it.
+// The image drawn tile by tile after the coarse pass: points the size of a tile (or of a 2x2
+// block of tiles), moved off the view where the tile is not of the kind this draw covers. The
+// image's program draws the tiles the coarse pass left open; the same program without the march
+// draws the tiles it proved empty, and without the ground too those where no ray meets the
+// ground. llvmpipe pays for every instruction of a fragment shader whatever its branches take,
+// so a pixel must not run code it cannot need. (Points, not two triangles: llvmpipe shades the
+// 4x4 blocks a triangle's edge crosses once per triangle.) An empty kind is drawn first by
+// blocks, where all four tiles of a block are of the kind, then by tiles where they are not;
+// open tiles tile by tile. The viewport (uView) spans whole blocks, so every centre lies in it.
 uniform sampler2D uCoarseStart;  // the coarse pass's tile starts (coarse_cone.glsl)
 uniform ivec2 uTiles;            // columns and rows of tiles covering the image
 uniform int uTileSide;           // pixels a side of a tile
 uniform int uTileKind;           // the kind drawn: 0 open, 1 empty, 2 empty without the ground;
                                  // -1: the whole view, as one triangle (vertices 0..2)
+uniform int uBlock;              // 2: a point per 2x2 block of tiles; 1: a point per tile
+uniform ivec2 uView;             // the viewport's size in pixels
 
 const float EMPTY_START = 1.0e37;  // a start from this on: a tile proven empty (EMPTY_TILE)
 const float SKY_START = 2.0e38;    // ... from this on: nor can its rays meet the ground (SKY_TILE)
+
+int kindOf(ivec2 cell) {
+    float start = texelFetch(uCoarseStart, cell, 0).r;
+    return start < EMPTY_START ? 0 : (start < SKY_START ? 1 : 2);
+}
+
+// Whether every tile of the 2x2 block ``block`` inside the image is of kind uTileKind.
+bool blockOfKind(ivec2 block) {
+    for (int i = 0; i < 4; i++) {
+        ivec2 cell = 2 * block + ivec2(i & 1, i >> 1);
+        if (cell.x < uTiles.x && cell.y < uTiles.y && kindOf(cell) != uTileKind) return false;
+    }
+    return true;
+}
 
 void main() {
     if (uTileKind < 0) {  // the first frame of an image: one program for every pixel
@@ -22,10 +39,12 @@ void main() {
         gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
         return;
     }
-    ivec2 cell = ivec2(gl_VertexID % uTiles.x, gl_VertexID / uTiles.x);
-    float start = texelFetch(uCoarseStart, cell, 0).r;
-    int kind = start < EMPTY_START ? 0 : (start < SKY_START ? 1 : 2);
-    gl_PointSize = float(uTileSide);
-    gl_Position = kind == uTileKind ? vec4((vec2(cell) + 0.5) / vec2(uTiles) * 2.0 - 1.0, 0.0, 1.0)
-                                    : vec4(2.0, 2.0, 0.0, 1.0);
+    int across = uBlock == 2 ? (uTiles.x + 1) / 2 : uTiles.x;
+    ivec2 at = ivec2(gl_VertexID % across, gl_VertexID / across);
+    bool drawn = uBlock == 2 ? blockOfKind(at)
+                             : kindOf(at) == uTileKind && (uTileKind == 0 || !blockOfKind(at / 2));
+    float side = float(uBlock * uTileSide);
+    gl_PointSize = side;
+    gl_Position = drawn ? vec4((vec2(at) + 0.5) * side / vec2(uView) * 2.0 - 1.0, 0.0, 1.0)
+                        : vec4(2.0, 2.0, 0.0, 1.0);
 }
