@@ -92,6 +92,7 @@ class FrameTimer:
         image_draws(self.r.programs, source, coarse is not None)  # the link, timed here
         t1 = time.perf_counter()
         v.result["_prog"] = (source, origin, coarse)
+        v.result["_source"] = source
         first = self.draw(v)
         return t1 - t0, first
 

@@ -276,7 +276,7 @@ def run_big(quick: bool, size: tuple[int, int] = (320, 240)) -> str:
         for v in vs:
             res = renderer.render(v.node, v.camera, size, outputs=("color", "steps"), **v.settings)
             r = v.result
-            src = r["_prog"][2]
+            src = r["_source"]
             rows.append(f"| {v.scene} | {v.label} | {r['build_s']:.2f} | {1000 * r['compile_s']:.0f} | "
                         f"{1000 * r['first_frame_s']:.0f} | {r['frame_ms_median']:.1f} | "
                         f"{r['frame_ms_median'] / ref:.2f} | {float(res.steps.mean()):.2f} | {src.code_size} | "
