@@ -11,7 +11,8 @@ from sdfgl.reference import trace
 
 SIZE = (64, 48)
 EMPTY_START = 1e37  # a start at or past this: the tile's cone crossed the scene without meeting it
-SKY_START = 2e38  # ... and no ray of the tile meets the ground either
+LIT_START = 1.5e38  # ... from this on: its ground is lit and unoccluded
+SKY_START = 2.5e38  # ... from this on: no ray of the tile meets the ground
 
 
 def tile_of(starts: np.ndarray, size: tuple[int, int], tile: int, sub: int) -> np.ndarray:
@@ -113,27 +114,29 @@ def test_coarse_setting():
 @pytest.mark.parametrize("ground", [False, True])
 def test_each_tile_drawn_once_by_its_kind(renderer, tile, ground):
     """After the pass the image is drawn tile by tile, each tile by the program of its kind: the
-    image's on the open tiles, without the march on the tiles proven empty, without the ground
-    too where none of their rays meets it (partial tiles at the edges included); together they
-    give render()'s image."""
+    image's on the open tiles, without the march on the tiles proven empty, without the ground's
+    shadows and AO where the pass proved them lit and unoccluded, without the ground where none
+    of their rays meets it (partial tiles at the edges included); together they give render()'s
+    image, and that is the image without the pass."""
     from sdfgl.compiler.generate import generate
-    from sdfgl.gl.coarse_pass import EMPTY, OPEN, SKY, TILES_VERTEX, tile_sources
+    from sdfgl.gl.coarse_pass import EMPTY, LIT, OPEN, SKY, TILES_VERTEX, tile_sources
     from sdfgl.render import bind_image, coarse_source, draw_image, image_draws, shader_origin
     from sdfgl.settings import Settings
     side = 0.4 + 0.01 * tile + 0.001 * ground  # a scene of its own: no program of it is cached yet
-    scene = sg.union(*[sg.box(side).translate((x, 0.4, z)) for x in (-3, 0, 3) for z in (-3, 0, 3)])
-    cam = sg.OrbitCamera(target=(0, 0.3, 0), distance=8, yaw=20, pitch=12)
+    scene = sg.union(*[sg.box(side).translate((x, 0.4, z)) for x in (-1.2, 0, 1.2) for z in (-1.2, 0, 1.2)])
+    cam = sg.OrbitCamera(target=(0, 0.3, 0), distance=9, yaw=20, pitch=12)
     size = (101, 67)  # neither side a multiple of a tile
     st = Settings(coarse=tile, ground=ground).resolved(scene.exactness)
     origin = shader_origin(scene, cam.eye)
     source = generate(scene, st, origin, projection=cam.projection)
-    assert [k for _, k in tile_sources(source)] == ([OPEN, EMPTY, SKY] if ground else [OPEN, SKY])
+    assert [k for _, k in tile_sources(source)] == ([OPEN, EMPTY, LIT, SKY] if ground else [OPEN, SKY])
     assert "#define EMPTY_TILES" not in sg.compile(scene, coarse=tile)
     coarse = coarse_source(scene, source, st, origin, cam.projection)
     starts = renderer.coarse_starts(scene, cam, size, coarse=tile, ground=ground)
-    kind = np.where(starts < EMPTY_START, OPEN, np.where(starts < SKY_START, EMPTY, SKY))
+    kind = np.select([starts < EMPTY_START, starts < LIT_START, starts < SKY_START], [OPEN, EMPTY, LIT], SKY)
     kind = np.repeat(np.repeat(kind, tile, axis=0), tile, axis=1)[-size[1]:, :size[0]]
-    assert np.any(kind == OPEN) and np.any(kind == SKY) and np.any(kind == EMPTY) == ground
+    assert np.any(kind == OPEN) and np.any(kind == SKY)
+    assert np.any(kind == EMPTY) == ground and np.any(kind == LIT) == ground
 
     # the first frame links the image's program alone and draws every pixel with it; the next, the rest
     first = renderer.render(scene, cam, size, coarse=tile, ground=ground).color
@@ -157,10 +160,11 @@ def test_each_tile_drawn_once_by_its_kind(renderer, tile, ground):
             fbo.release()
             tiles.release()
 
-    for k in (OPEN, EMPTY, SKY):
+    for k in (OPEN, EMPTY, LIT, SKY):
         assert np.array_equal(renderer.run(draw, {k})[..., 3] > 0, kind == k), k
-    both = renderer.run(draw, {OPEN, EMPTY, SKY})
+    both = renderer.run(draw, {OPEN, EMPTY, LIT, SKY})
     assert np.array_equal(both[..., :3], full) and np.all(both[..., 3] == 255)
-    if ground:  # the sky tiles' rays all miss the ground: drawing them with it changes nothing
-        off = renderer.render(scene, cam, size, coarse=False, ground=True).color
-        assert np.mean(np.abs(full.astype(int) - off.astype(int)).max(axis=-1) > 8) < 1e-3
+    off = renderer.render(scene, cam, size, coarse=False, ground=ground).color
+    assert np.mean(np.abs(full.astype(int) - off.astype(int)).max(axis=-1) > 8) < 1e-3
+    if ground:  # the lit tiles' pixels, shaded with shadows and AO, are what they show without
+        assert np.abs(full[kind == LIT].astype(int) - off[kind == LIT].astype(int)).max() <= 2

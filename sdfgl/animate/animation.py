@@ -2,8 +2,9 @@
 
 Per frame only uniforms change: the clock (every ``sg.time()`` in the scene), the camera
 (from a path) and the live parameters over them. The program cache is keyed by source,
-and the source does not depend on either, so the first frame compiles (the image's program, or
-where the image has a coarse pass that pass's and the image's tile programs) and the rest draw.
+and the source does not depend on either, so the first frames compile (the image's program, or
+where the image has a coarse pass that pass's, the image's in the first frame and the other
+tile programs in the second) and the rest draw.
 """
 from __future__ import annotations
 
@@ -34,7 +35,7 @@ class AnimationResult:
     frames: int
     fps: float
     size: tuple[int, int]
-    compiles: int                        # shader programs compiled during the clip (the first frame's: 4 at most)
+    compiles: int                        # shader programs compiled during the clip (the first frames': 5 at most)
     seconds: float                       # wall time of the whole clip
     render_s: list[float] = field(default_factory=list)   # per frame: render() incl. read-back
     write_s: list[float] = field(default_factory=list)    # per frame: handing the frame to the writer
@@ -132,9 +133,8 @@ def animate(scene: Node, output: str | Path | FrameWriter, seconds: float = 4.0,
         settings: render()'s settings (``aa``, ``shadows``, ``ao``, ``ground``, ...).
 
     Returns an :class:`AnimationResult`: the path written, frame count, fps, size, shader
-    compiles during the clip (the first frame's: the coarse pass and the image's tile programs,
-    4 at most) and wall
-    times per frame.
+    compiles during the clip (the first two frames': the coarse pass and the image's tile
+    programs, 5 at most) and wall times per frame.
 
     Example:
         >>> import pathlib, tempfile

@@ -10,7 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any, Callable, Sequence
 
-from ..look.shading import background_code, shade_function, shadow_code, shadow_kinds
+from ..look.shading import background_code, shade_function, shadow_code, shadow_kinds, unshadowed_tile_function
 from ..nodes.base import IMPLICIT, Node
 from ..settings import Settings
 from .analysis import MARCH_FILES, analytic_shape
@@ -143,6 +143,11 @@ def _mesh(name: str) -> Target:
     return Target(main=(add_file("stages/mesh_clip"), add_file(f"mains/{name}_main")))
 
 
+def coarse_lights(job: Job) -> None:
+    """The coarse pass's test of a tile's ground against the shadowed lights."""
+    job.b.add(unshadowed_tile_function(job.settings.lights, job.settings.shadows, glsl_float), "(look: lights)")
+
+
 def raster_mesh_main(job: Job) -> None:
     """The raster mesh's fragment main(): a triangle point shaded with the scene's lights."""
     job.b.add_file("mains/raster_mesh_main")
@@ -170,7 +175,7 @@ TARGETS: dict[str, Target] = {
                                main=(add_file("stages/raster_composite"), march, shading, render_main)),
     "raster_mesh": Target(image=True, color=True, scene=(color_functions, detail_function),
                           main=(shading, raster_mesh_main)),
-    "coarse": Target(main=(add_file("stages/coarse_cone"), add_file("mains/coarse_main"))),
+    "coarse": Target(main=(coarse_lights, add_file("stages/coarse_cone"), add_file("mains/coarse_main"))),
 }
 # evaluate targets: the material channel function each runs at given points (with map())
 EVALUATE_CHANNELS = {name: t.channel for name, t in TARGETS.items() if t.channel is not None}

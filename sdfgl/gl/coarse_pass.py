@@ -53,19 +53,22 @@ def draw_coarse(ctx: moderngl.Context, draw: Callable[[], None], size: tuple[int
     return target
 
 
-OPEN, EMPTY, SKY = 0, 1, 2
+OPEN, EMPTY, SKY, LIT = 0, 1, 2, 3
 """Kinds of tile after a coarse pass: left open (marched), proven empty (no march: background,
-ground, raster meshes), proven empty with no ray meeting the ground (no march, no ground)."""
+ground, raster meshes), proven empty with no ray meeting the ground (no march, no ground),
+proven empty with every ray meeting the ground where no shadow falls and AO is 1 (no march,
+no shadow or AO: no map() call)."""
 WHOLE = -1
 """The image's program drawing every pixel (its first frame, before the other kinds are linked)."""
-_KIND_DEFINES = {OPEN: (), EMPTY: ("EMPTY_TILES",), SKY: ("EMPTY_TILES", "SKY_TILES")}
+_KIND_DEFINES = {OPEN: (), EMPTY: ("EMPTY_TILES",), SKY: ("EMPTY_TILES", "SKY_TILES"),
+                 LIT: ("EMPTY_TILES", "LIT_TILES")}
 
 
 def tile_sources(source: ShaderSource) -> list[tuple[ShaderSource, int]]:
     """The programs that draw the image ``source`` tile by tile after its coarse pass, each with
     its kind of tile: the image's own on the open tiles, then the same shader with less on the
     empty ones (without the ground where the image has none: one kind of empty tile)."""
-    kinds = (OPEN, EMPTY, SKY) if "\n#define GROUND\n" in source.text else (OPEN, SKY)
+    kinds = (OPEN, EMPTY, LIT, SKY) if "\n#define GROUND\n" in source.text else (OPEN, SKY)
     return [(with_defines(source, _KIND_DEFINES[k]), k) for k in kinds]
 
 

@@ -104,3 +104,28 @@ def background_code(bg: Background, f: Fmt) -> tuple[str, str]:
     return (f"// top of the image to bottom\nvec3 background(vec3 rd) {{\n"
             f"    return mix({bottom}, {top}, clamp(gl_FragCoord.y / uResolution.y, 0.0, 1.0));\n}}",
             "(look: background)")
+
+
+def unshadowed_tile_function(lights: tuple[Light, ...] | None, setting: Any, f: Fmt) -> str:
+    """GLSL of ``bool tileUnshadowed(vec3 c, float r)`` for the coarse pass: whether no shadow
+    ray from a point within ``r`` of ``c`` toward a shadowed light can enter the scene box (then
+    each such point's visibility is 1 without a march). A ray along L from such a point misses
+    the box when the ray from ``c`` misses the box grown by ``r``. False where a shadowed light
+    is a point light (its direction varies over the tile)."""
+    rig = DEFAULT_LIGHTS if lights is None else lights
+    out = ["bool tileUnshadowed(vec3 c, float r) {",
+           "    vec3 lo = BOUNDS_LO - vec3(r), hi = BOUNDS_HI + vec3(r);"]
+    for lt in rig:
+        if not lt.shadow_kind(setting):
+            continue
+        if lt.kind != "directional":
+            return "bool tileUnshadowed(vec3 c, float r) {\n    return false;  // a shadowed point light\n}"
+        out += [f"    {{  // the ray from c toward {_vec3(lt.vector, f)}, against the grown box",
+                f"        vec3 L = {_vec3(lt.vector, f)};",
+                "        vec3 inv = 1.0 / (L + vec3(equal(L, vec3(0.0))) * 1e-30);",
+                "        vec3 t0 = (lo - c) * inv, t1 = (hi - c) * inv;",
+                "        vec3 tn = min(t0, t1), tf = max(t0, t1);",
+                "        if (max(max(tn.x, tn.y), max(tn.z, 0.0)) <= min(min(tf.x, tf.y), tf.z)) return false;",
+                "    }"]
+    out += ["    return true;", "}"]
+    return "\n".join(out)

@@ -2,8 +2,8 @@
 // The image drawn tile by tile after the coarse pass: points the size of a tile (or of a 2x2
 // block of tiles), moved off the view where the tile is not of the kind this draw covers. The
 // image's program draws the tiles the coarse pass left open; the same program without the march
-// draws the tiles it proved empty, and without the ground too those where no ray meets the
-// ground. llvmpipe pays for every instruction of a fragment shader whatever its branches take,
+// draws the tiles it proved empty, without the ground's shadows and AO those whose ground the
+// pass proved lit and open to the sky, and without the ground too those where no ray meets it. llvmpipe pays for every instruction of a fragment shader whatever its branches take,
 // so a pixel must not run code it cannot need. (Points, not two triangles: llvmpipe shades the
 // 4x4 blocks a triangle's edge crosses once per triangle.) An empty kind is drawn first by
 // blocks, where all four tiles of a block are of the kind, then by tiles where they are not;
@@ -11,17 +11,19 @@
 uniform sampler2D uCoarseStart;  // the coarse pass's tile starts (coarse_cone.glsl)
 uniform ivec2 uTiles;            // columns and rows of tiles covering the image
 uniform int uTileSide;           // pixels a side of a tile
-uniform int uTileKind;           // the kind drawn: 0 open, 1 empty, 2 empty without the ground;
+uniform int uTileKind;           // the kind drawn: 0 open, 1 empty, 2 empty without the ground,
+                                 // 3 empty with lit ground (no shadow, AO 1);
                                  // -1: the whole view, as one triangle (vertices 0..2)
 uniform int uBlock;              // 2: a point per 2x2 block of tiles; 1: a point per tile
 uniform ivec2 uView;             // the viewport's size in pixels
 
 const float EMPTY_START = 1.0e37;  // a start from this on: a tile proven empty (EMPTY_TILE)
-const float SKY_START = 2.0e38;    // ... from this on: nor can its rays meet the ground (SKY_TILE)
+const float LIT_START = 1.5e38;    // ... from this on: its ground is lit and unoccluded (LIT_TILE)
+const float SKY_START = 2.5e38;    // ... from this on: none of its rays meets the ground (SKY_TILE)
 
 int kindOf(ivec2 cell) {
     float start = texelFetch(uCoarseStart, cell, 0).r;
-    return start < EMPTY_START ? 0 : (start < SKY_START ? 1 : 2);
+    return start < EMPTY_START ? 0 : (start < LIT_START ? 1 : (start < SKY_START ? 3 : 2));
 }
 
 // Whether every tile of the 2x2 block ``block`` inside the image is of kind uTileKind.

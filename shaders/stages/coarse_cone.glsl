@@ -8,6 +8,7 @@
 #define CONE_CLOSE 0.5       // a cone stops once its step falls below this share of its radius
 #define CONE_BACK 2.0         // a tile's start lies this many cone radii before where the cone stopped
 #define EMPTY_TILE 1.0e38    // the start of a tile whose cone crossed the scene without meeting it
+#define LIT_TILE 2.0e38      // ... whose rays all meet the ground where AO is 1 and no shadow falls
 #define SKY_TILE 3.0e38      // ... and none of whose rays can meet the ground plane either
 
 struct Cone {
@@ -83,4 +84,35 @@ bool tileSeesGround(vec2 lo, vec2 hi) {
     }
 #endif
     return false;
+}
+
+// Whether every ray of the tile with corners lo and hi meets the ground where ambient occlusion
+// is exactly 1 and no shadow ray can enter the scene box: its ground shading needs no map()
+// call. The ground points of the tile's rays lie in the convex quadrilateral of its corners'
+// (the plane's image of a rectangle below the horizon), so within r of their centre c. AO is 1
+// where every sample d = map(p + h n) >= h: map is LIPSCHITZ-Lipschitz, so map(c) -
+// LIPSCHITZ (r + hmax) >= hmax proves it for every sample of every point.
+bool tileGroundLit(vec2 lo, vec2 hi) {
+#ifdef GROUND
+    vec3 g[4];
+    for (int k = 0; k < 4; k++) {
+        vec2 corner = vec2(k == 1 || k == 3 ? hi.x : lo.x, k >= 2 ? hi.y : lo.y);
+        vec3 ro = rayOrigin(corner), rd = rayDir(corner);
+        if (!(rd.y < -1e-4 && ro.y > GROUND_Y)) return false;
+        float t = (GROUND_Y - ro.y) / rd.y;
+        if (!(t <= MAX_DIST)) return false;
+        g[k] = ro + rd * t;
+    }
+    vec3 c = 0.25 * (g[0] + g[1] + g[2] + g[3]);
+    float r = 0.0;
+    for (int k = 0; k < 4; k++) r = max(r, length(g[k] - c));
+    r = r * 1.01 + 1e-5 * SCENE_SCALE;  // float32 slack
+#ifdef AO
+    float hmax = (0.01 + 0.12) * SCENE_SCALE * 0.5;  // calcAO's farthest sample
+    if (!(map(c) - LIPSCHITZ * (r + hmax) >= hmax * 1.01)) return false;
+#endif
+    return tileUnshadowed(c, r + 1e-3 * SCENE_SCALE);  // the rays start a little above the ground
+#else
+    return false;
+#endif
 }

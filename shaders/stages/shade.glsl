@@ -14,7 +14,7 @@ Surface defaultSurface(vec3 albedo) {
 }
 
 float occlusion(vec3 pos, vec3 nor) {
-#ifdef AO
+#if defined(AO) && !defined(LIT_TILES)  // the coarse pass proved AO 1 on a lit tile's ground
     return calcAO(pos, nor);
 #else
     return 1.0;
