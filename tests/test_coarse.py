@@ -168,3 +168,16 @@ def test_each_tile_drawn_once_by_its_kind(renderer, tile, ground):
     assert np.mean(np.abs(full.astype(int) - off.astype(int)).max(axis=-1) > 8) < 1e-3
     if ground:  # the lit tiles' pixels, shaded with shadows and AO, are what they show without
         assert np.abs(full[kind == LIT].astype(int) - off[kind == LIT].astype(int)).max() <= 2
+
+
+def test_tile_programs_share_the_image_data_upload(renderer):
+    """The tile programs of an image with data tables (a union kept as data) read the image's
+    uploaded textures: frames after the first upload nothing."""
+    scene = sg.union(*[sg.sphere(0.1).translate((0.3 * i, 0.1 * (i % 3), 0.2 * (i % 5))) for i in range(60)])
+    assert sg.compile(scene).count("uniform sampler") >= 1
+    for _ in range(3):
+        renderer.render(scene, size=(64, 48), shadows=False, ao=False)
+    entries = len(renderer.data)
+    for _ in range(3):
+        renderer.render(scene, size=(64, 48), shadows=False, ao=False)
+    assert len(renderer.data) == entries

@@ -1,4 +1,4 @@
-"""Data textures (big unions kept as data), uploaded once per source and kept in an LRU.
+"""Data textures (big unions kept as data), uploaded once per source's data and kept in an LRU.
 
 A desktop shader reads its tables from a buffer texture (shaders/lib/data_buffer.glsl), a
 WebGL2 one from a 2D texture (data_table.glsl); the source's dialect says which to upload."""
@@ -17,7 +17,7 @@ from .dialect import DESKTOP, of_source
 Texture = moderngl.Texture | BufferTexture
 
 
-def _release(entry: tuple[ShaderSource, list[Texture]]) -> None:
+def _release(entry: tuple[tuple, list[Texture]]) -> None:
     for t in entry[1]:
         t.release()
 
@@ -25,17 +25,20 @@ def _release(entry: tuple[ShaderSource, list[Texture]]) -> None:
 class DataTextures:
     """The textures each shader source samples, least recently used released beyond ``budget().data_mb``.
 
-    Keyed by the source object: a source is immutable, and the entry keeps it alive, so an
-    id is never reused while its entry exists."""
+    Keyed by the source's data tuple (the sources an image's tile programs are made from share
+    their image's): it is immutable, and the entry keeps it alive, so an id is never reused
+    while its entry exists."""
 
     def __init__(self, budget: Callable[[], CacheBudget]) -> None:
         self._budget = budget
-        self._lru: LRU[tuple[ShaderSource, list[Texture]]] = LRU(_release)
+        self._lru: LRU[tuple[tuple, list[Texture]]] = LRU(_release)
 
     def textures(self, ctx: moderngl.Context, source: ShaderSource) -> list[Texture]:
-        """The uploaded textures of ``source.data``; call on the context's thread."""
-        entry = self._lru.get(id(source))
-        if entry is None or entry[0] is not source:
+        """The uploaded textures of ``source.data``; call on the context's thread. Keyed by the
+        data itself: the sources made from one another (an image's tile programs) share it."""
+        data_of = source.data
+        entry = self._lru.get(id(data_of))
+        if entry is None or entry[0] is not data_of:
             texs: list[Texture] = []
             nbytes = 0
             as_buffer = of_source(source.text) is DESKTOP
@@ -48,8 +51,8 @@ class DataTextures:
                     tex.filter = (moderngl.NEAREST, moderngl.NEAREST)
                     texs.append(tex)
                 nbytes += data.nbytes
-            entry = (source, texs)
-            self._lru.put(id(source), entry, nbytes)
+            entry = (data_of, texs)
+            self._lru.put(id(data_of), entry, nbytes)
             mb = self._budget().data_mb
             self._lru.trim(max_bytes=None if mb is None else mb * MB)
         return entry[1]
