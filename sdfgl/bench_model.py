@@ -73,7 +73,9 @@ WHOLE_SHADERS = {"csg": csg_scene}
 
 def whole_handwritten(name: str) -> Callable[[ShaderSource], ShaderSource]:
     """Replace the generated shader by the whole one written by hand for scene ``name``."""
-    text = "#version 330 core\n" + (BASELINES / "whole" / f"{name}.glsl").read_text(encoding="utf-8")
+    whole = (BASELINES / "whole" / f"{name}.glsl").read_text(encoding="utf-8")
+    own_map = (BASELINES / f"{name}.glsl").read_text(encoding="utf-8")  # the map() both baselines share
+    text = "#version 330 core\n" + whole.replace(f'#include "../{name}.glsl"', own_map)
     return lambda src: ShaderSource(text, ("(hand-written)",) * (text.count("\n") + 1))
 
 

@@ -22,17 +22,8 @@ float sdCylinder(vec3 p, float r, float h) {
     return min(max(d.x, d.y), 0.0) + length(max(d, 0.0));
 }
 
-float map(vec3 p) {
-    float ball = max(length(p) - 1.0, sdBox(p, vec3(0.75)));
-    float drill = min(min(sdCylinder(p.yxz, 0.5, 2.0), sdCylinder(p, 0.5, 2.0)), sdCylinder(p.xzy, 0.5, 2.0));
-    return max(ball, -drill);
-}
-
-vec3 mapColor(vec3 p) {
-    float ball = max(length(p) - 1.0, sdBox(p, vec3(0.75)));
-    float drill = min(min(sdCylinder(p.yxz, 0.5, 2.0), sdCylinder(p, 0.5, 2.0)), sdCylinder(p.xzy, 0.5, 2.0));
-    return ball > -drill ? vec3(0.85, 0.3, 0.2) : vec3(0.95, 0.8, 0.3);
-}
+// map() and mapColor(): benchmarks/baselines/csg.glsl, inserted here by the bench
+#include "../csg.glsl"
 
 float march(vec3 ro, vec3 rd) {
     float t = 0.0;
