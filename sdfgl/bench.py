@@ -91,8 +91,7 @@ class FrameTimer:
         coarse = coarse_source(v.node, source, st.resolved(v.node.exactness), origin, v.camera.projection)
         image_draws(self.r.programs, source, coarse is not None)  # the link, timed here
         t1 = time.perf_counter()
-        v.result["_prog"] = (source, origin, coarse)
-        v.result["_source"] = source
+        v.result["_source"], v.result["_prog"] = source, (origin, coarse)
         first = self.draw(v)
         return t1 - t0, first
 
@@ -101,7 +100,7 @@ class FrameTimer:
         return self.r.run(self._draw, v)
 
     def _draw(self, v: Variant) -> float:
-        source, origin, coarse = v.result["_prog"]
+        source, (origin, coarse) = v.result["_source"], v.result["_prog"]
         t0 = time.perf_counter()
         # the coarse pass first and the image's programs of this frame, as render() draws them
         starts = None if coarse is None else self.r.coarse_pass(v.node, v.camera, self.size, coarse, origin)

@@ -261,8 +261,9 @@ class Renderer:
                       **settings: object) -> np.ndarray | None:
         """The coarse pass of ``render(scene, camera, size, **settings)`` alone: per tile of pixels
         (``Settings.coarse`` a side; row 0 on top) the float32 ray parameter before which no surface
-        lies on any of the tile's rays (1e38 or more where the tile is proven empty: 3e38 where no ray
-        of it meets the ground either), or None where that render has no coarse pass."""
+        lies on any of the tile's rays (1e38 or more where the tile is proven empty: 2e38 where its
+        ground needs no shadow or AO, 3e38 where no ray of it meets the ground), or None where that
+        render has no coarse pass."""
         st = Settings.build(**settings).resolved(scene.exactness)
         wh = checked_size(size)
         cam = camera if camera is not None else OrbitCamera.framing(*scene.bounds, aspect=wh[0] / wh[1])
@@ -382,7 +383,7 @@ class Renderer:
 @dataclass
 class ImageDraw:
     """One program drawing an image: the image's own over the whole view (``kind`` None), or
-    after a coarse pass the program of one kind of tile (sdfgl.gl.coarse_pass: OPEN, EMPTY, SKY,
+    after a coarse pass the program of one kind of tile (sdfgl.gl.coarse_pass: OPEN, EMPTY, LIT, SKY,
     or WHOLE: the image's program over every tile)."""
 
     prog: moderngl.Program

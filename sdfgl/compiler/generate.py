@@ -251,7 +251,8 @@ def _write(scene: Node, settings: Settings, org: np.ndarray, row: Target, lang: 
     for stage in row.main:
         stage(job)
     return dataclasses.replace(b.build(params, live, data), code_size=size, data_unions=len(passes.grids),
-                               origin_offsets=None if origins is None else tuple(origins.entries), coarse_tile=coarse)
+                               origin_offsets=None if origins is None else tuple(origins.entries), coarse_tile=coarse,
+                               ground=bool(settings.ground))
 
 
 def compile(scene: Node, **settings: object) -> str:  # noqa: A001 - public API name

@@ -56,6 +56,7 @@ class ShaderSource:
     # source then does not depend on the origin
     origin_offsets: tuple[OriginEntry, ...] | None = None
     coarse_tile: int = 0  # the tile side of the coarse pass the march starts from (0: none)
+    ground: bool = False  # the image has the analytic ground plane
 
     def owner_of(self, line: int) -> str:
         """Who wrote 1-based source line ``line``."""

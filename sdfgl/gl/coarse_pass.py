@@ -1,8 +1,8 @@
 """The coarse pass of a render: one fragment per tile of pixels, drawn before the image, writing
 the ray parameter from which the tile's rays march (shaders/mains/coarse_main.glsl); and the
 image drawn after it tile by tile (shaders/mains/tiles.vert.glsl): the image's program on the
-tiles the pass left open, the same program without its march on the tiles it proved empty
-(and without the ground where no ray of the tile meets it)."""
+tiles the pass left open, the same program with less on the tiles it proved empty (see the
+tile kinds below)."""
 from __future__ import annotations
 
 import dataclasses
@@ -15,7 +15,7 @@ from .targets import Targets
 
 START = ("start",)  # the coarse pass's one output: a float per tile
 TILES_VERTEX = "mains/tiles.vert"
-"""The vertex shader that draws an image's tiles of one kind (open or proven empty)."""
+"""The vertex shader that draws an image's tiles of one kind."""
 
 
 def coarse_size(size: tuple[int, int], tile: int) -> tuple[int, int]:
@@ -67,8 +67,8 @@ _KIND_DEFINES = {OPEN: (), EMPTY: ("EMPTY_TILES",), SKY: ("EMPTY_TILES", "SKY_TI
 def tile_sources(source: ShaderSource) -> list[tuple[ShaderSource, int]]:
     """The programs that draw the image ``source`` tile by tile after its coarse pass, each with
     its kind of tile: the image's own on the open tiles, then the same shader with less on the
-    empty ones (without the ground where the image has none: one kind of empty tile)."""
-    kinds = (OPEN, EMPTY, LIT, SKY) if "\n#define GROUND\n" in source.text else (OPEN, SKY)
+    empty ones (where the image has no ground, the sky kind is its only empty one)."""
+    kinds = (OPEN, EMPTY, LIT, SKY) if source.ground else (OPEN, SKY)
     return [(with_defines(source, _KIND_DEFINES[k]), k) for k in kinds]
 
 
@@ -85,7 +85,7 @@ def with_defines(source: ShaderSource, names: tuple[str, ...]) -> ShaderSource:
 
 def draw_tiles(ctx: moderngl.Context, set_uniform: Callable[[str, object], None], draw: Callable[[int, int], None],
                size: tuple[int, int], tile: int, kind: int) -> None:
-    """Draw the tiles of ``kind`` (OPEN, EMPTY or SKY; WHOLE: every pixel, as one triangle) of an
+    """Draw the tiles of ``kind`` (OPEN, EMPTY, LIT or SKY; WHOLE: every pixel, as one triangle) of an
     image of ``size`` in ``tile``-pixel tiles with a TILES_VERTEX program into the bound target:
     ``set_uniform(name, value)`` sets the program's uniforms, ``draw(mode, count)`` draws ``count``
     vertices of primitive ``mode`` (moderngl's constants). An empty kind is drawn first as points
