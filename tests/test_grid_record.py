@@ -55,7 +55,7 @@ def test_rotated_primitives_are_quaternions_and_match_the_twin(renderer):
 def test_rotated_spheres_store_a_translation_only(renderer):
     s = _union(lambda i: sg.sphere(0.2 + i / 200))
     assert [_kind(s, t) for t in s.grid.types] == ["translate"]
-    assert s.grid.records(s.grid.types[0], (1.0, 1.0, 1.0)).shape[1] == 2  # (centre, radius), colour
+    assert s.grid.records(s.grid.types[0], (1.0, 1.0, 1.0)).shape[1] == 1  # (centre, radius); the one colour is code
     assert "cross(" not in sg.compile(s).split("g0Dist(vec3 p)")[1].split("float map(")[0]
     assert _parity(s, renderer, np.random.default_rng(4).uniform(-3, 3, (3000, 3))) < 1e-5
 
@@ -67,3 +67,28 @@ def test_a_reflected_member_keeps_the_matrix(renderer):
     s = sg.union(*parts)
     assert [_kind(s, t) for t in s.grid.types] == ["matrix"]
     assert _parity(s, renderer, np.random.default_rng(5).uniform(-1, 7, (3000, 3))) < 1e-5
+
+
+def _hit_colors(scene, renderer, cam, **kw):
+    out = renderer.render(scene, cam, (96, 72), outputs=("color", "depth"), shadows=False, ao=False, aa=1, **kw)
+    return out.color[..., :3].astype(int), out.depth < 1e9
+
+
+def test_members_of_one_colour_keep_it_in_code_and_others_in_their_records(renderer):
+    """A type whose members share a colour (or all have none) writes it once in code: one
+    texel a sphere instead of two; members of different colours keep theirs in the records.
+    Each renders in its members' colours, as the union written as code does."""
+    cam = sg.OrbitCamera(distance=9, yaw=20, pitch=30)
+    same = _union(lambda i: sg.sphere(0.3).color("red"))
+    mixed = _union(lambda i: sg.sphere(0.3).color("red" if i % 2 else "blue"))
+    plain = _union(lambda i: sg.sphere(0.3))
+    assert [s.grid.types[0].color_in_record for s in (same, mixed, plain)] == [False, True, False]
+    assert [s.grid.records(s.grid.types[0], (1.0, 1.0, 1.0)).shape[1] for s in (same, mixed, plain)] == [1, 2, 1]
+    for scene in (same, mixed, plain):
+        img, hit = _hit_colors(scene, renderer, cam)
+        code, code_hit = _hit_colors(scene, renderer, cam, grid=False)
+        assert hit.mean() > 0.05 and np.mean(hit != code_hit) < 0.005
+        assert np.mean(np.abs(img - code).max(-1)[hit & code_hit] > 8) < 0.01
+    img, hit = _hit_colors(mixed, renderer, cam)
+    assert np.mean((img[..., 0] > img[..., 2] + 40) & hit) > 0.01
+    assert np.mean((img[..., 2] > img[..., 0] + 40) & hit) > 0.01

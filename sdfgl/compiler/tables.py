@@ -2,6 +2,8 @@
 from __future__ import annotations
 
 import hashlib
+import threading
+from collections import OrderedDict
 from typing import Sequence
 
 import numpy as np
@@ -11,6 +13,9 @@ from ..params import Live
 from .source import OriginEntry
 
 DATA_WIDTH = 1024  # texels per row of a data table (a power of two)
+RECENT_TEXTURES = 2  # data textures kept by content: an image's and its coarse pass's sources share one
+_recent: OrderedDict[tuple[bytes, ...], tuple[tuple[str, np.ndarray], ...]] = OrderedDict()
+_recent_lock = threading.Lock()
 
 
 class DataPool:
@@ -20,7 +25,7 @@ class DataPool:
     def __init__(self) -> None:
         self.chunks: list[np.ndarray] = []
         self.size = 0
-        self._index: dict[bytes, int] = {}
+        self._index: dict[bytes, int] = {}  # content key -> first texel (insertion order: the chunks')
 
     def add(self, texels: np.ndarray) -> int:
         """Append (n, 4) float32 texels (once per content); return the first one's index."""
@@ -33,15 +38,31 @@ class DataPool:
         return self._index[key]
 
     def texture(self) -> tuple[tuple[str, np.ndarray], ...]:
-        """("uData", (rows, DATA_WIDTH, 4)) or nothing."""
+        """("uData", (rows, DATA_WIDTH, 4)) or nothing. Pools of the same tables give the same
+        tuple (of the last few made), so their sources share one upload (sdfgl.gl.data)."""
         if not self.chunks:
             return ()
         if self.size >= 2 ** 24:
             raise ParameterError(f"scene: its data tables hold {self.size} texels, over the limit of 2^24 "
                                  f"(float32 indices); use fewer or smaller instances")
+        key = tuple(self._index)
+        with _recent_lock:
+            hit = _recent.get(key)
+            if hit is not None:
+                _recent.move_to_end(key)
+                return hit
         flat = np.zeros((-(-self.size // DATA_WIDTH) * DATA_WIDTH, 4), dtype=np.float32)
-        flat[:self.size] = np.concatenate(self.chunks)
-        return (("uData", flat.reshape(-1, DATA_WIDTH, 4)),)
+        at = 0
+        for chunk in self.chunks:
+            flat[at:at + len(chunk)] = chunk
+            at += len(chunk)
+        flat.flags.writeable = False
+        out = (("uData", flat.reshape(-1, DATA_WIDTH, 4)),)
+        with _recent_lock:
+            _recent[key] = out
+            while len(_recent) > RECENT_TEXTURES:
+                _recent.popitem(last=False)
+        return out
 
 
 class OriginOffsets:

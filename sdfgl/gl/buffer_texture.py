@@ -12,11 +12,14 @@ from __future__ import annotations
 
 import ctypes
 from ctypes import POINTER, byref, c_int, c_uint
-from typing import Any, Callable
+from typing import TYPE_CHECKING, Any, Callable
 
 import moderngl
 
 from ..errors import ContextError, SdfglError
+
+if TYPE_CHECKING:  # pragma: no cover
+    import numpy as np
 
 TEXTURE_BUFFER, RGBA32F, TEXTURE0 = 0x8C2A, 0x8814, 0x84C0
 
@@ -65,7 +68,7 @@ class BufferTexture:
     """Float32 RGBA texels ``data`` (bytes, 16 per texel) in a buffer texture of ``ctx``.
     Create, use and release it on the context's thread."""
 
-    def __init__(self, ctx: moderngl.Context, data: bytes) -> None:
+    def __init__(self, ctx: moderngl.Context, data: bytes | np.ndarray) -> None:
         texels = len(data) // 16
         limit = int(ctx.info.get("GL_MAX_TEXTURE_BUFFER_SIZE", 65536))
         if texels > limit:

@@ -45,9 +45,9 @@ class DataTextures:
             for _, arr in source.data:
                 data = np.ascontiguousarray(arr, dtype=np.float32)
                 if as_buffer:
-                    texs.append(BufferTexture(ctx, data.tobytes()))
+                    texs.append(BufferTexture(ctx, data))
                 else:
-                    tex = ctx.texture((arr.shape[1], arr.shape[0]), 4, data.tobytes(), dtype="f4")
+                    tex = ctx.texture((arr.shape[1], arr.shape[0]), 4, data, dtype="f4")
                     tex.filter = (moderngl.NEAREST, moderngl.NEAREST)
                     texs.append(tex)
                 nbytes += data.nbytes

@@ -176,7 +176,7 @@ class Grid:
             for name, size in zip(t.slots, sizes):
                 out[:, pos:pos + size] = np.array([np.ravel(u[0].__dict__[name]) for u in peeled], dtype=np.float64)
                 pos += size
-        if t.color_in_code is None:
+        if t.color_in_record:
             out[:, color_at:color_at + 3] = [u[4] if u[4] is not None else default_color for u in peeled]
         return out.astype(np.float32).reshape(len(t.members), texels, 4)
 

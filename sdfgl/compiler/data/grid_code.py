@@ -162,7 +162,7 @@ def _loop(grid: Grid, em: "Emitter", t: InstanceType, ti: int, color: bool, owne
     sizes = [len(v) for _, v in slot_values(t.inner)] if t.slots is not None else []
     move = grid_record.kind(t, np.array([grid.peeled[i][2] for i in t.members]))
     scale_at, slots_at, color_at, texels = t.layout(sizes, move)
-    need = texels if color else -(-(color_at if t.color_in_code is None else texels * 4) // 4)
+    need = texels if color else -(-(color_at if t.color_in_record else texels * 4) // 4)
     need = max(need, 1)
     gid = em.grid_name(grid)
     span = f"s{ti // 2}"
@@ -209,7 +209,7 @@ def _loop(grid: Grid, em: "Emitter", t: InstanceType, ti: int, color: bool, owne
     if t.scaled:
         d = f"({d}) * {component(scale_at, 0)}"
     if color:
-        rgb = result_color or (slot_expr(color_at, 3) if em.channel == "albedo" else em.vec(em.current()))
+        rgb = result_color or _record_color(grid, em, t, color_at)
         out.append((f"        float dist = {d};", owner))
         if grid.blend is not None:
             out += [(line, owner) for line in _blend_step(grid, em, "dist", rgb)]
@@ -242,6 +242,16 @@ def _loop(grid: Grid, em: "Emitter", t: InstanceType, ti: int, color: bool, owne
         out.append((f"    free = min(free, max(enterNear, {refined}(qNear, {ray})));  // the nearest by its parts", owner))
     out.append(("    }", owner))
     return out
+
+
+def _record_color(grid: Grid, em: "Emitter", t: InstanceType, color_at: int) -> str:
+    """The GLSL colour of a listed instance of type ``t`` in this pass's channel: the albedo
+    from its record, or the type's one colour written in code; other channels the current value."""
+    if em.channel != "albedo":
+        return em.vec(em.current())
+    if t.one_color:
+        return em.vec(t.color if t.color is not None else em.grids[id(grid)][2])
+    return slot_expr(color_at, 3)
 
 
 def _refined_entry(grid: Grid, em: "Emitter", t: InstanceType, ti: int, move: str, color: bool,

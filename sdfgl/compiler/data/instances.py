@@ -89,6 +89,15 @@ class InstanceType:
         self.members: list[int] = []        # indices into Grid.children
         self.affine = False                 # rotated or scaled members (a move layout of grid_record)
         self.scaled = False
+        # every member has the same colour (None: the grid's default), so it is written in
+        # code, not in each record (half the list texels of a sphere's record)
+        self.one_color = False
+        self.color: tuple | None = None
+
+    @property
+    def color_in_record(self) -> bool:
+        """Whether each record carries its member's colour (three floats)."""
+        return self.color_in_code is None and not self.one_color
 
     def layout(self, slot_sizes: list[int], move: str) -> tuple[int, int, int, int]:
         """(float offset of the scale, of the slots, of the colour, texels per record)."""
@@ -98,7 +107,7 @@ class InstanceType:
         slots_at = n
         n += sum(slot_sizes)
         color_at = n
-        n += 0 if self.color_in_code is not None else 3
+        n += 3 if self.color_in_record else 0
         return scale_at, slots_at, color_at, -(-n // 4)
 
 
@@ -251,6 +260,9 @@ def build(children: list[Node], min_children: int | None = None, single_cell: bo
         rows.append(i)
     if len(kept) < least:
         return None
+    for t in types.values():
+        if t.color_in_code is None:
+            _share_color(t, peeled)
     if blend is not None:
         wide = Blend.of(*blend)
         if len(kept) < len(children) or len(types) != 1 or any(u[0].exactness != EXACT for u in peeled) \
@@ -258,6 +270,16 @@ def build(children: list[Node], min_children: int | None = None, single_cell: bo
             return None
         return Grid(kept, peeled, list(types.values()), boxes=boxes[rows], blend=wide)
     return Grid(kept, peeled, list(types.values()), single_cell, boxes[rows])
+
+
+def _share_color(t: InstanceType, peeled: list[tuple]) -> None:
+    """Mark ``t`` one-coloured where all its members have the same colour (peeled[i][4])."""
+    first = peeled[t.members[0]][4]
+    for i in t.members:
+        c = peeled[i][4]
+        if c is not first and c != first:
+            return
+    t.one_color, t.color = True, first
 
 
 __all__ = ["Grid", "InstanceType", "Packed", "build", "pack", "unwrap"]
