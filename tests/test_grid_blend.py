@@ -216,14 +216,25 @@ def test_neighbour_counts_of_many_boxes_are_exact_or_a_superset(monkeypatch):
     radius = reach + np.linalg.norm(hi - lo, axis=1) / 2 + (np.linalg.norm(hi - lo, axis=1) / 2).max()
     apart = np.linalg.norm(centre[:, None] - centre[None], axis=-1)
     exact = (apart <= radius[:, None]).sum(axis=1)
-    assert np.array_equal(blend_reach._neighbour_counts(lo, hi, reach), exact)
+    rows = rng.choice(n, 300, replace=False)  # some boxes' counts: theirs of the full count
+
+    def agree(counts_of):
+        assert np.array_equal(counts_of(lo, hi, reach), exact)
+        assert np.array_equal(counts_of(lo, hi, reach[rows], rows), exact[rows])
+    agree(blend_reach._neighbour_counts)
     monkeypatch.setattr(blend_reach, "PAIRS_PER_PASS", 1000)  # many passes: the same counts
-    assert np.array_equal(blend_reach._neighbour_counts(lo, hi, reach), exact)
+    agree(blend_reach._neighbour_counts)
     monkeypatch.setattr(blend_reach, "PAIRS_MOST", 1000)  # too many pairs: the 27 cells' boxes
     assert np.all(blend_reach._neighbour_counts(lo, hi, reach) >= exact)
+    assert np.all(blend_reach._neighbour_counts(lo, hi, reach[rows], rows) >= exact[rows])
+    monkeypatch.setattr(blend_reach, "PAIRS_MOST", 1 << 23)
+    few = rng.choice(n, blend_reach.PAIRWISE_MAX, replace=False)  # the pairwise count, all and some
+    gap = np.maximum(0.0, np.maximum(lo[few][None] - hi[few][:, None], lo[few][:, None] - hi[few][None]))
+    sub = (np.sqrt((gap * gap).sum(-1)) < reach[few][:, None]).sum(axis=1)
+    assert np.array_equal(blend_reach._neighbour_counts(lo[few], hi[few], reach[few][:50], np.arange(50)), sub[:50])
     pytest.importorskip("scipy")
     monkeypatch.setattr(blend_reach, "KDTREE_FROM", n)  # scipy's k-d tree: the same counts
-    assert np.array_equal(blend_reach._neighbour_counts(lo, hi, reach), exact)
+    agree(blend_reach._neighbour_counts)
 
 
 def test_a_big_smooth_union_needs_no_scipy(monkeypatch):

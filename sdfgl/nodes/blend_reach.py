@@ -31,24 +31,26 @@ PAIRS_PER_PASS = 1 << 21  # candidate pairs measured in one numpy pass
 PAIRS_MOST = 1 << 23      # beyond this many candidate pairs the candidates are counted instead
 
 
-def _neighbour_counts(lo: np.ndarray, hi: np.ndarray, reach: np.ndarray) -> np.ndarray:
-    """For every box i, how many boxes (itself included) lie within reach[i] of it, or a
+def _neighbour_counts(lo: np.ndarray, hi: np.ndarray, reach: np.ndarray, rows: np.ndarray | None = None) -> np.ndarray:
+    """For every box i (of ``rows``, default all; ``reach`` is theirs), how many boxes (itself
+    included) lie within reach[i] of it, or a
     superset of them: above PAIRWISE_MAX boxes, those whose centres lie within reach[i] plus
     both half-diagonals of box i's centre, found through a uniform grid of that radius (the
     boxes in the 27 cells around box i's; from KDTREE_FROM boxes by scipy's k-d tree where
     it is installed), or where that would measure more than PAIRS_MOST pairs, every box in
     those 27 cells."""
     n = len(lo)
+    rows = np.arange(n) if rows is None else rows
     if n <= PAIRWISE_MAX:
-        gap = np.maximum(0.0, np.maximum(lo[None, :, :] - hi[:, None, :], lo[:, None, :] - hi[None, :, :]))
+        gap = np.maximum(0.0, np.maximum(lo[None, :, :] - hi[rows, None, :], lo[rows, None, :] - hi[None, :, :]))
         dist = np.sqrt((gap * gap).sum(axis=-1))
         return (dist < reach[:, None]).sum(axis=1)
     centre, half = (lo + hi) / 2, np.linalg.norm(hi - lo, axis=1) / 2
-    radius = reach + half + half.max()
+    radius = reach + half[rows] + half.max()
     if n >= KDTREE_FROM and installed("scipy"):
         # the same count, about 5x faster at 10^5 boxes; below this its 0.6 s import costs more
         from scipy.spatial import cKDTree
-        return np.asarray(cKDTree(centre).query_ball_point(centre, r=radius, return_length=True))
+        return np.asarray(cKDTree(centre).query_ball_point(centre[rows], r=radius, return_length=True))
     cell = max(float(radius.max()), 1e-300)
     ijk = np.floor((centre - centre.min(axis=0)) / cell).astype(np.int64)
     dims = ijk.max(axis=0) + 1
@@ -56,7 +58,7 @@ def _neighbour_counts(lo: np.ndarray, hi: np.ndarray, reach: np.ndarray) -> np.n
     order = np.argsort(code, kind="stable")
     ranked = code[order]
     offsets = np.array([(i, j, k) for k in (-1, 0, 1) for j in (-1, 0, 1) for i in (-1, 0, 1)])
-    near = ijk[:, None, :] + offsets[None, :, :]  # (n, 27, 3)
+    near = ijk[rows, None, :] + offsets[None, :, :]  # (rows, 27, 3)
     inside = np.all((near >= 0) & (near < dims), axis=-1)
     near_code = (near[..., 2] * dims[1] + near[..., 1]) * dims[0] + near[..., 0]
     start = np.where(inside, np.searchsorted(ranked, near_code, side="left"), 0)
@@ -64,18 +66,19 @@ def _neighbour_counts(lo: np.ndarray, hi: np.ndarray, reach: np.ndarray) -> np.n
     candidates = (stop - start).sum(axis=1)
     if candidates.sum() > PAIRS_MOST:
         return candidates
-    counts = np.zeros(n, dtype=np.int64)
+    m = len(rows)
+    counts = np.zeros(m, dtype=np.int64)
     before = np.r_[0, np.cumsum(candidates)]  # candidate pairs of the boxes before each
     first = 0
-    while first < n:  # boxes first .. last - 1: at most PAIRS_PER_PASS pairs (or one box)
+    while first < m:  # queries first .. last - 1: at most PAIRS_PER_PASS pairs (or one box)
         last = max(first + 1, int(np.searchsorted(before, before[first] + PAIRS_PER_PASS, side="right")) - 1)
-        rows = np.arange(first, min(last, n))
-        first = int(rows[-1]) + 1
-        s, size = start[rows].ravel(), (stop[rows] - start[rows]).ravel()
-        who = np.repeat(np.repeat(rows, 27), size)
+        part = np.arange(first, min(last, m))
+        first = int(part[-1]) + 1
+        s, size = start[part].ravel(), (stop[part] - start[part]).ravel()
+        who = np.repeat(np.repeat(part, 27), size)
         other = order[np.repeat(s - np.r_[0, np.cumsum(size)[:-1]], size) + np.arange(int(size.sum()))]
-        d2 = ((centre[who] - centre[other]) ** 2).sum(axis=1)
-        counts += np.bincount(who[d2 <= radius[who] ** 2], minlength=n)
+        d2 = ((centre[rows[who]] - centre[other]) ** 2).sum(axis=1)
+        counts += np.bincount(who[d2 <= radius[who] ** 2], minlength=m)
     return counts
 
 
@@ -88,10 +91,14 @@ def blend_growth(lo: np.ndarray, hi: np.ndarray, t: float, lower: float, window:
     if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi))):
         return np.full(n, g * most)
     f = np.full(n, t + min(min(2, folds) * lower, window))
+    # box i's next value depends on its own f alone: only those that moved, short of the most, are counted again
+    active = np.arange(n)
     for _ in range(64):
-        count = _neighbour_counts(lo, hi, g * (2.0 * f + window))
-        nxt = np.maximum(f, t + np.minimum(np.minimum(1 + count, folds) * lower, window))
-        if np.array_equal(nxt, f):
+        count = _neighbour_counts(lo, hi, g * (2.0 * f[active] + window), active)
+        nxt = np.maximum(f[active], t + np.minimum(np.minimum(1 + count, folds) * lower, window))
+        moved = nxt != f[active]
+        f[active] = nxt
+        active = active[moved & (nxt < most)]
+        if not len(active):
             return g * f
-        f = nxt
     return np.full(n, g * most)
