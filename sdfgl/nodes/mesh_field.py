@@ -129,7 +129,10 @@ class MeshField(Node):
         q = em.point(p)
         pad = em.num(RAY_BOX_PAD * float(np.abs(self.vertices).max()))
         em.ask_free_way(self, f"meshRayFree({q}, gRayDir, gRayInv, {nodes}, {tris}, {pad})")  # the scene's own mesh
-        return em.with_color(em.assign("float", f"sdMeshBVH({q}, {nodes}, {tris}, {end})"))
+        walk = f"sdMeshBVH({q}, {nodes}, {tris}, {end})"
+        if em.leaves_free_way(self):  # the march's first call wants the cast alone (march_relaxed.glsl)
+            walk = f"(gCastOnly ? 0.0 : {walk})"
+        return em.with_color(em.assign("float", walk))
 
     def _distance(self, p: np.ndarray) -> np.ndarray:
         from ..extras import require_extra

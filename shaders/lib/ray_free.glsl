@@ -8,6 +8,7 @@ vec3 gRayDir = vec3(0.0, 0.0, 1.0);  // the marcher's ray direction (unit)
 vec3 gRayInv = vec3(1.0);            // 1 / gRayDir, set once a ray (a 0 component as 1e-30)
 float gFree = 0.0;
 bool gFreeAsk = false;               // whether this map() call is the march's (a mesh casts only then)
+bool gCastOnly = false;              // the call asks for the cast alone: the scene's own mesh skips its walk
 
 // Set the free way's ray direction (turned into the grid's or mesh's frame where it is rotated).
 void rayFreeStart(vec3 rd) {
