@@ -148,7 +148,7 @@ def coarse_tile(scene: Node, settings: Settings, target: str = "render", dialect
         return 0
     cast = ray_free(scene, settings)
     if cast is not None and isinstance(cast[0], MeshField) and not (settings.ground and (settings.shadows or settings.ao)):
-        # a lone mesh is cast, not marched (march_relaxed.glsl): its cones would walk the mesh
+        # a lone mesh is cast, not marched (stages/march_cast.glsl): its cones would walk the mesh
         # for a start the cast does not need; only the ground's lit tiles pay for them
         return 0
     return int(settings.coarse)

@@ -12,8 +12,9 @@ from typing import Any, Callable, Sequence
 
 from ..look.shading import background_code, shade_function, shadow_code, shadow_kinds, unshadowed_tile_function
 from ..nodes.base import IMPLICIT, Node
+from ..nodes.mesh_field import MeshField
 from ..settings import Settings
-from .analysis import MARCH_FILES, analytic_shape
+from .analysis import MARCH_FILES, analytic_shape, ray_free
 from .builder import SourceBuilder, surface_function, vec3_literal
 from .emitter import DEFAULT_COLOR, Emitter
 from .source import glsl_float
@@ -79,12 +80,18 @@ def detail_function(job: Job) -> None:
 
 
 def march(job: Job) -> None:
-    """The hit refinement, the marcher the method names (or the closed form) and the normal."""
+    """The hit refinement, the marcher the method names (or the closed form, or the cast of a
+    lone mesh) and the normal."""
     b, settings = job.b, job.settings
-    b.add_file("stages/refine")
     if job.coarse:
         b.add_file("stages/coarse_start")
     analytic = settings.analytic and analytic_shape(job.scene) is not None
+    way = ray_free(job.scene, settings) if job.target.image and not analytic else None
+    if way is not None and isinstance(way[0], MeshField):  # the ray meets its first triangle
+        b.add_file("stages/march_cast")
+        b.add_file("stages/normal")
+        return
+    b.add_file("stages/refine")
     if not analytic and settings.method in ("newton", "forward_newton"):
         b.add_file("stages/ray_derivative")
     if analytic:

@@ -130,7 +130,7 @@ class MeshField(Node):
         pad = em.num(RAY_BOX_PAD * float(np.abs(self.vertices).max()))
         em.ask_free_way(self, f"meshRayFree({q}, gRayDir, gRayInv, {nodes}, {tris}, {pad})")  # the scene's own mesh
         walk = f"sdMeshBVH({q}, {nodes}, {tris}, {end})"
-        if em.leaves_free_way(self):  # the march's first call wants the cast alone (march_relaxed.glsl)
+        if em.leaves_free_way(self):  # the march wants the cast alone (stages/march_cast.glsl)
             walk = f"(gCastOnly ? 0.0 : {walk})"
         return em.with_color(em.assign("float", walk))
 

@@ -44,22 +44,6 @@ float roundsToNear(float t, float r, float s) {
 }
 
 float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
-#ifdef RAY_FREE_HIT
-    // The scene is one mesh (moved or turned as a whole): the ray meets it where it meets its
-    // first triangle, so one cast from tmin is the march. map() leaves the way to that triangle
-    // in gFree, shortened by MESH_RAY_SLACK for the marchers' safety (lib/sd_mesh_bvh.glsl);
-    // undone here, it is the ray parameter of the (slightly widened) triangle's plane, which no
-    // gap between triangles lets the ray slip through.
-    rayFreeStart(rd);
-    gFreeAsk = true;
-    gCastOnly = true;
-    map(ro + rd * tmin);
-    gFreeAsk = false;
-    gCastOnly = false;
-    steps++;
-    float hit = tmin + gFree / (1.0 - MESH_RAY_SLACK);
-    return gFree < 3.0e38 && hit <= tmax ? hit : -1.0;
-#else
     float roLen = length(ro);
     float t = tmin;
     float tPrev = tmin;
@@ -223,5 +207,4 @@ float march(vec3 ro, vec3 rd, float tmin, float tmax, inout int steps) {
         }
     }
     return -1.0;  // out of steps: undecided, drawn as a miss (never a hit that may be a ghost)
-#endif
 }
