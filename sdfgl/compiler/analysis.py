@@ -179,8 +179,9 @@ def ray_free(scene: Node, settings: Settings) -> tuple[Any, np.ndarray] | None:
     kept as data (its grid: shaders/templates/grid_ray.glsl; any child beside the instances
     bounding the way by its distance) or the scene's own mesh (:func:`own_mesh`: where the ray
     meets its triangles), under translations, rotations and materials only (they keep
-    distances; the marcher turns its direction by R^T); marched by march_relaxed.glsl (sphere
-    tracing and its relaxed variants: the marcher that reads gFree). None elsewhere."""
+    distances; the marcher turns its direction by R^T); where the settings' method is sphere
+    tracing or a relaxed variant. A grid's way is stepped by march_relaxed.glsl; a mesh's
+    cast is the whole march (march_cast.glsl). None elsewhere."""
     if MARCH_FILES.get(settings.method, settings.method) != "relaxed" or not settings.free_way:
         return None
     mesh = own_mesh(scene)
