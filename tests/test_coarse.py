@@ -181,3 +181,27 @@ def test_tile_programs_share_the_image_data_upload(renderer):
     for _ in range(3):
         renderer.render(scene, size=(64, 48), shadows=False, ao=False)
     assert len(renderer.data) == entries
+
+
+def test_an_image_and_its_coarse_pass_share_one_data_upload():
+    """The coarse pass's source is generated apart from the image's, with the same tables: it
+    holds the same array, so one upload serves both; the table is freed with its sources."""
+    import gc
+    import weakref
+
+    from sdfgl.render import Renderer, coarse_source, shader_origin
+    from sdfgl.settings import Settings
+    scene = sg.union(*[sg.sphere(0.12).translate((0.3 * i, 0.1 * (i % 4), 0.2 * (i % 5))) for i in range(70)])
+    r = Renderer()
+    r.render(scene, size=(64, 48), shadows=False, ao=False)
+    assert len(r.data) == 1  # one upload, for the coarse pass and the image
+    res = r.render(scene, size=(64, 48), shadows=False, ao=False)
+    image = res.source
+    table = weakref.ref(image.data[0][1])
+    st = Settings.build(shadows=False, ao=False).resolved(scene.exactness)
+    coarse = coarse_source(scene, image, st, shader_origin(scene, res.camera.eye))
+    assert coarse is not None and coarse.data[0][1] is image.data[0][1]
+    r.release()
+    del r, res, image, coarse, scene
+    gc.collect()
+    assert table() is None  # nothing but its sources keeps it

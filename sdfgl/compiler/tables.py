@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import hashlib
 import threading
+import weakref
 from collections import OrderedDict
 from typing import Sequence
 
@@ -13,8 +14,8 @@ from ..params import Live
 from .source import OriginEntry
 
 DATA_WIDTH = 1024  # texels per row of a data table (a power of two)
-RECENT_TEXTURES = 2  # data textures kept by content: an image's and its coarse pass's sources share one
-_recent: OrderedDict[tuple[bytes, ...], tuple[tuple[str, np.ndarray], ...]] = OrderedDict()
+RECENT_TEXTURES = 2  # data textures found by content: an image's and its coarse pass's sources share one
+_recent: OrderedDict[tuple[bytes, ...], weakref.ref[np.ndarray]] = OrderedDict()  # held by their sources only
 _recent_lock = threading.Lock()
 
 
@@ -39,7 +40,8 @@ class DataPool:
 
     def texture(self) -> tuple[tuple[str, np.ndarray], ...]:
         """("uData", (rows, DATA_WIDTH, 4)) or nothing. Pools of the same tables give the same
-        tuple (of the last few made), so their sources share one upload (sdfgl.gl.data)."""
+        array while a source made from the one before holds it (of the last few made), so their
+        sources share one upload (sdfgl.gl.data)."""
         if not self.chunks:
             return ()
         if self.size >= 2 ** 24:
@@ -47,22 +49,23 @@ class DataPool:
                                  f"(float32 indices); use fewer or smaller instances")
         key = tuple(self._index)
         with _recent_lock:
-            hit = _recent.get(key)
+            ref = _recent.get(key)
+            hit = None if ref is None else ref()
             if hit is not None:
                 _recent.move_to_end(key)
-                return hit
+                return (("uData", hit),)
         flat = np.zeros((-(-self.size // DATA_WIDTH) * DATA_WIDTH, 4), dtype=np.float32)
         at = 0
         for chunk in self.chunks:
             flat[at:at + len(chunk)] = chunk
             at += len(chunk)
-        flat.flags.writeable = False
-        out = (("uData", flat.reshape(-1, DATA_WIDTH, 4)),)
+        table = flat.reshape(-1, DATA_WIDTH, 4)
+        table.flags.writeable = False
         with _recent_lock:
-            _recent[key] = out
+            _recent[key] = weakref.ref(table)
             while len(_recent) > RECENT_TEXTURES:
                 _recent.popitem(last=False)
-        return out
+        return (("uData", table),)
 
 
 class OriginOffsets:

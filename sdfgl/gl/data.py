@@ -25,9 +25,9 @@ def _release(entry: tuple[tuple, list[Texture]]) -> None:
 class DataTextures:
     """The textures each shader source samples, least recently used released beyond ``budget().data_mb``.
 
-    Keyed by the source's data tuple (the sources an image's tile programs are made from share
-    their image's): it is immutable, and the entry keeps it alive, so an id is never reused
-    while its entry exists."""
+    Keyed by the arrays of the source's data (the sources an image's tile programs are made from
+    share their image's; its coarse pass's source has the same arrays, sdfgl.compiler.tables): they
+    are immutable, and the entry keeps them alive, so an id is never reused while its entry exists."""
 
     def __init__(self, budget: Callable[[], CacheBudget]) -> None:
         self._budget = budget
@@ -35,13 +35,14 @@ class DataTextures:
 
     def textures(self, ctx: moderngl.Context, source: ShaderSource) -> list[Texture]:
         """The uploaded textures of ``source.data``; call on the context's thread. Keyed by the
-        data itself: the sources made from one another (an image's tile programs) share it."""
+        arrays themselves: sources that hold the same ones share their upload."""
         data_of = source.data
-        entry = self._lru.get(id(data_of))
-        if entry is None or entry[0] is not data_of:
+        as_buffer = of_source(source.text) is DESKTOP  # desktop: buffer textures; WebGL2: 2D ones
+        key = (as_buffer, *(id(arr) for _, arr in data_of))
+        entry = self._lru.get(key)
+        if entry is None or any(a is not b for (_, a), (_, b) in zip(entry[0], data_of)):
             texs: list[Texture] = []
             nbytes = 0
-            as_buffer = of_source(source.text) is DESKTOP
             for _, arr in source.data:
                 data = np.ascontiguousarray(arr, dtype=np.float32)
                 if as_buffer:
@@ -52,7 +53,7 @@ class DataTextures:
                     texs.append(tex)
                 nbytes += data.nbytes
             entry = (data_of, texs)
-            self._lru.put(id(data_of), entry, nbytes)
+            self._lru.put(key, entry, nbytes)
             mb = self._budget().data_mb
             self._lru.trim(max_bytes=None if mb is None else mb * MB)
         return entry[1]
