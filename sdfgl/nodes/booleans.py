@@ -6,7 +6,7 @@ by zero.
 """
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Sequence
 
 import numpy as np
 
@@ -163,8 +163,7 @@ class _Boolean(Node):
         every other operation keeps all of them."""
         if not (self._hard and self.kind in ("union", "intersection")):
             return self.children
-        seen: set = set()
-        out = [c for c in self.children if not (c.key in seen or seen.add(c.key))]
+        out = distinct_by_key(self.children)
         return self.children if len(out) == len(self.children) else tuple(out)
 
     def _emit(self, em: "Emitter", p: str) -> str:
@@ -185,6 +184,12 @@ class _Boolean(Node):
 
     def _fold(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
         raise NotImplementedError
+
+
+def distinct_by_key(nodes: Sequence[Node]) -> list[Node]:
+    """``nodes`` without those equal (same key) to one before them."""
+    seen: set = set()
+    return [c for c in nodes if not (c.key in seen or seen.add(c.key))]
 
 
 class Union(_Boolean):
@@ -209,8 +214,9 @@ class Union(_Boolean):
             build = layout("union")
             if build is None or isinstance(self.k, Live):
                 d[name] = None
-            elif self._hard:
-                d[name] = build(list(self.distinct_children()), least)
+            elif self._hard:  # equal copies built apart are listed twice: min(a, a) = a, and no key is computed
+                seen: set[int] = set()
+                d[name] = build([c for c in self.children if not (id(c) in seen or seen.add(id(c)))], least)
             else:
                 d[name] = build(list(self.children), least, blend=(float(self.k), self.blend))
         return d[name]
@@ -225,11 +231,10 @@ class Union(_Boolean):
             return super()._emit(em, p)
         acc = em.grid_union(grid, p)
         inside = {id(g) for g in grid.children}
-        for c in self.distinct_children():
-            if id(c) not in inside:
-                d = c.emit(em, p)
-                em.narrow_free_way(grid, d)
-                acc = self._combine(em, acc, d)
+        for c in distinct_by_key([c for c in self.children if id(c) not in inside]):  # the few beside the grid
+            d = c.emit(em, p)
+            em.narrow_free_way(grid, d)
+            acc = self._combine(em, acc, d)
         return acc
 
     def _distance(self, p: np.ndarray) -> np.ndarray:
