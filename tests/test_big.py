@@ -195,3 +195,37 @@ def test_a_scene_without_material_nodes_has_a_constant_map_color(renderer):
     b = renderer.render(plain.color(*DEFAULT_COLOR), cam, (48, 36), shadows=False, ao=False).color
     assert a.std() > 0 and np.abs(a.astype(int) - b.astype(int)).max() <= 1
 
+
+
+def test_a_wide_union_fills_its_caches_without_garbage_collections():
+    """Bounds, grid and code of a union of thousands of children run with the cyclic
+    collector paused (what they make outlives them, so collections would only rescan the
+    graph); the collector is as it was afterwards, nested or not."""
+    import gc
+
+    from sdfgl.nodes.traverse import collector_paused
+    s = sg.union(*[sg.sphere(0.1).translate((i % 40 * 0.3, i // 40 * 0.3, 0.0)) for i in range(4000)])
+    starts = []
+
+    def count(event, info):
+        if event == "start":
+            starts.append(info["generation"])
+    gc.callbacks.append(count)
+    try:
+        s.bounds
+        assert "g0Dist(" in sg.compile(s)
+    finally:
+        gc.callbacks.remove(count)
+    assert len(starts) <= 2 and gc.isenabled()  # the one each pause put off (18 without pauses)
+    with collector_paused():
+        with collector_paused():
+            assert not gc.isenabled()
+        assert not gc.isenabled()
+    assert gc.isenabled()
+    gc.disable()
+    try:
+        with collector_paused():
+            pass
+        assert not gc.isenabled()  # a collector the caller paused stays paused
+    finally:
+        gc.enable()

@@ -15,7 +15,7 @@ import numpy as np
 from ..errors import ParameterError
 from ..params import Live, Param, owns_checks
 from .record import Recorded
-from .traverse import FACTS, SHALLOW, cached, depth, fact, postorder, run_deep
+from .traverse import FACTS, SHALLOW, WIDE, cached, collector_paused, depth, fact, postorder, run_deep
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..compiler.emitter import Emitter
@@ -141,10 +141,15 @@ def box_of(node: "Node") -> np.ndarray:
         live = fact(node, "_live_cache")
     kids = node.children
     if kids and not live and depth(node) > SHALLOW and not all("_bounds_cache" in c.__dict__ for c in kids):
-        for n in postorder(node, skip=lambda n: "_bounds_cache" in n.__dict__):
-            if n is not node:
-                box_of(n)
-    b = node._bounds
+        with collector_paused():
+            for n in postorder(node, skip=lambda n: "_bounds_cache" in n.__dict__):
+                if n is not node:
+                    box_of(n)
+    if len(kids) >= WIDE:  # its children's boxes, and theirs, are made now: a big walk
+        with collector_paused():
+            b = node._bounds
+    else:
+        b = node._bounds
     # a (2, 3) float64 array made by _bounds (Translate's) is kept as it is; else one array is made
     out = (b if b.shape == (2, 3) and b.dtype == np.float64 and b.flags.owndata else np.array(b, dtype=np.float64)) \
         if type(b) is np.ndarray else None

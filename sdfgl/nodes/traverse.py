@@ -6,6 +6,8 @@ when the graph is deeper than Python's default recursion allows.
 """
 from __future__ import annotations
 
+import contextlib
+import gc
 import sys
 import threading
 from typing import TYPE_CHECKING, Any, Callable, Iterator, Sequence, TypeVar
@@ -16,8 +18,33 @@ if TYPE_CHECKING:  # pragma: no cover
 T = TypeVar("T")
 
 SHALLOW = 400            # deeper graphs are evaluated on a big-stack thread
+WIDE = 1024              # a node with this many children fills its caches with the garbage collector paused
 MAX_DEPTH = 1_000_000    # nesting deeper than this is refused with a message
 _STACK_BYTES = 1 << 30   # per level: a few Python frames of a few hundred bytes each
+
+
+_pause_lock = threading.Lock()
+_pauses = [0, False]  # [holders, whether the collector ran before the first]
+
+
+@contextlib.contextmanager
+def collector_paused() -> Iterator[None]:
+    """Pause Python's cyclic garbage collector while a walk fills the caches of a big graph:
+    everything it makes survives (the caches), so each collection would only scan the graph
+    again (on a 3 x 10^5-node chain, its bounds and compile took 18 % longer). Nested and
+    concurrent pauses share one; the collector runs again when the last ends, as it was."""
+    with _pause_lock:
+        if _pauses[0] == 0:
+            _pauses[1] = gc.isenabled()
+            gc.disable()
+        _pauses[0] += 1
+    try:
+        yield
+    finally:
+        with _pause_lock:
+            _pauses[0] -= 1
+            if _pauses[0] == 0 and _pauses[1]:
+                gc.enable()
 
 
 def _children(node: Any) -> Sequence[Any]:
@@ -76,6 +103,15 @@ def cached(node: "Node", name: str, compute: Callable[["Node"], T]) -> T:
     hit = d.get(name, _MISSING)
     if hit is not _MISSING:
         return hit  # type: ignore[return-value]
+    if len(node.children) >= WIDE:  # reading each child's __dict__ makes it: a big walk
+        with collector_paused():
+            return _fill(node, name, compute)
+    return _fill(node, name, compute)
+
+
+def _fill(node: "Node", name: str, compute: Callable[["Node"], T]) -> T:
+    """The work of :func:`cached` where ``node`` lacks ``name``."""
+    d = node.__dict__
     pending = [c for c in node.children if name not in c.__dict__]
     if all(name in g.__dict__ for c in pending for g in c.children):  # the common cases: no walk
         for c in pending:
@@ -85,16 +121,17 @@ def cached(node: "Node", name: str, compute: Callable[["Node"], T]) -> T:
     # the walk of postorder(), inlined: a 10^5-node scene pays per node only this loop
     seen = {id(node)}
     stack: list[tuple[Any, Iterator[Any]]] = [(node, iter(node.children))]
-    while stack:
-        n, it = stack[-1]
-        for c in it:
-            if id(c) not in seen and name not in c.__dict__:
-                seen.add(id(c))
-                stack.append((c, iter(c.children)))
-                break
-        else:
-            stack.pop()
-            n.__dict__[name] = compute(n)
+    with collector_paused():
+        while stack:
+            n, it = stack[-1]
+            for c in it:
+                if id(c) not in seen and name not in c.__dict__:
+                    seen.add(id(c))
+                    stack.append((c, iter(c.children)))
+                    break
+            else:
+                stack.pop()
+                n.__dict__[name] = compute(n)
     return d[name]
 
 
@@ -138,7 +175,8 @@ def run_deep(node: "Node", fn: Callable[[], T]) -> T:
     """Call ``fn`` (which recurses over ``node``'s graph) with room for the graph's depth."""
     d = depth(node)
     if d <= SHALLOW or threading.current_thread().name == "sdfgl-deep":
-        return fn()
+        with collector_paused():
+            return fn()
     if d > MAX_DEPTH:
         from ..errors import ParameterError
         raise ParameterError(f"scene: nesting depth {d} exceeds the limit of {MAX_DEPTH} nodes")
@@ -146,7 +184,8 @@ def run_deep(node: "Node", fn: Callable[[], T]) -> T:
 
     def work() -> None:
         try:
-            out["value"] = fn()
+            with collector_paused():
+                out["value"] = fn()
         except BaseException as exc:  # re-raised in the caller's thread
             out["error"] = exc
     old_limit, old_stack = sys.getrecursionlimit(), threading.stack_size()

@@ -24,7 +24,7 @@ import numpy as np
 from ...nodes.base import EXACT, IMPLICIT, Node, Primitive, box_of
 from ...nodes.primitives import Sphere
 from ...nodes.transforms import Material, Rotate, Scale, Translate
-from ...nodes.traverse import postorder
+from ...nodes.traverse import WIDE, collector_paused, postorder
 from ...params import Live
 from . import grid_record
 from .blend_lists import Blend, fits
@@ -192,6 +192,15 @@ def build(children: list[Node], min_children: int | None = None, single_cell: bo
     One pass over the children, no per-node property calls beyond the cached bounds and
     live-parameter lists: each child is peeled into (inner node, translation, rotation,
     scale, colour) and sorted into a type; Grid packs the gathered values with numpy."""
+    if len(children) >= WIDE:  # a pass over many children that makes what outlives it
+        with collector_paused():
+            return _build(children, min_children, single_cell, blend)
+    return _build(children, min_children, single_cell, blend)
+
+
+def _build(children: list[Node], min_children: int | None, single_cell: bool,
+           blend: tuple[float, str] | None) -> Grid | None:
+    """The work of :func:`build`."""
     least = GRID_MIN if min_children is None else min_children
     if len(children) < least:
         return None
