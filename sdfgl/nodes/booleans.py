@@ -192,6 +192,23 @@ def distinct_by_key(nodes: Sequence[Node]) -> list[Node]:
     return [c for c in nodes if not (c.key in seen or seen.add(c.key))]
 
 
+def distinct_nodes(nodes: Sequence[Node]) -> list[Node]:
+    """``nodes`` without repeats of one object or copies equal (same key) to one before them.
+    Equal nodes have equal boxes, so a key is computed only for a node whose box another
+    shares: none for 10^5 children in as many places."""
+    ids: set[int] = set()
+    kids = [c for c in nodes if not (id(c) in ids or ids.add(id(c)))]
+    if len(kids) < 2:
+        return kids
+    rows = np.ascontiguousarray(np.array([box_of(c) for c in kids]).reshape(len(kids), 6))
+    _, inverse, counts = np.unique(rows.view(np.dtype((np.void, 48))).ravel(), return_inverse=True, return_counts=True)
+    shared = counts[inverse.ravel()] > 1
+    if not shared.any():
+        return kids
+    keys: set = set()
+    return [c for c, alike in zip(kids, shared) if not alike or not (c.key in keys or keys.add(c.key))]
+
+
 class Union(_Boolean):
     """Union (min). A hard union of many simple primitives is kept as data with a cell
     grid (sdfgl.compiler.data.grid): its field is then min(children, cap), a distance bound that
@@ -214,12 +231,18 @@ class Union(_Boolean):
             build = layout("union")
             if build is None or isinstance(self.k, Live):
                 d[name] = None
-            elif self._hard:  # equal copies built apart are listed twice: min(a, a) = a, and no key is computed
-                seen: set[int] = set()
-                d[name] = build([c for c in self.children if not (id(c) in seen or seen.add(id(c)))], least)
+            elif self._hard:
+                d[name] = build(self._distinct(), least)
             else:
                 d[name] = build(list(self.children), least, blend=(float(self.k), self.blend))
         return d[name]
+
+    def _distinct(self) -> list[Node]:
+        """The children once each (:func:`distinct_nodes`), found once."""
+        d = self.__dict__
+        if "_grid_kids" not in d:  # a cache (CACHES: "_grid")
+            d["_grid_kids"] = distinct_nodes(self.children)
+        return d["_grid_kids"]
 
     def data_union(self) -> "Grid | None":
         """This union's grid (see :attr:`grid`): the instances it keeps as data."""
@@ -231,7 +254,9 @@ class Union(_Boolean):
             return super()._emit(em, p)
         acc = em.grid_union(grid, p)
         inside = {id(g) for g in grid.children}
-        for c in distinct_by_key([c for c in self.children if id(c) not in inside]):  # the few beside the grid
+        for c in self._distinct():
+            if id(c) in inside:
+                continue
             d = c.emit(em, p)
             em.narrow_free_way(grid, d)
             acc = self._combine(em, acc, d)
