@@ -83,15 +83,17 @@ def march(job: Job) -> None:
     """The hit refinement, the marcher the method names (or the closed form, or the cast of a
     lone mesh) and the normal."""
     b, settings = job.b, job.settings
-    if job.coarse:
-        b.add_file("stages/coarse_start")
     analytic = settings.analytic and analytic_shape(job.scene) is not None
     way = ray_free(job.scene, settings) if job.target.image and not analytic else None
-    if way is not None and isinstance(way[0], MeshField):  # the ray meets its first triangle
+    cast = way is not None and isinstance(way[0], MeshField)  # the ray meets its first triangle
+    if not cast:
+        b.add_file("stages/refine")
+    if job.coarse:
+        b.add_file("stages/coarse_start")
+    if cast:
         b.add_file("stages/march_cast")
         b.add_file("stages/normal")
         return
-    b.add_file("stages/refine")
     if not analytic and settings.method in ("newton", "forward_newton"):
         b.add_file("stages/ray_derivative")
     if analytic:
