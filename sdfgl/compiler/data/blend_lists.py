@@ -137,18 +137,27 @@ class Children:
         (...), broadcast): a sphere's exact extremes, any other child's value at the cell
         centre plus and minus the half diagonal (1-Lipschitz) and at least its box gap
         (its field is exact)."""
-        if self.spheres:
+        if self.spheres:  # in place where it can be: these arrays are the pass's largest
             h = np.float32(0.5 * size)
             rel = (mid - self.centre).astype(np.float32)
-            lo2 = hi2 = np.float32(0.0)
+            lo2 = hi2 = None
             for axis in range(3):
-                u = np.abs(self.at[axis][kid] - rel[..., axis])
-                g = np.maximum(u - h, np.float32(0.0))
-                lo2 = lo2 + g * g
+                u = self.at[axis][kid] - rel[..., axis]
+                np.abs(u, out=u)
+                g = u - h
+                np.maximum(g, np.float32(0.0), out=g)
+                g *= g
                 u += h
-                hi2 = hi2 + u * u
+                u *= u
+                lo2, hi2 = (g, u) if lo2 is None else (np.add(lo2, g, out=lo2), np.add(hi2, u, out=hi2))
             r = self.rad[kid]
-            return np.sqrt(lo2) - r - self.slack, np.sqrt(hi2) - r + self.slack
+            np.sqrt(lo2, out=lo2)
+            np.sqrt(hi2, out=hi2)
+            lo2 -= r
+            lo2 -= np.float32(self.slack)
+            hi2 -= r
+            hi2 += np.float32(self.slack)
+            return lo2, hi2
         half = size * np.sqrt(3.0) / 2
         shape = np.broadcast_shapes(mid.shape[:-1], kid.shape)
         flat_kid = np.broadcast_to(kid, shape).ravel()
@@ -225,9 +234,7 @@ def _prune(kids: Children, level: Level, mids: np.ndarray, child: np.ndarray, fi
     out = ~valid[:, None, :]
     lo[np.broadcast_to(out, lo.shape)] = np.inf
     hi[np.broadcast_to(out, hi.shape)] = np.inf
-    inf = np.full(lo.shape[:2] + (1,), np.inf, dtype=lo.dtype)
-    before_lo = np.minimum.accumulate(np.concatenate([inf, lo[:, :, :-1]], axis=2), axis=2)
-    before_hi = np.minimum.accumulate(np.concatenate([inf, hi[:, :, :-1]], axis=2), axis=2)
+    before_lo, before_hi = _least_before(lo), _least_before(hi)
     R = blend.support + kids.slack
     # the fold of r values is at most min(R, (r - 1) L) below their least
     lowered = np.minimum(blend.support, np.maximum(rank - 1, 0) * blend.lowering).astype(lo.dtype)
@@ -240,6 +247,14 @@ def _prune(kids: Children, level: Level, mids: np.ndarray, child: np.ndarray, fi
     floor = lo.min(axis=2) - np.minimum(blend.support, np.maximum(length - 1, 0) * blend.lowering)[:, None]
     keep &= (floor < kids.cap)[:, :, None]
     return keep, kid
+
+
+def _least_before(v: np.ndarray) -> np.ndarray:
+    """Along the last axis, the least of the values before each (inf before the first)."""
+    out = np.empty_like(v)
+    out[..., 0] = np.inf
+    out[..., 1:] = v[..., :-1]
+    return np.minimum.accumulate(out, axis=-1, out=out)
 
 
 def field(grid: "Grid", p: np.ndarray) -> np.ndarray:
