@@ -192,7 +192,7 @@ def _write(scene: Node, settings: Settings, org: np.ndarray, row: Target, lang: 
     mesh_normal = own_mesh(scene) if row.image and not scene.has_detail else None
     dist, dist_result = passes.emit(scene, "dist", highlight=highlight if row.image else None,
                                     ray_free_id=None if free_way is None else id(free_way[0]))
-    job = Job(scene, settings, row, SourceBuilder(), coarse=coarse)
+    job = Job(scene, settings, row, SourceBuilder(), coarse=coarse, free_way=free_way)
     if row.color and not one_color(scene, highlight):
         job.color = passes.emit(scene, "color")
     if row.image and scene.has_detail:

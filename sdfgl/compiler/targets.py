@@ -14,7 +14,7 @@ from ..look.shading import background_code, shade_function, shadow_code, shadow_
 from ..nodes.base import IMPLICIT, Node
 from ..nodes.mesh_field import MeshField
 from ..settings import Settings
-from .analysis import MARCH_FILES, analytic_shape, ray_free
+from .analysis import MARCH_FILES, analytic_shape
 from .builder import SourceBuilder, surface_function, vec3_literal
 from .emitter import DEFAULT_COLOR, Emitter
 from .source import glsl_float
@@ -37,6 +37,7 @@ class Job:
     lights_at: dict[int, str] = field(default_factory=dict)  # GLSL of each point light's position
     done: set[str] = field(default_factory=set)  # GLSL functions already written
     coarse: int = 0  # the tile side of the coarse pass (0: none)
+    free_way: tuple[Any, Any] | None = None  # what leaves the march's free way (analysis.ray_free), and its turn
 
 
 Stage = Callable[[Job], None]
@@ -84,8 +85,7 @@ def march(job: Job) -> None:
     lone mesh) and the normal."""
     b, settings = job.b, job.settings
     analytic = settings.analytic and analytic_shape(job.scene) is not None
-    way = ray_free(job.scene, settings) if job.target.image and not analytic else None
-    cast = way is not None and isinstance(way[0], MeshField)  # the ray meets its first triangle
+    cast = job.free_way is not None and isinstance(job.free_way[0], MeshField)  # the ray meets its first triangle
     if not cast:
         b.add_file("stages/refine")
     if job.coarse:

@@ -5,7 +5,7 @@ float calcAO(vec3 pos, vec3 nor) {
     float occ = 0.0;
     float sca = 1.0;
     for (int i = uZero; i < 5; i++) {
-        float h = (0.01 + 0.12 * float(i) / 4.0) * SCENE_SCALE * 0.5;
+        float h = aoSampleHeight(i);
         float d = map(pos + h * nor);
 #ifdef IMPLICIT_FIELD
         d = clamp(d, 0.0, h);  // an implicit field is no distance: a safe estimate, never NaN

@@ -108,7 +108,7 @@ bool tileGroundLit(vec2 lo, vec2 hi) {
     for (int k = 0; k < 4; k++) r = max(r, length(g[k] - c));
     r = r * 1.01 + 1e-5 * SCENE_SCALE;  // float32 slack
 #ifdef AO
-    float hmax = (0.01 + 0.12) * SCENE_SCALE * 0.5;  // calcAO's farthest sample
+    float hmax = aoSampleHeight(4);  // calcAO's farthest sample
     if (!(map(c) - LIPSCHITZ * (r + hmax) >= hmax * 1.01)) return false;
 #endif
     return tileUnshadowed(c, r + 1e-3 * SCENE_SCALE);  // the rays start a little above the ground

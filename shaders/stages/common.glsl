@@ -60,6 +60,12 @@ vec2 sceneRange(vec3 ro, vec3 rd) {
     return vec2(tmin, tmax);
 }
 
+// The height above the surface of ambient occlusion's sample i, of five (0..4: stages/ao.glsl);
+// the coarse pass proves AO 1 on a tile out to the farthest (coarse_cone.glsl's tileGroundLit).
+float aoSampleHeight(int i) {
+    return (0.01 + 0.12 * float(i) / 4.0) * SCENE_SCALE * 0.5;
+}
+
 // Distance below which a sample at ray parameter t counts as a hit.
 float hitEpsilon(float t) {
 #if defined(HIT_CONE)

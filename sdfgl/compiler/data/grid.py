@@ -206,9 +206,7 @@ class Grid:
             raise SdfglError(f"union: {total} list texels exceed the float32 index limit of 2^24; "
                              "use fewer or larger instances")
         if len(recs) == 1:  # one type: the records follow each other, entry by entry
-            one = recs[0]
-            np.take(one.reshape(len(one), -1), local[child], axis=0,
-                    out=lst[:total].reshape(len(child), one.shape[1] * 4))
+            lst[:total] = recs[0][local[child]].reshape(-1, 4)
         for ti, r in enumerate(recs if len(recs) > 1 else ()):
             sel = np.nonzero(etype == ti)[0]
             rows = offset[sel][:, None] + np.arange(r.shape[1])[None, :]
