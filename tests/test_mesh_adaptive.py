@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import sdfgl as sg
-from sdfgl.mesh.adaptive import closed, split_edges
+from sdfgl.mesh.adaptive import closed, split_edges, without_fins
 from sdfgl.mesh.geometry import distance_to_mesh, volume
 from sdfgl.mesh.topology import edge_use
 
@@ -176,3 +176,10 @@ def test_too_coarse_a_lattice_is_meshed_again_finer(monkeypatch):
     fv, fc = twin_errors(scene, m.vertices, m.faces)
     assert fv <= tol and fc <= tol and m.error <= tol
     assert closed_manifold(m.vertices, m.faces)
+
+
+def test_a_fin_left_by_the_simplifier_is_dropped_and_nothing_else():
+    fin = np.array([[0, 1, 2], [7, 8, 9], [1, 0, 2], [3, 4, 5], [4, 5, 3], [6, 5, 4]])
+    # (0 1 2) and (1 0 2) are one triangle wound both ways; (3 4 5) twice the same way is not a fin
+    assert without_fins(fin).tolist() == [[7, 8, 9], [3, 4, 5], [4, 5, 3], [6, 5, 4]]
+    assert without_fins(fin[:0]).shape == (0, 3)

@@ -129,7 +129,30 @@ def _flatten(verts: np.ndarray, faces: np.ndarray, limit: float) -> np.ndarray:
     out = np.zeros_like(index)
     n = meshopt.simplify(out, index, np.ascontiguousarray(verts, np.float32), target_index_count=0,
                          target_error=float(limit), options=meshopt.SIMPLIFY_ERROR_ABSOLUTE)
-    return out[:n].reshape(-1, 3).astype(np.int64)
+    return without_fins(out[:n].reshape(-1, 3).astype(np.int64))
+
+
+def without_fins(faces: np.ndarray) -> np.ndarray:
+    """``faces`` less each pair of one triangle and its reverse (the same three vertices wound
+    the other way): a fin of no volume, which a simplifier can leave where it folded a sliver
+    onto itself and which would make the mesh non-manifold."""
+    if len(faces) == 0:
+        return faces
+    rolled = np.take_along_axis(faces, (np.argmin(faces, axis=1)[:, None] + np.arange(3)[None]) % 3, 1)
+    # lowest vertex first, winding kept: a face and its reverse share the first vertex and
+    # swap the other two
+    a = rolled[:, 1:].min(axis=1)
+    b = rolled[:, 1:].max(axis=1)
+    forward = rolled[:, 1] < rolled[:, 2]
+    key = np.stack([rolled[:, 0], a, b], 1)
+    _, inverse, counts = np.unique(key, axis=0, return_inverse=True, return_counts=True)
+    inverse = inverse.ravel()
+    pairs = counts[inverse] == 2
+    if not pairs.any():
+        return faces
+    fwd = np.bincount(inverse, weights=forward, minlength=len(counts))
+    fin = pairs & (fwd[inverse] == 1)  # two faces of one triple, wound opposite ways
+    return faces[~fin]
 
 
 def closed(faces: np.ndarray) -> bool:
