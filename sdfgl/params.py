@@ -45,6 +45,9 @@ def owns_checks(init: Callable[..., None]) -> Callable[..., None]:
             stack = _building.stack
         except AttributeError:  # this thread's first node (no list made per node: fewer collections)
             stack = _building.stack = []
+        if stack and stack[-1] is self:  # a subclass's __init__ calling super().__init__: already owned
+            init(self, *args, **kwargs)
+            return
         stack.append(self)
         try:
             init(self, *args, **kwargs)

@@ -194,8 +194,9 @@ class Node(Recorded, register=False):
             cls._distance = _memo_distance(cls.__dict__["_distance"])  # type: ignore[method-assign]
 
     def __init__(self, children: Sequence["Node"] = (), **params: object) -> None:
-        for i, c in enumerate(children):
+        for c in children:
             if not isinstance(c, Node):
+                i = next(i for i, c in enumerate(children) if not isinstance(c, Node))
                 raise ParameterError(f"{self.kind}: operand {i} must be an sdfgl node, got {type(c).__name__} {c!r}")
         self.children: tuple[Node, ...] = tuple(children)
         self.params: dict[str, object] = params
@@ -520,8 +521,14 @@ class Unary(Node):
         return super().__new__(cls, child, *args, **kwargs)
 
     def __init__(self, child: Node, **params: object) -> None:
-        super().__init__((child,), **params)
+        # __new__ checked the child; no children tuple is kept (one object less per node
+        # for the garbage collector): ``children`` is made from ``child`` when read
         self.child = child
+        self.params: dict[str, object] = params
+
+    @property  # type: ignore[override]
+    def children(self) -> tuple[Node, ...]:
+        return (self.child,)
 
     @property
     def exactness(self) -> str:

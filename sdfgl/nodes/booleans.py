@@ -14,7 +14,7 @@ from ..errors import ParameterError
 from ..params import Live
 from ..values import validate as v
 from .layouts import layout
-from .base import CACHES, BOUND, EXACT, IMPLICIT, Node, box_of, fluent, grid_min_now, level_factor
+from .base import BOUND, EXACT, IMPLICIT, Node, box_of, fluent, grid_min_now, level_factor
 from .blend_reach import blend_growth
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -65,6 +65,9 @@ def smooth_glsl(em: "Emitter", a: str, b: str, k: object, blend: str, negate: bo
     return f"{fn}({a}, {b}, {em.num(k)})"
 
 
+_STATE = ("_ctor_kw", "blend", "params", "k")  # the attributes a _Boolean's __init__ sets besides its children
+
+
 class _Boolean(Node):
     """N-ary boolean folded left to right."""
 
@@ -106,8 +109,11 @@ class _Boolean(Node):
     def _chained(self, node: Node, front: bool = False) -> "_Boolean":
         """This n-ary node with ``node`` appended (the left fold of one more operand), or
         put first (``front``: only for operators where the order does not change the field)."""
-        seq = self.__dict__.get("_seq") or (list(self.children), len(self.children), [], 0)
-        self.__dict__["_seq"] = seq
+        d = self.__dict__
+        seq = d.get("_seq")
+        if seq is None:
+            kids = self.children
+            seq = d["_seq"] = (list(kids), len(kids), [], 0)
         back, n, fr, m = seq
         if front:
             fr = fr if len(fr) == m else fr[:m]  # another chain already grew from this node: branch off a copy
@@ -118,9 +124,11 @@ class _Boolean(Node):
             back.append(node)
             n += 1
         out = type(self).__new__(type(self))
-        out.__dict__.update({k: v for k, v in self.__dict__.items()
-                             if not k.startswith(CACHES) and k not in ("_kids", "_seq")})
-        out.__dict__["_seq"] = (back, n, fr, m)
+        od = out.__dict__
+        for name in _STATE:  # what __init__ set; caches and the children stay behind
+            if name in d:
+                od[name] = d[name]
+        od["_seq"] = (back, n, fr, m)
         return out
 
     @property
@@ -133,6 +141,8 @@ class _Boolean(Node):
     def _same_op(self, cls: type, k: object, blend: str) -> bool:
         if type(self) is not cls or self.blend != blend:
             return False
+        if type(k) in (float, int) and type(self.k) is float and k == 0.0 and self.k == 0.0:  # hard, plain
+            return True
         if isinstance(k, Live) or isinstance(self.k, Live):
             return k is self.k
         kk = float(k)
@@ -447,12 +457,16 @@ def _build(cls: type, nodes: tuple, k: object, blend: str) -> Node:
         return nodes[0]
     first = nodes[0] if nodes else None
     if (len(nodes) >= 2 and isinstance(first, _Boolean) and first._same_op(cls, k, blend)
-            and isinstance(k, (int, float, Live)) and blend in BLENDS
-            and all(isinstance(n, Node) and n is not first for n in nodes[1:])):
-        out = first
-        for n in nodes[1:]:
-            out = out._chained(n)
-        return out
+            and isinstance(k, (int, float, Live)) and blend in BLENDS):
+        rest = nodes[1:]
+        for n in rest:
+            if not isinstance(n, Node) or n is first:
+                break
+        else:
+            out = first
+            for n in rest:
+                out = out._chained(n)
+            return out
     last = nodes[-1] if len(nodes) == 2 else None
     if (isinstance(last, _Boolean) and cls is not Difference and last._same_op(cls, k, blend) and last._hard
             and isinstance(first, Node) and first is not last):

@@ -27,13 +27,18 @@ def _box_of(half: Any) -> tuple[np.ndarray, np.ndarray]:
     return -h, h.copy()
 
 
+ORIGIN = (0.0, 0.0, 0.0)
+_ORIGIN = np.zeros(3)
+_ORIGIN.flags.writeable = False  # shared by every sphere left at the origin
+
+
 class Sphere(Primitive):
     kind = "sphere"
     lib = ("sd_sphere",)
 
-    def __init__(self, radius: float = 1.0, center: Sequence[float] = (0.0, 0.0, 0.0)) -> None:
+    def __init__(self, radius: float = 1.0, center: Sequence[float] = ORIGIN) -> None:
         r = v.scalar(self.kind, "radius", radius, positive=True)
-        c = v.vector(self.kind, "center", center)
+        c = _ORIGIN if center is ORIGIN else v.vector(self.kind, "center", center)
         super().__init__(radius=r, center=c)
         self.r, self.c = r, c
 
@@ -383,7 +388,7 @@ class BoxFrame(Primitive):
         return _box_of(self.half)
 
 
-def sphere(radius: float = 1.0, center: Sequence[float] = (0.0, 0.0, 0.0)) -> Sphere:
+def sphere(radius: float = 1.0, center: Sequence[float] = ORIGIN) -> Sphere:
     """Sphere of ``radius`` centred at ``center``.
 
     Args:

@@ -286,7 +286,10 @@ class Material(Unary):
 
 
 def _baked(node: Node) -> bool:
-    return not any(isinstance(x, Live) for x in node.params.values())
+    for x in node.params.values():
+        if isinstance(x, Live):
+            return False
+    return True
 
 
 def _translate(child: Node, offset: np.ndarray) -> "Translate":

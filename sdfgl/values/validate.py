@@ -71,7 +71,10 @@ _PLAIN = (float, int)  # exactly these types (bool is not one of them)
 def scalar(node: str, name: str, value: object, *, positive: bool = False,
            nonnegative: bool = False) -> Any:
     """``value`` as a finite float (or a live scalar), else ParameterError naming ``node.name``."""
-    if type(value) in _PLAIN:  # the most common call, checked without the ABC test of numbers.Real
+    if type(value) is float and -FLOAT32_MAX <= value <= FLOAT32_MAX \
+            and not (positive and value <= 0) and not (nonnegative and value < 0):
+        return value  # the most common call: a plain float in range (NaN fails the comparisons)
+    if type(value) in _PLAIN:  # checked without the ABC test of numbers.Real
         return _check_scalar(node, name, as_float(node, name, value), positive, nonnegative)
     if isinstance(value, LiveValue):
         if value.dims != 1:
@@ -93,18 +96,18 @@ def _check_vector(node: str, name: str, arr: np.ndarray, positive: bool, nonzero
 def vector(node: str, name: str, value: object, n: int = 3, *, positive: bool = False,
            nonzero: bool = False) -> Any:
     """``value`` as a float64 vector of length n (a scalar is broadcast), or a live value."""
-    if isinstance(value, LiveValue):
-        watch(lambda: _check_vector(node, name, np.broadcast_to(np.asarray(value.value, float), (n,)),
-                                    positive, nonzero), value)
-        return value
     if n == 3 and type(value) in (tuple, list) and len(value) == 3:
         x, y, z = value  # the most common call: three plain Python numbers
         if type(x) in _PLAIN and type(y) in _PLAIN and type(z) in _PLAIN:
             # NaN, infinity and an int too big for a float fail here; the checks below name them
-            ok = (abs(x) <= FLOAT32_MAX and abs(y) <= FLOAT32_MAX and abs(z) <= FLOAT32_MAX
-                  and not (positive and min(x, y, z) <= 0) and not (nonzero and not (x or y or z)))
-            if ok:
-                return np.array((x, y, z), dtype=np.float64)
+            if (-FLOAT32_MAX <= x <= FLOAT32_MAX and -FLOAT32_MAX <= y <= FLOAT32_MAX
+                    and -FLOAT32_MAX <= z <= FLOAT32_MAX
+                    and not (positive and (x <= 0 or y <= 0 or z <= 0)) and not (nonzero and not (x or y or z))):
+                return np.array(value, dtype=np.float64)
+    if isinstance(value, LiveValue):
+        watch(lambda: _check_vector(node, name, np.broadcast_to(np.asarray(value.value, float), (n,)),
+                                    positive, nonzero), value)
+        return value
     if isinstance(value, (Real, np.floating, np.integer)) and not isinstance(value, bool):
         value = [value] * n
     if isinstance(value, (tuple, list, np.ndarray)) and len(value) == n:
