@@ -419,7 +419,9 @@ def run(quick: bool, size: tuple[int, int] | None, out: Path, progress: bool = T
             md_parts.append("## Against whole shaders written by hand\n\n" + whole)
     if "big" in wanted:
         from .bench_big import run_big, run_phases
-        md_parts.append("## Big scenes\n\n" + run_big(quick, small) + "\n\n" + run_phases(quick, small))
+        from .bench_build import run_build
+        md_parts.append("## Big scenes\n\n" + run_big(quick, small) + "\n\n" + run_phases(quick, small) + "\n\n"
+                        + run_build(quick))
     if "mesh" in wanted:
         from .mesh.bench import run_mesh
         mesh_md, data["mesh"] = run_mesh(2 ** 18 if quick else 2 ** 22, 1 if quick else 3, None if quick else 1024)

@@ -35,6 +35,7 @@ _ORIGIN.flags.writeable = False  # shared by every sphere left at the origin
 class Sphere(Primitive):
     kind = "sphere"
     lib = ("sd_sphere",)
+    rebuilt_from = ("r", "c")
 
     def __init__(self, radius: float = 1.0, center: Sequence[float] = ORIGIN) -> None:
         r = v.scalar(self.kind, "radius", radius, positive=True)

@@ -35,13 +35,18 @@ class Recorded:
     kind: ClassVar[str] = "recorded"
     serializable: ClassVar[bool] = True
     unsaved_reason: ClassVar[str] = ""  # why a class with serializable = False cannot be saved
+    rebuilt_from: ClassVar[tuple[str, ...]] = ()
+    """Names of the attributes that hold the constructor's positional arguments as given (a
+    class that sets them keeps no copy of a call that passes exactly those, positionally:
+    one object less per node for the garbage collector)."""
     _ctor: tuple  # the positional arguments; keyword arguments, if any, in _ctor_kw
 
     def __new__(cls, *args: Any, **kwargs: Any) -> "Recorded":
         self = super().__new__(cls)
-        self._ctor = args  # no (args, kwargs) pair: one object less per node for the garbage collector
-        if kwargs:
-            self._ctor_kw = kwargs
+        if kwargs or not cls.rebuilt_from or len(args) != len(cls.rebuilt_from):
+            self._ctor = args  # no (args, kwargs) pair: one object less per node for the garbage collector
+            if kwargs:
+                self._ctor_kw = kwargs
         return self
 
     def __init_subclass__(cls, register: bool = True, **kw: Any) -> None:
@@ -59,7 +64,14 @@ class Recorded:
     def constructor(self) -> tuple[type, tuple, dict]:
         """(class, args, kwargs) of the call that built this object."""
         d = self.__dict__
+        if "_ctor" not in d and self.rebuilt_from:
+            return type(self), tuple(getattr(self, name) for name in self.rebuilt_from), {}
         return type(self), d.get("_ctor", ()), d.get("_ctor_kw", {})
+
+    @property
+    def made_by_call(self) -> bool:
+        """Whether this object was made by calling its class, so :attr:`constructor` rebuilds it."""
+        return "_ctor" in self.__dict__ or bool(self.rebuilt_from)
 
     def __reduce__(self) -> tuple:
         """Pickle the graph as a flat table of constructor calls, children first: no

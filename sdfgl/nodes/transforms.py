@@ -20,6 +20,7 @@ class Translate(Unary):
     """The child moved by ``offset`` (x, y, z); keeps its exactness."""
 
     kind = "translate"
+    rebuilt_from = ("child", "offset")
 
     def __init__(self, child: Node, offset: Sequence[float]) -> None:
         off = v.vector(self.kind, "offset", offset)
@@ -226,6 +227,10 @@ class ScaleAxes(Unary):
 @fluent()
 def translate(node: Node, offset: Sequence[float]) -> Node:
     """Move ``node`` by ``offset`` (consecutive rigid moves fold into one translate and one rotate)."""
+    if type(node) is Translate and _baked(node):  # s = s.translate(d) in a loop: one node a step, not two
+        off = v.vector(Translate.kind, "offset", offset)
+        if not isinstance(off, Live):
+            return _translate(node.child, node.offset + off)
     return fold(Translate(node, offset))
 
 
@@ -294,7 +299,7 @@ def _baked(node: Node) -> bool:
 
 def _translate(child: Node, offset: np.ndarray) -> "Translate":
     """A Translate by a checked, finite offset (no validation: folds of checked values)."""
-    n = Translate.__new__(Translate, child, offset)  # records the call that rebuilds it
+    n = Translate.__new__(Translate, child, offset)  # rebuilt from its child and offset
     Unary.__init__(n, child, offset=offset)
     n.offset = offset
     return n

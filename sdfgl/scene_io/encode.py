@@ -78,7 +78,7 @@ class Encoder:
         if not node.serializable:
             why = f": {node.unsaved_reason}" if node.unsaved_reason else ""
             raise ParameterError(f"{node.label()}: a {node.kind!r} node cannot be saved in a scene document{why}")
-        if "_ctor" not in node.__dict__:
+        if not node.made_by_call:
             raise ParameterError(f"{node.kind}: this node was not made by calling its class, so its arguments are "
                                  f"unknown and it cannot be saved")
         out: dict[str, Any] = {"kind": node.kind}
