@@ -258,3 +258,22 @@ def test_a_chain_step_leaves_four_objects_for_the_collector_and_rebuilds():
     for back in (pickle.loads(pickle.dumps(moved)), sg.from_dict(moved.to_dict())):
         assert back.key[:2] == moved.key[:2] and repr(back) == repr(moved)
         np.testing.assert_array_equal(back.distance([[1.5, 2, 3.1]]), moved.distance([[1.5, 2, 3.1]]))
+
+
+def test_a_wide_union_boxes_its_children_in_batches_equal_to_one_by_one():
+    from sdfgl.nodes.base import box_of, boxes_of
+    r = sg.param(0.1, name="r_live")
+    move = sg.param((0.0, 0.0, 0.0), name="move_live")
+    kids = [sg.sphere(0.02 + i * 1e-4, center=(0, i * 0.01, 0)).translate((i * 0.1, 0, 1)) for i in range(300)]
+    kids += [sg.sphere(0.05).translate((0, -i * 0.1, 0)).translate((0, 0, -2)) for i in range(100)]  # folded
+    kids += [sg.sphere(r).translate((40, 0, 0)), sg.box(0.3).translate((-3, 0, 0)), sg.sphere(0.2).translate(move)]
+    expected = np.array([box_of(c) for c in kids])
+    for c in kids:  # nothing cached: the batches compute every box
+        for n in (c, c.child):
+            n.__dict__.pop("_bounds_cache", None)
+    np.testing.assert_array_equal(boxes_of(kids), expected)
+    u = sg.union(*kids)
+    np.testing.assert_array_equal(np.array(u.bounds), [expected[:, 0].min(axis=0), expected[:, 1].max(axis=0)])
+    r.value, move.value = 0.5, (0.0, -30.0, 0.0)  # live values: the batches never keep a stale box
+    lo, hi = u.bounds
+    assert hi[0] == 40.5 and lo[1] == -30.2

@@ -7,7 +7,7 @@ import pytest
 import sdfgl as sg
 from sdfgl.compiler.data.blend_lists import Blend, cap
 from sdfgl.evaluate import evaluate_channel
-from sdfgl.nodes.base import grid_min_as
+from sdfgl.nodes.grid_scope import grid_min_as
 from sdfgl.nodes.booleans import BLEND_SUPPORT
 
 KINDS = ("quadratic", "circular", "chamfer")

@@ -229,8 +229,11 @@ def material_fields(n: Node) -> frozenset:
     a Material (and only a Material) has a ``fields`` dict."""
     fields = n.__dict__.get("fields")
     own = frozenset(fields) if fields else _NONE
-    kids = [f for c in n.children if (f := c.__dict__["_fields"])]
-    return own.union(*kids) if kids else own
+    kids = n.children
+    if not kids:
+        return own
+    below = [f for c in kids if (f := c.__dict__["_fields"])]
+    return own.union(*below) if below else own
 
 
 def one_color(scene: Node, highlight: Node | None) -> bool:

@@ -17,7 +17,8 @@ import numpy as np
 from ..errors import ParameterError
 from ..gl.dialect import Dialect, dialect as dialect_named
 from ..look.lights import DEFAULT_LIGHTS
-from ..nodes.base import IMPLICIT, Node, grid_min_as
+from ..nodes.base import IMPLICIT, Node
+from ..nodes.grid_scope import grid_min_as
 from ..nodes.traverse import run_deep
 from ..params import Param
 from ..settings import DISTANCE_METHODS, Settings

@@ -5,15 +5,15 @@ the numpy reference cannot drift apart unnoticed (the parity tests hold them equ
 """
 from __future__ import annotations
 
-import contextlib
 import threading
 import weakref
-from typing import TYPE_CHECKING, Any, Callable, ClassVar, Iterator, Sequence, TypeVar
+from typing import TYPE_CHECKING, Any, Callable, ClassVar, Sequence, TypeVar
 
 import numpy as np
 
 from ..errors import ParameterError
 from ..params import Live, Param, owns_checks
+from .grid_scope import grid_min_as, grid_min_now
 from .record import Recorded
 from .traverse import FACTS, SHALLOW, WIDE, cached, collector_paused, depth, fact, postorder, run_deep
 
@@ -53,28 +53,6 @@ _TOKENS: "weakref.WeakValueDictionary[tuple, _Token]" = weakref.WeakValueDiction
 _TWIN = threading.local()  # the per-call memo of the float64 twin over a DAG
 
 
-_GRID_MIN = threading.local()  # the fewest instances a union keeps as data, in this compile
-
-
-def grid_min_now() -> int | None:
-    """The grid_min in force on this thread (None: the default, sdfgl.compiler.data.grid.GRID_MIN):
-    set by the compiler for the scene it compiles; distance() evaluates under the default."""
-    return getattr(_GRID_MIN, "least", None)
-
-
-@contextlib.contextmanager
-def grid_min_as(least: int | None) -> Iterator[None]:
-    """Compile with unions of ``least`` or more instances as data. The choice belongs to the
-    compile, never to the nodes: a union shared into another scene is not changed by this
-    one's compile, and the float64 twin does not follow it."""
-    old = getattr(_GRID_MIN, "least", None)
-    _GRID_MIN.least = least
-    try:
-        yield
-    finally:
-        _GRID_MIN.least = old
-
-
 def _memo_property(name: str, fget: Callable[["Node"], Any]) -> property:
     """A node property computed once per node, bottom-up (no recursion, a DAG costs once);
     memoised per grid_min (a union kept as data has a grid's cap: a bound, not exact)."""
@@ -82,7 +60,7 @@ def _memo_property(name: str, fget: Callable[["Node"], Any]) -> property:
 
     def get(self: "Node") -> Any:
         d = self.__dict__
-        least = getattr(_GRID_MIN, "least", None)
+        least = grid_min_now()
         slot = base_slot if least is None else f"{base_slot}@{least}"
         if slot in d:
             return d[slot]
@@ -151,14 +129,51 @@ def box_of(node: "Node") -> np.ndarray:
     else:
         b = node._bounds
     # a (2, 3) float64 array made by _bounds (Translate's) is kept as it is; else one array is made
-    out = (b if b.shape == (2, 3) and b.dtype == np.float64 and b.flags.owndata else np.array(b, dtype=np.float64)) \
-        if type(b) is np.ndarray else None
-    if out is None or out.shape != (2, 3):
-        out = np.empty((2, 3))
-        out[0], out[1] = _vec3(b[0]), _vec3(b[1])
+    if type(b) is np.ndarray and b.shape == (2, 3) and b.dtype == np.float64 and b.flags.owndata:
+        out = b
+    else:
+        try:  # (lo, hi) of two 3-vectors: one array in one call
+            out = np.array(b, dtype=np.float64)
+        except (TypeError, ValueError):  # rows of different shapes (a scalar and a vector)
+            out = None
+        if out is None or out.shape != (2, 3):
+            out = np.empty((2, 3))
+            out[0], out[1] = _vec3(b[0]), _vec3(b[1])
     out.flags.writeable = False
     if not live:
         d["_bounds_cache"] = out
+    return out
+
+
+BATCH = 64  # the fewest nodes of one class that boxes_of hands to the class's batch_bounds
+
+
+def boxes_of(nodes: Sequence["Node"]) -> np.ndarray:
+    """``box_of`` of each node as one (n, 2, 3) array (a wide union's children): boxes already
+    cached are read; the others are made by class in batches where the class can
+    (:meth:`Node.batch_bounds`), else one by one. A box made in a batch is cached on its node
+    (as a read-only row of the batch) only where the node is known to hold no live parameter,
+    so a live parameter's box is always its current one."""
+    out = np.empty((len(nodes), 2, 3))
+    todo: dict[type, list[int]] = {}
+    for i, c in enumerate(nodes):
+        hit = c.__dict__.get("_bounds_cache")
+        if hit is not None:
+            out[i] = hit
+        else:
+            todo.setdefault(type(c), []).append(i)
+    for cls, rows in todo.items():
+        group = [nodes[i] for i in rows]
+        got = cls.batch_bounds(group) if len(group) >= BATCH else None
+        if got is None:
+            out[rows] = [box_of(c) for c in group]
+            continue
+        out[rows] = got
+        got.flags.writeable = False  # its rows, kept as the nodes' boxes, are read-only views
+        for j, c in enumerate(group):
+            d = c.__dict__
+            if d.get("_live_cache") == ():
+                d["_bounds_cache"] = got[j]
     return out
 
 
@@ -401,6 +416,13 @@ class Node(Recorded, register=False):
     def _bounds(self) -> tuple[Any, Any]:
         raise NotImplementedError
 
+    @classmethod
+    def batch_bounds(cls, nodes: Sequence["Node"]) -> np.ndarray | None:
+        """The boxes of many nodes of this class at once, an (n, 2, 3) array equal to their
+        ``box_of`` rows, or None where the class cannot (then :func:`boxes_of` takes them one
+        by one). A class that can (a sphere, a move) reads only constant attributes here."""
+        return None
+
     def level_bounds(self, t: float) -> tuple[np.ndarray, np.ndarray]:
         """A box holding every point where this node's field is below ``t`` (>= 0).
 
@@ -434,8 +456,10 @@ class Node(Recorded, register=False):
             if isinstance(v, Live):
                 out += [p for p in v.roots() if p not in out]
         for c in self.children:
-            out += [p for p in c.__dict__["_live_cache"] if p not in out]
-        return tuple(out)  # () for most nodes: no object for the garbage collector to track
+            below = c.__dict__["_live_cache"]
+            if below:
+                out += [p for p in below if p not in out]
+        return tuple(out) if out else ()  # () for most nodes: no object for the garbage collector to track
 
 
 FluentT = TypeVar("FluentT", bound=Callable[..., Any])

@@ -14,7 +14,8 @@ from ..errors import ParameterError
 from ..params import Live
 from ..values import validate as v
 from .layouts import layout
-from .base import BOUND, EXACT, IMPLICIT, Node, box_of, fluent, grid_min_now, level_factor
+from .base import BOUND, EXACT, IMPLICIT, Node, boxes_of, fluent, level_factor
+from .grid_scope import grid_min_now
 from .blend_reach import blend_growth
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -210,7 +211,7 @@ def distinct_nodes(nodes: Sequence[Node]) -> list[Node]:
     kids = [c for c in nodes if not (id(c) in ids or ids.add(id(c)))]
     if len(kids) < 2:
         return kids
-    rows = np.ascontiguousarray(np.array([box_of(c) for c in kids]).reshape(len(kids), 6))
+    rows = np.ascontiguousarray(boxes_of(kids).reshape(len(kids), 6))
     _, inverse, counts = np.unique(rows.view(np.dtype((np.void, 48))).ravel(), return_inverse=True, return_counts=True)
     shared = counts[inverse.ravel()] > 1
     if not shared.any():
@@ -233,7 +234,7 @@ class Union(_Boolean):
     @property
     def grid(self) -> "Grid | None":
         """The grid of this union's instances under the grid_min in force (see
-        base.grid_min_as), or None where it stays code (or no layout is registered)."""
+        grid_scope.grid_min_as), or None where it stays code (or no layout is registered)."""
         least = grid_min_now()
         name = "_grid" if least is None else f"_grid@{least}"
         d = self.__dict__
@@ -323,7 +324,7 @@ class Union(_Boolean):
     @property
     def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
         if self._hard:
-            boxes = np.array([box_of(c) for c in self.children])
+            boxes = boxes_of(self.children)
             return boxes[:, 0].min(axis=0), boxes[:, 1].max(axis=0)
         return self.level_bounds(0.0)
 
@@ -332,7 +333,7 @@ class Union(_Boolean):
             boxes = np.array([c.level_bounds(t) for c in self.children])
             return boxes[:, 0].min(axis=0), boxes[:, 1].max(axis=0)
         kids = self.children
-        boxes = np.array([box_of(c) for c in kids])
+        boxes = boxes_of(kids)
         lo, hi = boxes[:, 0], boxes[:, 1]
         k = float(self.k)
         g = max(level_factor(c) for c in kids)

@@ -54,6 +54,14 @@ class Sphere(Primitive):
     def _bounds(self) -> tuple[np.ndarray, np.ndarray]:
         return self.c - self.r, self.c + self.r
 
+    @classmethod
+    def batch_bounds(cls, nodes: Sequence[Node]) -> np.ndarray | None:
+        if not all(type(n.r) is float and type(n.c) is np.ndarray for n in nodes):
+            return None  # a live radius or centre: one by one
+        c = np.array([n.c for n in nodes])
+        r = np.array([n.r for n in nodes])[:, None]
+        return np.stack([c - r, c + r], axis=1)
+
 
 class Box(Primitive):
     kind = "box"

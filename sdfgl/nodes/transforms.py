@@ -10,7 +10,7 @@ from ..errors import ParameterError
 from ..values import axes
 from ..values import validate as v
 from ..params import Live
-from .base import BOUND, IMPLICIT, Node, Unary, box_of, fluent
+from .base import BOUND, IMPLICIT, Node, Unary, box_of, boxes_of, fluent
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..compiler.emitter import Emitter
@@ -43,6 +43,12 @@ class Translate(Unary):
     @property
     def _bounds(self) -> np.ndarray:
         return box_of(self.child) + self.offset  # (lo, hi) rows
+
+    @classmethod
+    def batch_bounds(cls, nodes: Sequence[Node]) -> np.ndarray | None:
+        if not all(type(n.offset) is np.ndarray for n in nodes):
+            return None  # a live offset: one by one
+        return boxes_of([n.child for n in nodes]) + np.array([n.offset for n in nodes])[:, None, :]
 
     def level_bounds(self, t: float) -> tuple[np.ndarray, np.ndarray]:
         lo, hi = self.child.level_bounds(t)

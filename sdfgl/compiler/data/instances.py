@@ -21,7 +21,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...nodes.base import EXACT, IMPLICIT, Node, Primitive, box_of
+from ...nodes.base import EXACT, IMPLICIT, Node, Primitive, boxes_of
 from ...nodes.primitives import Sphere
 from ...nodes.transforms import Material, Rotate, Scale, Translate
 from ...nodes.traverse import WIDE, collector_paused, postorder
@@ -205,7 +205,7 @@ def _build(children: list[Node], min_children: int | None, single_cell: bool,
     if len(children) < least:
         return None
     classes = (Translate, Rotate, Scale, Material)
-    boxes = np.array([box_of(c) for c in children])  # (n, 2, 3)
+    boxes = boxes_of(children)  # (n, 2, 3)
     finite = np.isfinite(boxes).all(axis=(1, 2))
     types: dict[tuple, InstanceType] = {}
     info: dict[type, ClassInfo] = {}
