@@ -127,7 +127,11 @@ def _fill(node: "Node", name: str, compute: Callable[["Node"], T]) -> T:
             for c in it:
                 if id(c) not in seen and name not in c.__dict__:
                     seen.add(id(c))
-                    stack.append((c, iter(c.children)))
+                    below = c.children
+                    if not below:  # a leaf is computed here, without a stack entry
+                        c.__dict__[name] = compute(c)
+                        continue
+                    stack.append((c, iter(below)))
                     break
             else:
                 stack.pop()
@@ -139,7 +143,10 @@ _MISSING = object()
 
 
 def _depth_of(n: Any) -> int:
-    return 1 + max([c.__dict__["_depth"] for c in n.children], default=0)
+    kids = n.children
+    if len(kids) == 1:  # the most common inner node: a move, a colour, an offset
+        return 1 + kids[0].__dict__["_depth"]
+    return 1 + max([c.__dict__["_depth"] for c in kids], default=0)
 
 
 # Structural facts of a node, each computed from its children's: all of them are filled
