@@ -66,13 +66,17 @@ def _memo_property(name: str, fget: Callable[["Node"], Any]) -> property:
             return d[slot]
         if d.get(busy):  # a super() call while this node is being computed
             return fget(self)
-        if self.live_params():
+        live = d.get("_live_cache")
+        if live is None:
+            live = fact(self, "_live_cache")
+        if live:
             return fget(self)
         if depth(self) <= SHALLOW or all(slot in c.__dict__ for c in self.children):
-            # shallow: compute directly (children memoise as they are asked, only those needed)
+            # shallow: compute directly (children memoise as they are asked, only those needed);
+            # this property is the one self's class resolves (a super() call found busy above)
             d[busy] = True
             try:
-                d[slot] = getattr(self, name)
+                d[slot] = fget(self)
             finally:
                 del d[busy]
             return d[slot]
@@ -515,9 +519,17 @@ def level_factor(node: Node) -> float:
     hit = node.__dict__.get("_level")
     if hit is not None:
         return hit
-    if node.live_params():  # the factor follows the live values: not cached
+    live = node.__dict__.get("_live_cache")
+    if live is None:
+        live = fact(node, "_live_cache")
+    if live:  # the factor follows the live values: not cached
         return _level_from(node, [level_factor(c) for c in node.children])
-    return cached(node, "_level", lambda n: _level_from(n, [c.__dict__["_level"] for c in n.children]))
+    return cached(node, "_level", _level_below)
+
+
+def _level_below(n: Node) -> float:
+    """level_factor of ``n`` from its children's (cached) factors."""
+    return _level_from(n, [c.__dict__["_level"] for c in n.children])
 
 
 def _level_from(node: Node, below: list[float]) -> float:
