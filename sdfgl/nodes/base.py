@@ -153,11 +153,10 @@ BATCH = 64  # the fewest nodes of one class that boxes_of hands to the class's b
 
 
 def boxes_of(nodes: Sequence["Node"]) -> np.ndarray:
-    """``box_of`` of each node as one (n, 2, 3) array (a wide union's children): boxes already
-    cached are read; the others are made by class in batches where the class can
-    (:meth:`Node.batch_bounds`), else one by one. A box made in a batch is cached on its node
-    (as a read-only row of the batch) only where the node is known to hold no live parameter,
-    so a live parameter's box is always its current one."""
+    """``box_of`` of each node as one (n, 2, 3) array (a wide union's children): cached boxes are
+    read, the others made by class in batches where it can (:meth:`Node.batch_bounds`), else one
+    by one. A batch's box is cached (a read-only row) only on a node known to hold no live
+    parameter, so a live parameter's box is always its current one."""
     out = np.empty((len(nodes), 2, 3))
     todo: dict[type, list[int]] = {}
     for i, c in enumerate(nodes):
@@ -423,8 +422,7 @@ class Node(Recorded, register=False):
     @classmethod
     def batch_bounds(cls, nodes: Sequence["Node"]) -> np.ndarray | None:
         """The boxes of many nodes of this class at once, an (n, 2, 3) array equal to their
-        ``box_of`` rows, or None where the class cannot (then :func:`boxes_of` takes them one
-        by one). A class that can (a sphere, a move) reads only constant attributes here."""
+        ``box_of`` rows, or None where the class cannot (:func:`boxes_of` then goes one by one)."""
         return None
 
     def level_bounds(self, t: float) -> tuple[np.ndarray, np.ndarray]:
@@ -561,6 +559,14 @@ class Unary(Node):
         # for the garbage collector): ``children`` is made from ``child`` when read
         self.child = child
         self.params: dict[str, object] = params
+
+    @classmethod
+    def unchecked(cls, child: Node, args: tuple, **params: object) -> "Unary":
+        """This class over ``child`` with checked parameters (a fold): ``args`` (after the child)
+        rebuild it, ``params`` is its parameter dict; the caller sets the class's attributes."""
+        n = cls.__new__(cls, child, *args)
+        n.child, n.params = child, params
+        return n
 
     @property  # type: ignore[override]
     def children(self) -> tuple[Node, ...]:

@@ -305,8 +305,7 @@ def _baked(node: Node) -> bool:
 
 def _translate(child: Node, offset: np.ndarray) -> "Translate":
     """A Translate by a checked, finite offset (no validation: folds of checked values)."""
-    n = Translate.__new__(Translate, child, offset)  # rebuilt from its child and offset
-    Unary.__init__(n, child, offset=offset)
+    n = Translate.unchecked(child, (offset,), offset=offset)
     n.offset = offset
     return n
 
@@ -315,15 +314,13 @@ def _rotate(child: Node, m: np.ndarray) -> "Rotate":
     """A Rotate by a product of checked rotations (no validation; rounded as Rotate() rounds,
     so the recorded call rebuilds the same node)."""
     m = np.where(np.abs(m) < 1e-15, 0.0, m)
-    n = Rotate.__new__(Rotate, child, m)
-    Unary.__init__(n, child, matrix=m)
+    n = Rotate.unchecked(child, (m,), matrix=m)
     n.angle, n._m = None, m
     return n
 
 
 def _scale(child: Node, s: float) -> "Scale":
-    n = Scale.__new__(Scale, child, s)
-    Unary.__init__(n, child, factor=s)
+    n = Scale.unchecked(child, (s,), factor=s)
     n.s = s
     return n
 
