@@ -277,3 +277,18 @@ def test_a_wide_union_boxes_its_children_in_batches_equal_to_one_by_one():
     r.value, move.value = 0.5, (0.0, -30.0, 0.0)  # live values: the batches never keep a stale box
     lo, hi = u.bounds
     assert hi[0] == 40.5 and lo[1] == -30.2
+
+
+def test_a_union_grown_by_a_loop_holds_what_the_constructor_sets():
+    # _chained copies the attributes __init__ sets (booleans._STATE), not the whole __dict__:
+    # an attribute added to __init__ and not to _STATE would be lost on every s = s | x step
+    from sdfgl.nodes.base import CACHES
+    parts = [sg.sphere(0.1).translate((i, 0, 0)) for i in range(4)]
+    for k, blend in ((0.0, "quadratic"), (0.2, "circular")):
+        grown = sg.union(parts[0], parts[1], k=k, blend=blend)
+        for p in parts[2:]:
+            grown = sg.union(grown, p, k=k, blend=blend)
+        built = sg.nodes.booleans.Union(*parts, k=k, blend=blend)
+        state = lambda n: {a: v for a, v in vars(n).items() if not a.startswith(CACHES + ("_ctor",))}  # noqa: E731
+        assert state(grown) == state(built)
+        assert grown.children == built.children and grown.key == built.key

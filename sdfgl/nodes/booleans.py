@@ -336,8 +336,7 @@ class Union(_Boolean):
         boxes = boxes_of(kids)
         lo, hi = boxes[:, 0], boxes[:, 1]
         k = float(self.k)
-        level_factor(self)  # fills the children's factors in one walk (a wide union: one lookup each below)
-        g = max(level_factor(c) for c in kids)
+        g = level_factor(self)  # a union does not stretch: its children's largest, found in one walk
         grow = blend_growth(lo, hi, t, k * BLEND_REACH[self.blend], k * BLEND_WINDOW[self.blend], g)[:, None]
         return (lo - grow).min(axis=0), (hi + grow).max(axis=0)
 
