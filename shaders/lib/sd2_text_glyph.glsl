@@ -1,6 +1,7 @@
 // One placed glyph of a text (sdfgl/nodes/text.py; the tables are described in
 // sd2_text.glsl): lowers d to the distance to its outline pieces where that is nearer
-// (skipped when its box is no nearer than d) and, where p lies in its box, adds the
+// (skipped when its box is no nearer than d; a piece is solved only where the box of its
+// control points, which holds the piece, is nearer than d) and, where p lies in its box, adds the
 // glyph's crossings of the ray from p towards +x (half-open in y) to wind.
 // requires: data_table, sd_bezier, sd2_segment
 void sd2TextGlyph(vec2 p, int g, int glyphs, inout float d, inout int wind) {
@@ -20,7 +21,9 @@ void sd2TextGlyph(vec2 p, int g, int glyphs, inout float d, inout int wind) {
         vec2 b = s0.zw;
         vec2 c = s1.xy;
         bool quad = s1.z > 0.5;
-        d = min(d, quad ? sdBezier(vec3(q, 0.0), vec3(a, 0.0), vec3(b, 0.0), vec3(c, 0.0)) : sd2Segment(q, a, c));
+        vec2 pk = max(max(min(min(a, b), c) - q, q - max(max(a, b), c)), 0.0);
+        if (dot(pk, pk) < d * d)
+            d = min(d, quad ? sdBezier(vec3(q, 0.0), vec3(a, 0.0), vec3(b, 0.0), vec3(c, 0.0)) : sd2Segment(q, a, c));
         if (inside && ((a.y <= q.y) != (c.y <= q.y))) {
             float x;
             if (quad) {
