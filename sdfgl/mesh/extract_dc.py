@@ -17,6 +17,7 @@ import numpy as np
 from .cells import COMPONENT, edge_index
 from .creases import planes
 from .crossings import crossings
+from .eigen3 import symmetric_eigen
 from .lattice import BLOCK, Lattice
 from .sample import GPUField
 
@@ -76,9 +77,9 @@ def _quad_cells(low: np.ndarray, axis: np.ndarray) -> tuple[np.ndarray, np.ndarr
 def _solve(ata: np.ndarray, atb: np.ndarray, mass: np.ndarray) -> np.ndarray:
     """Minimiser of x^T A x - 2 b^T x nearest the mass point, small singular values cut.
     A is symmetric positive semi-definite, so its singular values are the magnitudes of its
-    eigenvalues and its singular vectors its eigenvectors: the symmetric eigensolver gives the
-    same pseudo-inverse as an SVD at about a third of the time."""
-    s, v = np.linalg.eigh(ata)                     # ascending eigenvalues, eigenvectors in columns
+    eigenvalues and its singular vectors its eigenvectors: a symmetric eigensolver gives the
+    same pseudo-inverse as an SVD (sdfgl.mesh.eigen3: all cells' matrices at once)."""
+    s, v = symmetric_eigen(ata)                    # eigenvalues, eigenvectors in columns
     s = np.abs(s)
     inv = np.where(s > SVD_CUT * s.max(axis=1, keepdims=True), 1.0 / np.where(s > 0, s, 1.0), 0.0)
     rhs = atb - np.einsum("nij,nj->ni", ata, mass)
