@@ -118,6 +118,32 @@ class Emitter:
             self.functions[key] = (name, lines)
         return self.functions[key][0]
 
+    def guarded(self, node: Node, p: str, idle_above: str | None) -> str:
+        """``node``'s result at ``p``, its code written inside a branch taken only where the
+        lower bound of its field from its box is not above ``idle_above`` (GLSL: a hard union's
+        result so far, or its negation in a difference; None: no test). Where the branch is
+        not taken the result is that bound, which the caller's min or max then discards (it
+        keeps its other operand, by a strict comparison in colour mode as well). Written so
+        only where :func:`sdfgl.compiler.guards.worth_guarding` says the test pays (and not
+        in the select view, which must see the node everywhere)."""
+        from .guards import guard_box, worth_guarding
+        if idle_above is None or self.highlight is not None or not worth_guarding(node):
+            return node.emit(self, p)
+        centre, half, inv_g = guard_box(node)
+        self.require("op_box_gap")
+        gap = self.assign("float", f"opBoxGap({self.point(self.shift(p, -centre))}, {self.vec(half)}) * "
+                                   f"{self.num(inv_g)}")
+        out = self.assign("float", gap) if self.mode == "dist" else self.assign("vec4", f"vec4(0.0, 0.0, 0.0, {gap})")
+        self.lines.append((f"    if (!({gap} > {idle_above})) {{  // near enough to matter", self.owner))
+        start = len(self.lines)
+        known = (dict(self._materialized), dict(self.results))  # what the branch makes stays in it
+        result = node.emit(self, p)
+        self.lines.append((f"    {out} = {result};", self.owner))
+        self.lines[start:] = [("    " + code, owner) for code, owner in self.lines[start:]]
+        self.lines.append(("    }", self.owner))
+        self._materialized, self.results = known
+        return out
+
     def table(self, values: np.ndarray) -> int:
         """The index of the first texel of ``values`` (rows of up to 4 floats, one texel
         each) in the shader's one data texture; GLSL reads texel i with dataFetch(i)."""

@@ -197,8 +197,8 @@ class Node(Recorded, register=False):
         >>> s.exactness, float(s.distance((0, 3, 0)))
         ('bound', 1.25)
     """
-
     kind: ClassVar[str] = "node"
+    costly: ClassVar[bool] = False  # its GLSL costs far more than a box test (see compiler.guards)
 
     def __init_subclass__(cls, **kwargs: Any) -> None:
         super().__init_subclass__(**kwargs)

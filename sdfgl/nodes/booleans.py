@@ -181,8 +181,13 @@ class _Boolean(Node):
         children = self.distinct_children()
         acc = children[0].emit(em, p)
         for c in children[1:]:
-            acc = self._combine(em, acc, c.emit(em, p))
+            acc = self._combine(em, acc, em.guarded(c, p, self._idle_above(em, acc)))
         return acc
+
+    def _idle_above(self, em: "Emitter", acc: str) -> str | None:
+        """GLSL of the value above which a child's field cannot change the result combined so
+        far (``acc``), for :meth:`sdfgl.compiler.emitter.Emitter.guarded`; None: every value can."""
+        return None
 
     def _combine(self, em: "Emitter", a: str, b: str) -> str:
         raise NotImplementedError
@@ -305,6 +310,11 @@ class Union(_Boolean):
         inside = {id(g) for g in grid.children}
         return max([1.0] + [c.lipschitz for c in self.children if id(c) not in inside])
 
+    def _idle_above(self, em: "Emitter", acc: str) -> str | None:
+        if not self._hard:
+            return None
+        return acc if em.mode == "dist" else f"{acc}.w"  # min(a, b) is a where b > a
+
     def _combine(self, em: "Emitter", a: str, b: str) -> str:
         if em.mode == "dist":
             if self._hard:
@@ -371,6 +381,11 @@ class Difference(_Boolean):
     """The first operand minus all the others."""
 
     kind = "difference"
+
+    def _idle_above(self, em: "Emitter", acc: str) -> str | None:
+        if not self._hard:
+            return None
+        return f"-{acc}" if em.mode == "dist" else f"-{acc}.w"  # max(a, -b) is a where b > -a
 
     def _combine(self, em: "Emitter", a: str, b: str) -> str:
         if em.mode == "dist":

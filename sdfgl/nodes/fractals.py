@@ -24,6 +24,7 @@ class Sierpinski(Primitive):
     """Sierpinski tetrahedron of ``levels`` recursions, vertices at (±size, ±size, ±size)."""
 
     kind = "sierpinski"
+    costly = True
     lib = ("sd_sierpinski",)
     exact = False
 
@@ -65,6 +66,7 @@ class Tree(Primitive):
     of four branches each, leaning out by ``angle`` degrees and shrinking by ``shrink``."""
 
     kind = "tree"
+    costly = True
     lib = ("sd_tree",)
     exact = False
 

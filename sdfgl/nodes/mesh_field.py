@@ -97,6 +97,7 @@ class MeshField(Node):
     (:mod:`sdfgl.scene_io.mesh_nodes`)."""
 
     kind = "mesh"
+    costly = True
 
     def __init__(self, vertices: Any, faces: Any, name: str = "mesh", source: "MeshFile | None" = None) -> None:
         verts, tris = checked_mesh(vertices, faces, name)

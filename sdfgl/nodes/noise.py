@@ -31,6 +31,7 @@ class Displace(Unary):
     """child + amplitude * fbm(frequency * p), divided by its gradient bound."""
 
     kind = "displace"
+    costly = True
 
     def __init__(self, child: Node, amplitude: float, frequency: float = 1.0, octaves: int = 4,
                  normal_octaves: int | None = None) -> None:
@@ -88,6 +89,7 @@ class NoiseField(Primitive):
     its zero level set (solid where the sum is negative)."""
 
     kind = "noise"
+    costly = True
     lib = ("noise3",)
     exact = False
 

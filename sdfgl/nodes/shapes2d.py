@@ -41,6 +41,11 @@ class Shape2D(Recorded, register=False):
         self.children: tuple[Shape2D, ...] = tuple(children)
         self.params = params
 
+    @property
+    def costly(self) -> bool:
+        """Whether its GLSL costs far more than a box test (see sdfgl.compiler.guards): where a part's does."""
+        return any(c.costly for c in self.children)
+
     def label(self) -> str:
         def fmt(x: object) -> str:
             if isinstance(x, str):
@@ -160,6 +165,7 @@ class Rectangle(Shape2D):
 
 
 POLYGON_BLOCK = 1 << 21  # points x edges per block of the polygon's twin
+COSTLY_VERTICES = 16  # a polygon of this many vertices costs far more than a box test
 
 
 class Polygon(Shape2D):
@@ -193,6 +199,11 @@ class Polygon(Shape2D):
         em.helper(f"sdPolygon{n}", shaderlib.read("templates/sd_polygon").replace("POLYN", str(n)))
         verts = ", ".join(em.vec(p) for p in self.v)
         return f"sdPolygon{n}({q}, vec2[{n}]({verts}))"
+
+    @property
+    def costly(self) -> bool:  # type: ignore[override]
+        """A polygon of many vertices: its code loops over them (see sdfgl.compiler.guards)."""
+        return len(self.v) >= COSTLY_VERTICES
 
     @property
     def exactness(self) -> str:  # type: ignore[override]
@@ -250,6 +261,11 @@ class Extrude(Node):
         super().__init__((), shape=shape.key(), height=h)
         self.shape, self.h = shape, float(h) / 2
 
+    @property
+    def costly(self) -> bool:  # type: ignore[override]
+        """Where its 2D shape's code is costly (see sdfgl.compiler.guards)."""
+        return self.shape.costly
+
     def label(self) -> str:
         return f"extrude({self.shape.label()}, height={2 * self.h:g})"
 
@@ -289,6 +305,11 @@ class Revolve(Node):
         o = v.scalar(self.kind, "offset", offset, nonnegative=True)
         super().__init__((), shape=shape.key(), offset=o)
         self.shape, self.o = shape, float(o)
+
+    @property
+    def costly(self) -> bool:  # type: ignore[override]
+        """Where its 2D shape's code is costly (see sdfgl.compiler.guards)."""
+        return self.shape.costly
 
     def label(self) -> str:
         return f"revolve({self.shape.label()}, offset={self.o:g})"

@@ -70,6 +70,7 @@ class Text(Shape2D):
     """A string set in a font: the exact signed distance to its glyph outlines (2D)."""
 
     kind = "text"
+    costly = True
 
     def __init__(self, string: str, font: str | None = None, size: float = 1.0, align: str = "left") -> None:
         if not isinstance(string, str) or not string:

@@ -60,6 +60,7 @@ class UserGLSL(Primitive):
     the class itself)."""
 
     kind = "glsl"
+    costly = True
     unsaved_reason = ("its float64 twin is a Python function, which a scene document cannot hold; pickle the scene, "
                       "keep it in a Python scene file, or save the node without its twin")
 

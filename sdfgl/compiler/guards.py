@@ -1,0 +1,50 @@
+"""Costly children of hard unions and differences skipped where their box proves them idle.
+
+At a point outside a node's bounds by d, its field is at least d / g, g being its level
+factor (sdfgl.nodes.base.level_factor). So in a hard union min(a, b), wherever d / g > a,
+the result is a whatever b is; in a hard difference max(a, -b), wherever d / g > -a, it is
+a too. The generated code tests that bound first (a box distance) and evaluates b only
+where it can matter (:meth:`sdfgl.compiler.emitter.Emitter.guarded`): the field is the same
+number either way, so its exactness, the twin's parity and every consumer of map() stay as
+they are, and only the time changes. The test costs a few operations and a branch, which
+llvmpipe skips for a whole block of pixels when they all lie far from the child. So it is
+written only for a child whose code costs far more: a subtree of ``GUARD_NODES`` nodes or
+more, or one holding a node whose own code is costly (``Node.costly``: a text, a polygon
+of many vertices, a mesh, a fractal, noise, user GLSL). An engraved plate's text, for one,
+is then evaluated only near its letters, not at every step of every ray.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from ..nodes.base import IMPLICIT, Node, level_factor
+
+GUARD_NODES = 8   # a subtree of this many nodes is worth its box test
+PAD = 1e-5        # the box grows by this share of its size and distance from the origin (float32 rounding)
+
+
+def worth_guarding(node: Node) -> bool:
+    """Whether ``node``'s code costs far more than a box test and its box bounds its field:
+    a distance bound (not an implicit field) with constant parameters and finite bounds."""
+    if node.exactness == IMPLICIT or node.live_params():
+        return False
+    lo, hi = node.bounds
+    if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi))):
+        return False
+    count, stack = 0, [node]
+    while stack:
+        n = stack.pop()
+        count += 1
+        if n.costly or count >= GUARD_NODES:
+            return True
+        stack.extend(n.children)
+    return False
+
+
+def guard_box(node: Node) -> tuple[np.ndarray, np.ndarray, float]:
+    """(centre, half extents, 1 / level factor) of the box test for ``node``: its bounds grown
+    for float32 rounding, so the test's distance is never above the true one."""
+    lo, hi = (np.asarray(b, dtype=np.float64) for b in node.bounds)
+    centre, half = (lo + hi) / 2, (hi - lo) / 2
+    half = half + PAD * (float(np.max(half)) + float(np.max(np.abs(centre)))) + 1e-30
+    return centre, half, 1.0 / float(level_factor(node))

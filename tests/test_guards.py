@@ -1,0 +1,83 @@
+"""Costly children of hard unions and differences are evaluated only where their box says
+they can change the result (sdfgl.compiler.guards): the field, colours and images are those
+of the code without the test."""
+import numpy as np
+import pytest
+
+import sdfgl as sg
+import sdfgl.compiler.guards as guards
+from sdfgl.compiler.generate import generate
+from sdfgl.evaluate import evaluate_channel
+from sdfgl.nodes import shapes2d
+from sdfgl.settings import Settings
+
+pytest.importorskip("fontTools")
+
+
+def label() -> sg.Node:
+    return sg.extrude(sg.text("sdfgl", size=0.3, align="center"), 0.05)
+
+
+def engraved() -> sg.Node:
+    return sg.rounded_box((1.2, 0.5, 0.1), 0.02) - label().translate((0, -0.1, 0.05))
+
+
+def beside() -> sg.Node:
+    """A union whose costly child (red text, a 40-gon) is the nearer one in places."""
+    a = np.linspace(0, 2 * np.pi, 40, endpoint=False)
+    gon = sg.extrude(sg.polygon(np.stack([0.3 * np.cos(a), 0.3 * np.sin(a)], 1)), 0.2)
+    return (sg.sphere(0.4).color("#3366cc") | label().translate((0.5, 0.2, 0)).color("red")
+            | gon.translate((-0.6, 0, 0.3)).color("green"))
+
+
+def map_code(scene: sg.Node) -> str:
+    text = generate(scene, Settings(shadows=False, ao=False), np.zeros(3)).text
+    return text[text.index("float map(vec3 p)"):text.index("vec3 mapColor")]
+
+
+def points(scene: sg.Node, n: int = 20000) -> np.ndarray:
+    """Points all over the scene's box and beyond it, and points close to its surface."""
+    lo, hi = scene.bounds
+    rng = np.random.default_rng(1)
+    wide = rng.uniform(lo - 0.3, hi + 0.3, (n, 3))
+    d = scene.distance(wide)
+    near = wide[np.abs(d) < 0.05]
+    return np.concatenate([wide, near])
+
+
+def unguarded(make, monkeypatch):  # noqa: ANN001, ANN201
+    """The same scene, built anew and compiled with the box test switched off."""
+    monkeypatch.setattr(guards, "GUARD_NODES", 10 ** 9)
+    monkeypatch.setattr(type(sg.text("a")), "costly", False)
+    monkeypatch.setattr(shapes2d, "COSTLY_VERTICES", 10 ** 9)
+    return make()
+
+
+def test_only_costly_children_get_a_box_test():
+    assert map_code(engraved()).count("opBoxGap(") == 1
+    assert map_code(beside()).count("opBoxGap(") == 2  # the text and the 40-gon, not the sphere
+    cheap = sg.sphere(1) | sg.box(0.5).translate((1, 0, 0)) | sg.torus(0.5, 0.1)
+    assert "opBoxGap(" not in map_code(cheap)
+    assert "opBoxGap(" not in map_code(sg.sphere(1) & label())  # an intersection needs every value
+
+
+@pytest.mark.parametrize("make", [engraved, beside])
+def test_the_field_and_colours_are_those_without_the_test(make, monkeypatch):
+    scene = make()
+    pts = points(scene)
+    got = sg.evaluate(scene, pts)
+    got_color = evaluate_channel(scene, pts)
+    twin = scene.distance(pts)
+    assert np.abs(got - twin).max() < 2e-5
+    plain = unguarded(make, monkeypatch)
+    assert "opBoxGap(" not in map_code(plain)
+    assert np.abs(got - sg.evaluate(plain, pts)).max() < 1e-6
+    ref_color = evaluate_channel(plain, pts)
+    assert np.array_equal(got_color[:, :3], ref_color[:, :3])
+
+
+def test_images_are_those_without_the_test(monkeypatch):
+    cam = sg.OrbitCamera(distance=2.2, yaw=20, pitch=25)
+    a = sg.render(engraved(), cam, (160, 120)).color
+    b = sg.render(unguarded(engraved, monkeypatch), cam, (160, 120)).color
+    assert np.abs(a.astype(int) - b.astype(int)).max() <= 1
