@@ -208,6 +208,16 @@ def text_page(glyphs: int) -> tuple[Node, Camera]:
     return scene, Camera.look_at(tuple(centre + (0.0, 0.0, 1.2 * ext)), tuple(centre), fov=45)
 
 
+def engraved_plate(engraved: bool) -> tuple[Node, Camera]:
+    """A rounded plate, with "sdfgl" engraved in it or not (the modelling guide's example)."""
+    from .nodes.text import text
+    plate = primitives.rounded_box((1.2, 0.5, 0.1), 0.02)
+    if engraved:
+        plate = booleans.difference(plate, shapes2d.extrude(text("sdfgl", size=0.3, align="center"), 0.05)
+                                    .translate((0, -0.1, 0.05)))
+    return plate, OrbitCamera(distance=2.2, yaw=20, pitch=25)
+
+
 def run_phases(quick: bool, size: tuple[int, int] = (320, 240)) -> str:
     """Where the time of a 10^5-deep chain goes, phase by phase, each in wall and process
     CPU seconds (CPU is what a loaded machine disturbs least): the Python loop that builds
@@ -310,6 +320,10 @@ def run_big(quick: bool, size: tuple[int, int] = (320, 240)) -> str:
     if importlib.util.find_spec("fontTools") is not None:  # the text extra
         measure([(f"extruded text of {n} glyphs, fitted to the view", n, lambda n=n: text_page(n))
                  for n in ((1, 200) if quick else (1, 1000))])
+        look = {"shadows": "soft", "ao": True}  # the default look: every shadow and AO sample meets the text too
+        measure([("a plate, soft shadows and AO", 1, lambda: engraved_plate(False)),
+                 ("the plate with 'sdfgl' engraved, soft shadows and AO", 2, lambda: engraved_plate(True))],
+                extra=(look, look))
     return (f"Size {size[0]}x{size[1]}, shadows and AO off, frames interleaved within each group; 'build' is the Python "
             "that makes the scene, 'link' generating the source plus the driver's compile and link, 'first "
             "frame' adds llvmpipe's code generation; 'ratio' is to the group's first row; 'how' is the "

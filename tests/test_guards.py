@@ -22,6 +22,15 @@ def engraved() -> sg.Node:
     return sg.rounded_box((1.2, 0.5, 0.1), 0.02) - label().translate((0, -0.1, 0.05))
 
 
+def long_engraved() -> sg.Node:
+    """A text long enough for the glyph grid (sdfgl.compiler.data.textgrid), engraved."""
+    words = sg.text("abcdefghij klmnopqrst\nuvwxyz ABCDEFGHIJ\nKLMNOPQRSTUV 0123456789", size=0.08)
+    lo, hi = words.bounds2
+    plate = sg.box((float(hi[0] - lo[0]) + 0.2, float(hi[1] - lo[1]) + 0.2, 0.1)).translate(
+        (float(lo[0] + hi[0]) / 2, float(lo[1] + hi[1]) / 2, 0))
+    return plate - sg.extrude(words, 0.04).translate((0, 0, 0.05))
+
+
 def beside() -> sg.Node:
     """A union whose costly child (red text, a 40-gon) is the nearer one in places."""
     a = np.linspace(0, 2 * np.pi, 40, endpoint=False)
@@ -55,13 +64,14 @@ def unguarded(make, monkeypatch):  # noqa: ANN001, ANN201
 
 def test_only_costly_children_get_a_box_test():
     assert map_code(engraved()).count("opBoxGap(") == 1
+    assert "sd2TextGrid(" in map_code(long_engraved()) and map_code(long_engraved()).count("opBoxGap(") == 1
     assert map_code(beside()).count("opBoxGap(") == 2  # the text and the 40-gon, not the sphere
     cheap = sg.sphere(1) | sg.box(0.5).translate((1, 0, 0)) | sg.torus(0.5, 0.1)
     assert "opBoxGap(" not in map_code(cheap)
     assert "opBoxGap(" not in map_code(sg.sphere(1) & label())  # an intersection needs every value
 
 
-@pytest.mark.parametrize("make", [engraved, beside])
+@pytest.mark.parametrize("make", [engraved, long_engraved, beside])
 def test_the_field_and_colours_are_those_without_the_test(make, monkeypatch):
     scene = make()
     pts = points(scene)
@@ -81,3 +91,22 @@ def test_images_are_those_without_the_test(monkeypatch):
     a = sg.render(engraved(), cam, (160, 120)).color
     b = sg.render(unguarded(engraved, monkeypatch), cam, (160, 120)).color
     assert np.abs(a.astype(int) - b.astype(int)).max() <= 1
+
+
+@pytest.mark.parametrize("kind", ["text", "polygon"])
+def test_a_capped_2d_field_is_at_least_the_distance_to_its_bounds(kind):
+    """The box test's premise for the 2D shapes whose grid caps their field (a long text, a
+    polygon of many vertices): outside their bounds the field is at least the distance to them."""
+    if kind == "text":
+        shape = sg.text("abcdefghij klmnopqrst\nuvwxyz ABCDEFGHIJ\nKLMNOPQRSTUV 0123456789", size=0.08)
+        assert shape.grid is not None
+    else:
+        a = np.linspace(0, 2 * np.pi, 2000, endpoint=False)
+        r = 1 + 0.3 * np.cos(12 * a)
+        shape = sg.polygon(np.stack([r * np.cos(a), r * np.sin(a)], 1))
+        assert shape.grid is not None
+    lo, hi = shape.bounds2
+    pts = np.random.default_rng(2).uniform(lo - 0.3 * (hi - lo), hi + 0.3 * (hi - lo), (50000, 2))
+    outside = np.linalg.norm(np.maximum(np.maximum(lo - pts, pts - hi), 0.0), axis=1)
+    d = shape.distance2(pts)
+    assert np.all(d[outside > 0] >= outside[outside > 0] - 1e-12)

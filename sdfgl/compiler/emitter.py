@@ -76,6 +76,9 @@ class Emitter:
         self._defining: set = set(parent._defining) if parent else set()
         self.results: dict = {}  # (node id, point, colour) -> (node, result variable), in this function
         self.highlight: Node | None = parent.highlight if parent else None  # the "select" debug view's subtree
+        # id of a node -> GLSL of the value above which its caller needs no distance (Emitter.guarded):
+        # this function's own, so a shared subtree's function never reads another's variables
+        self.distance_cap: dict[int, str] = {}
 
     # -- bookkeeping -------------------------------------------------------------------
     def enter(self, node: Node) -> None:
@@ -126,7 +129,7 @@ class Emitter:
         keeps its other operand, by a strict comparison in colour mode as well). Written so
         only where :func:`sdfgl.compiler.guards.worth_guarding` says the test pays (and not
         in the select view, which must see the node everywhere)."""
-        from .guards import guard_box, worth_guarding
+        from .guards import cap_target, guard_box, worth_guarding
         if idle_above is None or self.highlight is not None or not worth_guarding(node):
             return node.emit(self, p)
         centre, half, inv_g = guard_box(node)
@@ -137,7 +140,12 @@ class Emitter:
         self.lines.append((f"    if (!({gap} > {idle_above})) {{  // near enough to matter", self.owner))
         start = len(self.lines)
         known = (dict(self._materialized), dict(self.results))  # what the branch makes stays in it
+        target = cap_target(node)
+        if target is not None:  # it may stop searching just above that value too (above: no ties in colour mode)
+            self.distance_cap[id(target)] = f"(max({idle_above}, 0.0) * 1.001 + 1e-20)"
         result = node.emit(self, p)
+        if target is not None:
+            del self.distance_cap[id(target)]
         self.lines.append((f"    {out} = {result};", self.owner))
         self.lines[start:] = [("    " + code, owner) for code, owner in self.lines[start:]]
         self.lines.append(("    }", self.owner))

@@ -12,6 +12,16 @@ written only for a child whose code costs far more: a subtree of ``GUARD_NODES``
 more, or one holding a node whose own code is costly (``Node.costly``: a text, a polygon
 of many vertices, a mesh, a fractal, noise, user GLSL). An engraved plate's text, for one,
 is then evaluated only near its letters, not at every step of every ray.
+
+Inside the branch the value above which the result ignores the child still holds, so a
+node that can stop its search there does (:func:`cap_target`): a text's search for its
+nearest outline curve starts just above max(that value, 0) instead of infinity (a solid
+from a 2D shape by extrusion or revolution keeps both the shape's exact values below a
+positive cap and values at or above it; moves, turns and materials keep the values
+themselves; "just above", so that a colour pass, which keeps the first of two equal
+distances, never picks the child for its capped value). The premise needs honest bounds:
+a 2D shape whose grid caps its field reports its grid's box (sdfgl.nodes.text,
+sdfgl.nodes.shapes2d), since between the two boxes the cap lies below the distance.
 """
 from __future__ import annotations
 
@@ -48,3 +58,18 @@ def guard_box(node: Node) -> tuple[np.ndarray, np.ndarray, float]:
     centre, half = (lo + hi) / 2, (hi - lo) / 2
     half = half + PAD * (float(np.max(half)) + float(np.max(np.abs(centre)))) + 1e-30
     return centre, half, 1.0 / float(level_factor(node))
+
+
+def cap_target(node: Node) -> object | None:
+    """The node or 2D shape under ``node`` that may stop its distance search at the value its
+    caller ignores (the text of an extruded or revolved label, moved, turned or coloured as
+    a whole: ``cap_target()`` of an extrusion or revolution), or None."""
+    n = node
+    while True:
+        target = getattr(n, "cap_target", None)
+        if target is not None:
+            return target()
+        kept = n.distance_keeping()
+        if kept is None:
+            return None
+        n = kept[0]

@@ -246,7 +246,14 @@ class Polygon(Shape2D):
 
     @property
     def bounds2(self) -> tuple[np.ndarray, np.ndarray]:
-        return self.v.min(axis=0), self.v.max(axis=0)
+        """The vertices' box, or a large polygon's edge-grid box around it (its capped field can
+        be below the distance to the vertices' box between the two)."""
+        lo, hi = self.v.min(axis=0), self.v.max(axis=0)
+        grid = self.grid
+        if grid is None:
+            return lo, hi
+        glo, ghi = grid.box()
+        return np.minimum(lo, glo), np.maximum(hi, ghi)
 
 
 class Extrude(Node):
@@ -265,6 +272,11 @@ class Extrude(Node):
     def costly(self) -> bool:  # type: ignore[override]
         """Where its 2D shape's code is costly (see sdfgl.compiler.guards)."""
         return self.shape.costly
+
+    def cap_target(self) -> Shape2D:
+        """The shape that may stop its search at a positive value the caller ignores (its
+        values at or above it keep this node's there; see sdfgl.compiler.guards)."""
+        return self.shape
 
     def label(self) -> str:
         return f"extrude({self.shape.label()}, height={2 * self.h:g})"
@@ -310,6 +322,11 @@ class Revolve(Node):
     def costly(self) -> bool:  # type: ignore[override]
         """Where its 2D shape's code is costly (see sdfgl.compiler.guards)."""
         return self.shape.costly
+
+    def cap_target(self) -> Shape2D:
+        """The shape that may stop its search at a positive value the caller ignores (its
+        values at or above it keep this node's there; see sdfgl.compiler.guards)."""
+        return self.shape
 
     def label(self) -> str:
         return f"revolve({self.shape.label()}, offset={self.o:g})"

@@ -125,9 +125,11 @@ class Text(Shape2D):
             table[k, 1] = (first + 2 * start, count, x, y)
         glyphs = em.table(table.reshape(-1, 4))
         grid = self.grid
+        cap = em.distance_cap.get(id(self), "3.0e38")  # what the caller needs of it at most (compiler.guards)
         if grid is not None:  # a long text: the glyphs near each cell of a 2D grid
             em.require("sd2_text_grid")
-            return f"sd2TextGrid({q}, {grid.defines(em, em.table(grid.cells), em.table(grid.entries))}, {glyphs})"
+            return (f"sd2TextGrid({q}, {grid.defines(em, em.table(grid.cells), em.table(grid.entries))}, {glyphs}, "
+                    f"{cap})")
         em.require("sd2_text")
         n = len(self.placed)
         groups = np.zeros(((n + GROUP - 1) // GROUP, 2, 4))
@@ -137,7 +139,7 @@ class Text(Shape2D):
             groups[j, 0] = (*box[:, :2].min(axis=0), *box[:, 2:].max(axis=0))
             point = self.pieces[self.spans[i][0], 0] + (x, y)  # on an outline: bounds the distance
             groups[j, 1] = (g0, min(GROUP, n - g0), *point)
-        return f"sd2Text({q}, {em.table(groups.reshape(-1, 4))}, {len(groups)}, {glyphs})"
+        return f"sd2Text({q}, {em.table(groups.reshape(-1, 4))}, {len(groups)}, {glyphs}, {cap})"
 
     @property
     def exactness(self) -> str:  # type: ignore[override]
@@ -201,7 +203,14 @@ class Text(Shape2D):
 
     @property
     def bounds2(self) -> tuple[np.ndarray, np.ndarray]:
-        return self.boxes[:, :2].min(axis=0), self.boxes[:, 2:].max(axis=0)
+        """The glyphs' box, or a long text's grid box around it (its capped field can be below
+        the distance to the glyphs' box between the two)."""
+        lo, hi = self.boxes[:, :2].min(axis=0), self.boxes[:, 2:].max(axis=0)
+        grid = self.grid
+        if grid is None:
+            return lo, hi
+        glo, ghi = grid.box()
+        return np.minimum(lo, glo), np.maximum(hi, ghi)
 
 
 def text(string: str, font: str | None = None, size: float = 1.0, align: str = "left") -> Text:

@@ -36,6 +36,11 @@ class TextGrid:
         self.entries = np.zeros((len(glyph_of), 4))
         self.entries[:, 0] = glyph_of
 
+    def box(self) -> tuple[np.ndarray, np.ndarray]:
+        """The grid's box (lo, hi): outside it the capped field is at least the distance to it
+        (inside, the cap may lie below the distance to the parts' own box)."""
+        return self.lo, self.lo + self.dims * self.cell
+
     def cap(self, q: np.ndarray) -> np.ndarray:
         """Every unlisted glyph is at least this far from the (..., 2) points."""
         return cell_cap(q, self.lo, self.cell, self.dims, self.margin)
