@@ -9,9 +9,10 @@ number either way, so its exactness, the twin's parity and every consumer of map
 they are, and only the time changes. The test costs a few operations and a branch, which
 llvmpipe skips for a whole block of pixels when they all lie far from the child. So it is
 written only for a child whose code costs far more: a subtree of ``GUARD_NODES`` nodes or
-more, or one holding a node whose own code is costly (``Node.costly``: a text, a polygon
-of many vertices, a mesh, a fractal, noise, user GLSL). An engraved plate's text, for one,
-is then evaluated only near its letters, not at every step of every ray.
+more (not counting moves, turns and materials), or one holding a node whose own code is
+costly (``Node.costly``: a text, a polygon of many vertices, a mesh, a fractal, noise, user
+GLSL). An engraved plate's text, for one, is then evaluated only near its letters, not at
+every step of every ray.
 
 Inside the branch the value above which the result ignores the child still holds, so a
 node that can stop its search there does (:func:`cap_target`): a text's search for its
@@ -29,22 +30,26 @@ import numpy as np
 
 from ..nodes.base import IMPLICIT, Node, level_factor
 
-GUARD_NODES = 8   # a subtree of this many nodes is worth its box test
+GUARD_NODES = 8   # a subtree of this many nodes (besides moves, turns, materials) is worth its box test
+MAX_FACTOR = 2.0  # the largest level factor whose box bound is worth testing
 PAD = 1e-5        # the box grows by this share of its size and distance from the origin (float32 rounding)
 
 
 def worth_guarding(node: Node) -> bool:
-    """Whether ``node``'s code costs far more than a box test and its box bounds its field:
-    a distance bound (not an implicit field) with constant parameters and finite bounds."""
+    """Whether ``node``'s code costs far more than a box test and its box bounds its field
+    well: a distance bound (not an implicit field) with constant parameters, finite bounds
+    and a level factor of at most ``MAX_FACTOR`` (a field divided by more, as a strong
+    displacement's is, lies below its box distance nearly everywhere the test would run).
+    Moves, turns and materials do not count as nodes: their code is a few operations."""
     if node.exactness == IMPLICIT or node.live_params():
         return False
     lo, hi = node.bounds
-    if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi))):
+    if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi))) or level_factor(node) > MAX_FACTOR:
         return False
     count, stack = 0, [node]
     while stack:
         n = stack.pop()
-        count += 1
+        count += n.distance_keeping() is None
         if n.costly or count >= GUARD_NODES:
             return True
         stack.extend(n.children)
