@@ -31,6 +31,13 @@ def long_engraved() -> sg.Node:
     return plate - sg.extrude(words, 0.04).translate((0, 0, 0.05))
 
 
+def raised() -> sg.Node:
+    """An engraved plate and raised, turned, moved and rounded text above it (the cap passes
+    the 2D moves and adds the rounding's radius)."""
+    words = sg.text("Hello, wörld!", size=0.3, align="center").rotate(8).translate((0.05, 0)).round(0.01)
+    return engraved() | sg.extrude(words, 0.12).color(0.9, 0.6, 0.2).translate((0, 0.45, 0))
+
+
 def beside() -> sg.Node:
     """A union whose costly child (red text, a 40-gon) is the nearer one in places."""
     a = np.linspace(0, 2 * np.pi, 40, endpoint=False)
@@ -66,12 +73,13 @@ def test_only_costly_children_get_a_box_test():
     assert map_code(engraved()).count("opBoxGap(") == 1
     assert "sd2TextGrid(" in map_code(long_engraved()) and map_code(long_engraved()).count("opBoxGap(") == 1
     assert map_code(beside()).count("opBoxGap(") == 2  # the text and the 40-gon, not the sphere
+    assert map_code(raised()).count("opBoxGap(") == 2 and map_code(raised()).count("sd2Text(") == 2
     cheap = sg.sphere(1) | sg.box(0.5).translate((1, 0, 0)) | sg.torus(0.5, 0.1)
     assert "opBoxGap(" not in map_code(cheap)
     assert "opBoxGap(" not in map_code(sg.sphere(1) & label())  # an intersection needs every value
 
 
-@pytest.mark.parametrize("make", [engraved, long_engraved, beside])
+@pytest.mark.parametrize("make", [engraved, long_engraved, raised, beside])
 def test_the_field_and_colours_are_those_without_the_test(make, monkeypatch):
     scene = make()
     pts = points(scene)

@@ -140,12 +140,13 @@ class Emitter:
         self.lines.append((f"    if (!({gap} > {idle_above})) {{  // near enough to matter", self.owner))
         start = len(self.lines)
         known = (dict(self._materialized), dict(self.results))  # what the branch makes stays in it
-        target = cap_target(node)
-        if target is not None:  # it may stop searching just above that value too (above: no ties in colour mode)
-            self.distance_cap[id(target)] = f"(max({idle_above}, 0.0) * 1.001 + 1e-20)"
+        found = cap_target(node)
+        if found is not None:  # it may stop searching just above that value too (above: no ties in colour mode)
+            target, offset = found
+            self.distance_cap[id(target)] = f"(max({idle_above}, 0.0) * 1.001 + {self.num(offset + 1e-20)})"
         result = node.emit(self, p)
-        if target is not None:
-            del self.distance_cap[id(target)]
+        if found is not None:
+            del self.distance_cap[id(found[0])]
         self.lines.append((f"    {out} = {result};", self.owner))
         self.lines[start:] = [("    " + code, owner) for code, owner in self.lines[start:]]
         self.lines.append(("    }", self.owner))

@@ -65,15 +65,20 @@ def guard_box(node: Node) -> tuple[np.ndarray, np.ndarray, float]:
     return centre, half, 1.0 / float(level_factor(node))
 
 
-def cap_target(node: Node) -> object | None:
-    """The node or 2D shape under ``node`` that may stop its distance search at the value its
-    caller ignores (the text of an extruded or revolved label, moved, turned or coloured as
-    a whole: ``cap_target()`` of an extrusion or revolution), or None."""
+def cap_target(node: Node) -> tuple[object, float] | None:
+    """(the 2D shape under ``node`` that may stop its distance search, what to add to the
+    value its caller ignores to get its own): the shape of an extrusion or revolution
+    (``cap_target()``) moved, turned or coloured as a whole, followed down through 2D moves,
+    turns and roundings (``cap_child()``: a rounding by r adds r). None where there is none."""
     n = node
     while True:
         target = getattr(n, "cap_target", None)
         if target is not None:
-            return target()
+            shape, offset = target(), 0.0
+            while (step := getattr(shape, "cap_child", None)) is not None:
+                shape, more = step()
+                offset += more
+            return shape, offset
         kept = n.distance_keeping()
         if kept is None:
             return None

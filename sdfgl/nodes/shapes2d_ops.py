@@ -172,6 +172,10 @@ class Translate2D(_Unary2D):
     def expr(self, em: "Emitter", q: str) -> str:
         return self.child.expr(em, em.assign("vec2", f"{q} - {em.vec(self.offset)}"))
 
+    def cap_child(self) -> tuple[Shape2D, float]:
+        """Its shape, which may stop a search at the same value (see sdfgl.compiler.guards)."""
+        return self.child, 0.0
+
     def distance2(self, q: np.ndarray) -> np.ndarray:
         return self.child.distance2(q - self.offset)
 
@@ -194,6 +198,10 @@ class Rotate2D(_Unary2D):
     def expr(self, em: "Emitter", q: str) -> str:
         m = self.m  # local = m^T world; GLSL mat2 is column-major, so mat2(m row-major) is m^T
         return self.child.expr(em, em.assign("vec2", f"mat2({', '.join(em.num(x) for x in m.ravel())}) * {q}"))
+
+    def cap_child(self) -> tuple[Shape2D, float]:
+        """Its shape, which may stop a search at the same value (see sdfgl.compiler.guards)."""
+        return self.child, 0.0
 
     def distance2(self, q: np.ndarray) -> np.ndarray:
         return self.child.distance2(q @ self.m)
@@ -244,6 +252,10 @@ class Round2D(_Unary2D):
 
     def expr(self, em: "Emitter", q: str) -> str:
         return f"({self.child.expr(em, q)} - {em.num(self.r)})"
+
+    def cap_child(self) -> tuple[Shape2D, float]:
+        """Its shape, which may stop a search at the value plus the radius (see sdfgl.compiler.guards)."""
+        return self.child, self.r
 
     def distance2(self, q: np.ndarray) -> np.ndarray:
         return self.child.distance2(q) - self.r
