@@ -3,7 +3,8 @@
 At a point outside a node's bounds by d, its field is at least d / g, g being its level
 factor (sdfgl.nodes.base.level_factor). So in a hard union min(a, b), wherever d / g > a,
 the result is a whatever b is; in a hard difference max(a, -b), wherever d / g > -a, it is
-a too. The generated code tests that bound first (a box distance) and evaluates b only
+a too. A smooth union or difference adds its blend's support R (beyond it the smooth minimum
+is the minimum exactly, sdfgl.compiler.data.blend_lists): a + R and R - a. The generated code tests that bound first (a box distance) and evaluates b only
 where it can matter (:meth:`sdfgl.compiler.emitter.Emitter.guarded`): the field is the same
 number either way, so its exactness, the twin's parity and every consumer of map() stay as
 they are, and only the time changes. The test costs a few operations and a branch, which

@@ -189,6 +189,11 @@ class _Boolean(Node):
         far (``acc``), for :meth:`sdfgl.compiler.emitter.Emitter.guarded`; None: every value can."""
         return None
 
+    def _support(self) -> float | None:
+        """The blend's support R: beyond it (|a - b| >= R) the smooth min is the min exactly, in
+        float32 too; None for a live radius."""
+        return None if isinstance(self.k, Live) else BLEND_SUPPORT[self.blend] * float(self.k)
+
     def _combine(self, em: "Emitter", a: str, b: str) -> str:
         raise NotImplementedError
 
@@ -311,9 +316,11 @@ class Union(_Boolean):
         return max([1.0] + [c.lipschitz for c in self.children if id(c) not in inside])
 
     def _idle_above(self, em: "Emitter", acc: str) -> str | None:
-        if not self._hard:
-            return None
-        return acc if em.mode == "dist" else f"{acc}.w"  # min(a, b) is a where b > a
+        a = acc if em.mode == "dist" else f"{acc}.w"
+        if self._hard:
+            return a  # min(a, b) is a where b > a
+        support = self._support()
+        return None if support is None else f"({a} + {em.num(support)})"  # smin(a, b) is a where b >= a + R
 
     def _combine(self, em: "Emitter", a: str, b: str) -> str:
         if em.mode == "dist":
@@ -383,9 +390,11 @@ class Difference(_Boolean):
     kind = "difference"
 
     def _idle_above(self, em: "Emitter", acc: str) -> str | None:
-        if not self._hard:
-            return None
-        return f"-{acc}" if em.mode == "dist" else f"-{acc}.w"  # max(a, -b) is a where b > -a
+        a = acc if em.mode == "dist" else f"{acc}.w"
+        if self._hard:
+            return f"-{a}"  # max(a, -b) is a where b > -a
+        support = self._support()
+        return None if support is None else f"({em.num(support)} - {a})"  # smax(a, -b) is a where b >= R - a
 
     def _combine(self, em: "Emitter", a: str, b: str) -> str:
         if em.mode == "dist":
