@@ -256,17 +256,19 @@ class Polygon(Shape2D):
         return np.minimum(lo, glo), np.maximum(hi, ghi)
 
 
-class Extrude(Node):
-    """A 2D shape (in XY) extruded along Z to full ``height``, centred on z = 0."""
+class SweptShape(Node):
+    """A solid made from a 2D shape (``shape``): its exactness and Lipschitz factor are the
+    shape's, and so is the cost of its code."""
 
-    kind = "extrude"
+    shape: Shape2D
 
-    def __init__(self, shape: Shape2D, height: float) -> None:
-        if not isinstance(shape, Shape2D):
-            raise ParameterError(f"{self.kind}: needs a 2D shape, got {type(shape).__name__}")
-        h = v.scalar(self.kind, "height", height, positive=True)
-        super().__init__((), shape=shape.key(), height=h)
-        self.shape, self.h = shape, float(h) / 2
+    @property
+    def exactness(self) -> str:
+        return self.shape.exactness
+
+    @property
+    def lipschitz(self) -> float:
+        return self.shape.lipschitz
 
     @property
     def costly(self) -> bool:  # type: ignore[override]
@@ -278,16 +280,21 @@ class Extrude(Node):
         values at or above it keep this node's there; see sdfgl.compiler.guards)."""
         return self.shape
 
+
+class Extrude(SweptShape):
+    """A 2D shape (in XY) extruded along Z to full ``height``, centred on z = 0."""
+
+    kind = "extrude"
+
+    def __init__(self, shape: Shape2D, height: float) -> None:
+        if not isinstance(shape, Shape2D):
+            raise ParameterError(f"{self.kind}: needs a 2D shape, got {type(shape).__name__}")
+        h = v.scalar(self.kind, "height", height, positive=True)
+        super().__init__((), shape=shape.key(), height=h)
+        self.shape, self.h = shape, float(h) / 2
+
     def label(self) -> str:
         return f"extrude({self.shape.label()}, height={2 * self.h:g})"
-
-    @property
-    def exactness(self) -> str:
-        return self.shape.exactness
-
-    @property
-    def lipschitz(self) -> float:
-        return self.shape.lipschitz
 
     def _emit(self, em: "Emitter", p: str) -> str:
         em.require("op_extrude")
@@ -306,7 +313,7 @@ class Extrude(Node):
         return np.array([lo[0], lo[1], -self.h]), np.array([hi[0], hi[1], self.h])
 
 
-class Revolve(Node):
+class Revolve(SweptShape):
     """A 2D shape (x: distance from the Y axis minus ``offset``, y: height) revolved about Y."""
 
     kind = "revolve"
@@ -318,26 +325,8 @@ class Revolve(Node):
         super().__init__((), shape=shape.key(), offset=o)
         self.shape, self.o = shape, float(o)
 
-    @property
-    def costly(self) -> bool:  # type: ignore[override]
-        """Where its 2D shape's code is costly (see sdfgl.compiler.guards)."""
-        return self.shape.costly
-
-    def cap_target(self) -> Shape2D:
-        """The shape that may stop its search at a positive value the caller ignores (its
-        values at or above it keep this node's there; see sdfgl.compiler.guards)."""
-        return self.shape
-
     def label(self) -> str:
         return f"revolve({self.shape.label()}, offset={self.o:g})"
-
-    @property
-    def exactness(self) -> str:
-        return self.shape.exactness
-
-    @property
-    def lipschitz(self) -> float:
-        return self.shape.lipschitz
 
     def _emit(self, em: "Emitter", p: str) -> str:
         pt = em.point(p)
