@@ -32,6 +32,9 @@ fi
 python3 -m venv .venv
 if [ "$with_tests" = 1 ]; then
     .venv/bin/pip install -q --disable-pip-version-check -e ".[test]"
+    # an editable install leaves the sources uncompiled, and where PYTHONDONTWRITEBYTECODE is
+    # set every process would compile them again (a third of `sdfgl render`'s start-up)
+    .venv/bin/python -m compileall -q sdfgl >/dev/null
 else
     .venv/bin/pip install -q --disable-pip-version-check ".[all]"
 fi
