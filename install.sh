@@ -34,7 +34,7 @@ if [ "$with_tests" = 1 ]; then
     .venv/bin/pip install -q --disable-pip-version-check -e ".[test]"
     # an editable install leaves the sources uncompiled, and where PYTHONDONTWRITEBYTECODE is
     # set every process would compile them again (a third of `sdfgl render`'s start-up)
-    .venv/bin/python -m compileall -q sdfgl >/dev/null
+    .venv/bin/python -m compileall -q sdfgl
 else
     .venv/bin/pip install -q --disable-pip-version-check ".[all]"
 fi
