@@ -167,8 +167,9 @@ def _under_moves(scene: Node) -> tuple[Node, np.ndarray]:
 
 def own_mesh(scene: Node) -> tuple[MeshField, np.ndarray] | None:
     """(the mesh, R with world = R @ the mesh's frame) where the scene is one mesh under
-    translations, rotations and materials: its field's gradient is the closest triangle's
-    (sd_mesh_bvh.glsl's gMeshNormal), and the ray meets it where it meets a triangle."""
+    translations, rotations and materials: the normal at a hit is the surface's at the triangle
+    the ray met (sd_mesh_bvh.glsl's gMeshNormal), and the ray meets it where it meets a
+    triangle."""
     node, turn = _under_moves(scene)
     return (node, turn) if isinstance(node, MeshField) else None
 

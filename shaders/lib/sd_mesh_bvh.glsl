@@ -9,7 +9,8 @@
 // (meshHint) starts the walk: a ray's map() calls follow each other closely, so it is
 // usually still the closest one, or near it, and the walk skips nearly every box from the
 // start. The result does not depend on it (every triangle nearer than the hint is still
-// found); a hint from another mesh's table is ignored.
+// found); a hint from another mesh's table is ignored. The ray's cast (meshRayFree) leaves
+// the triangle it met as the hint, and its normal where the ray met it (gMeshNormal).
 // requires: data_table
 
 float meshBoxDist2(vec3 p, vec3 lo, vec3 hi) {
@@ -92,8 +93,18 @@ void meshLeaf(vec3 p, int tris, int code, inout float best, inout int bestTri, i
     if (count > 3) meshTriangle(p, t + 27, best, bestTri, bestFeature, bestPoint);
 }
 
+// The unit pseudonormal of triangle record t at `feature` (meshClosest's): the face's normal,
+// or the record's edge or vertex pseudonormal.
+vec3 meshFeatureNormal(int t, int feature) {
+    if (feature == 0) return vec3(dataFetch(t).w, dataFetch(t + 1).w, dataFetch(t + 2).w);
+    return dataFetch(t + (feature <= 3 ? 5 + feature : feature - 1)).xyz;
+}
+
 int meshHint = -1;  // the texel of the triangle record closest to the last point asked
-vec3 gMeshNormal = vec3(0.0, 1.0, 0.0);  // the field's unit gradient at the last point asked
+// The surface normal at the last point asked's closest point (the pseudonormal of the
+// feature it lies on), or, after a cast, where the ray met the mesh: the normal at a hit
+// on a lone mesh, no walk of its own (stages/normal.glsl).
+vec3 gMeshNormal = vec3(0.0, 1.0, 0.0);
 
 // `trisEnd`: the texel after the mesh's last triangle record.
 float sdMeshBVH(vec3 p, int nodes, int tris, int trisEnd) {
@@ -121,18 +132,8 @@ float sdMeshBVH(vec3 p, int nodes, int tris, int trisEnd) {
         }
     }
     meshHint = bestTri;
-    vec3 face = vec3(dataFetch(bestTri).w, dataFetch(bestTri + 1).w, dataFetch(bestTri + 2).w);
-    vec3 n = face;
-    if (bestFeature >= 1 && bestFeature <= 3) {
-        n = dataFetch(bestTri + 5 + bestFeature).xyz;
-    } else if (bestFeature > 3) {
-        n = dataFetch(bestTri + bestFeature - 1).xyz;
-    }
-    float sgn = dot(p - bestPoint, n) < 0.0 ? -1.0 : 1.0;
-    // the gradient: the face's normal on a face, else the way from the closest point (the
-    // feature's pseudonormal where the point lies on it)
-    gMeshNormal = bestFeature == 0 ? face : (best > 0.0 ? sgn * (p - bestPoint) * inversesqrt(best) : n);
-    return sgn * sqrt(best);
+    gMeshNormal = meshFeatureNormal(bestTri, bestFeature);
+    return dot(p - bestPoint, gMeshNormal) < 0.0 ? -sqrt(best) : sqrt(best);
 }
 
 // Where the ray from p along unit d (inv = 1 / d) first meets a triangle of the mesh, or
@@ -172,17 +173,27 @@ float meshRayTriangle(vec3 p, vec3 d, int t) {
     return inside && s >= 0.0 ? s : 3.0e38;
 }
 
-void meshRayLeaf(vec3 p, vec3 d, int tris, int code, inout float best) {
+// Keep triangle record t if the ray meets it nearer than the nearest hit so far.
+void meshRayKeep(vec3 p, vec3 d, int t, inout float best, inout int bestTri) {
+    float s = meshRayTriangle(p, d, t);
+    if (s < best) {
+        best = s;
+        bestTri = t;
+    }
+}
+
+void meshRayLeaf(vec3 p, vec3 d, int tris, int code, inout float best, inout int bestTri) {
     int t = tris + 9 * ((-code) >> 3);
     int count = (-code) & 7;
-    best = min(best, meshRayTriangle(p, d, t));
-    if (count > 1) best = min(best, meshRayTriangle(p, d, t + 9));
-    if (count > 2) best = min(best, meshRayTriangle(p, d, t + 18));
-    if (count > 3) best = min(best, meshRayTriangle(p, d, t + 27));
+    meshRayKeep(p, d, t, best, bestTri);
+    if (count > 1) meshRayKeep(p, d, t + 9, best, bestTri);
+    if (count > 2) meshRayKeep(p, d, t + 18, best, bestTri);
+    if (count > 3) meshRayKeep(p, d, t + 27, best, bestTri);
 }
 
 float meshRayFree(vec3 p, vec3 d, vec3 inv, int nodes, int tris, float pad) {
     float best = 3.0e38;
+    int bestTri = -1;
     int stackNode[32];
     float stackDist[32];
     int sp = 1;
@@ -192,7 +203,7 @@ float meshRayFree(vec3 p, vec3 d, vec3 inv, int nodes, int tris, float pad) {
         sp--;
         int code = stackNode[sp];
         if (stackDist[sp] < best && code < 0) {
-            meshRayLeaf(p, d, tris, code, best);
+            meshRayLeaf(p, d, tris, code, best, bestTri);
         } else if (stackDist[sp] < best) {
             vec4 loA, hiA, loB, hiB;
             meshNodeBoxes(nodes, code, loA, hiA, loB, hiB);
@@ -201,5 +212,10 @@ float meshRayFree(vec3 p, vec3 d, vec3 inv, int nodes, int tris, float pad) {
             MESH_PUSH_BOTH(keyA, int(loA.w), keyB, int(hiA.w))
         }
     }
-    return best < 3.0e38 ? best * (1.0 - MESH_RAY_SLACK) : best;
+    if (bestTri < 0) return best;
+    int feature;  // where on the triangle the ray met it: its normal there
+    meshClosest(p + d * best, dataFetch(bestTri).xyz, dataFetch(bestTri + 1).xyz, dataFetch(bestTri + 2).xyz, feature);
+    gMeshNormal = meshFeatureNormal(bestTri, feature);
+    meshHint = bestTri;
+    return best * (1.0 - MESH_RAY_SLACK);
 }

@@ -14,7 +14,7 @@
 // first order in h wherever the Hessian has off-diagonal terms.) A gradient that
 // vanishes or is not finite (at the centre of a sphere, an overflowing implicit field)
 // falls back to facing the viewer, never NaN. Where the scene is one mesh (MESH_NORMAL), the
-// normal is the field's gradient that the closest-triangle walk leaves, one map() call.
+// normal is the surface's where the ray met it, no map() call (sd_mesh_bvh.glsl).
 #ifdef DETAIL_NORMALS
 #define NORMAL_FIELD mapDetail  // a field with more detail than the one marched
 #else
@@ -26,8 +26,8 @@
 
 vec3 calcNormal(vec3 pos, float t, vec3 rd) {
 #ifdef MESH_NORMAL
-    // the scene is one mesh: its field's gradient is the closest triangle's (sd_mesh_bvh.glsl)
-    map(pos);
+    // the scene is one mesh: the normal where the cast met it, or at the march's last
+    // sample's closest point (sd_mesh_bvh.glsl)
 #ifdef MESH_NORMAL_TURN
     vec3 g = MESH_NORMAL_TURN * gMeshNormal;
 #else
