@@ -110,6 +110,21 @@ def test_split_edges_keeps_the_mesh_closed():
     assert np.allclose(volume(v2, f2), volume(v, f))  # midpoints of straight edges: the same solid
 
 
+def test_split_edges_splits_every_edge_of_the_faces_asked():
+    t = trimesh.creation.icosphere(2)
+    v, f = np.asarray(t.vertices, float), np.asarray(t.faces, np.int64)
+    every = np.zeros(len(f), bool)
+    every[[0, 50]] = True
+    v2, f2, new, unchanged = split_edges(v, f, np.zeros(len(f), bool), every)
+    assert closed_manifold(v2, f2) and len(new) == 6  # two faces far apart: three midpoints each
+    for k in (0, 50):  # each is now four faces of half its size, the midpoints of its edges among their corners
+        mids = (v[f[k]] + v[np.roll(f[k], -1)]) / 2
+        near = np.linalg.norm(v2[new][:, None] - mids[None], axis=2).min(axis=0)
+        assert np.all(near < 1e-12)
+    assert len(f2) == len(f) + 2 * 3 + 2 * 3  # each face: 1 -> 4, and its 3 neighbours: 1 -> 2
+    assert np.allclose(volume(v2, f2), volume(v, f))
+
+
 def test_closed_tells_open_pinched_and_flipped_meshes():
     f = np.asarray(trimesh.creation.icosphere(1).faces, np.int64)
     assert closed(f)

@@ -24,7 +24,10 @@ surface (|f| / |grad f|, in scene units). The steps:
 5. the field measured at vertices and face centres on the GPU; the longest edge of each face
    whose centre is off by more than ``MARGIN`` tolerances is split at its midpoint (a conforming
    split: both faces on the edge are split, so the mesh stays closed), the new vertices are
-   projected, until every face holds.
+   projected, until every face holds. Once fewer than ``TAIL_SHARE`` of the faces are off (at
+   creases, where a split of the longest edge halves the error only every other round), all
+   three edges of each are split: on the CSG part 10 rounds became 4 for 6 % more triangles,
+   on the demo scene 9 became 6 for 0.6 % more.
 
 pyfqmr was chosen over fast-simplification (the same library behind pyvista's wrapper)
 because its collapse threshold can be capped in scene units (``alpha``, ``K``,
@@ -72,6 +75,7 @@ AGGRESSIVENESS = 7.0
 FLAT_SHARE = 0.25          # meshoptimizer's error limit after pyfqmr, in tolerances
 RETRIES = 3                # lower caps tried when a simplified mesh is not closed and manifold
 SPLIT_ROUNDS = 12          # rounds of edge splits that bring faces within the tolerance
+TAIL_SHARE = 0.02          # below this share of faces off, a round splits every edge of each
 MAX_TRIANGLES = 1 << 26    # estimated triangles of the uniform mesh (about 10 GB of arrays)
 MARGIN = 0.95              # the GPU (float32) holds face centres to this share of the tolerance
 COARSEST = 1 << 17         # samples of the coarsest uniform lattice a tolerance may ask for
@@ -185,11 +189,12 @@ def errors(field: GPUField, points: np.ndarray, verts: np.ndarray, faces: np.nda
     return np.abs(f[:k]), np.abs(f[k:]) / np.clip(np.linalg.norm(g[k:], axis=1), 1e-6, 1.0)
 
 
-def split_edges(verts: np.ndarray, faces: np.ndarray,
-                faces_to_split: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """Split the longest edge of each face in ``faces_to_split`` (a mask) at its midpoint, and
-    every face on a split edge with it (one, two or three split edges give two, three or four
-    triangles), so the mesh stays closed. Returns (vertices, faces, indices of the new vertices,
+def split_edges(verts: np.ndarray, faces: np.ndarray, faces_to_split: np.ndarray,
+                every_edge: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Split the longest edge of each face in ``faces_to_split`` (a mask) at its midpoint, every
+    edge of each face in ``every_edge`` (a mask, or None), and every face on a split edge with
+    it (one, two or three split edges give two, three or four triangles), so the mesh stays
+    closed. Returns (vertices, faces, indices of the new vertices,
     mask of the faces left as they were: they come first, in their order, the new ones after).
     Only the split edges are sorted; the edges of the faces with two ends of split edges are
     looked up among them by binary search, so a round costs little more than a pass over the
@@ -200,6 +205,10 @@ def split_edges(verts: np.ndarray, faces: np.ndarray,
     longest = np.argmax(np.linalg.norm(verts[bad] - verts[nxt], axis=2), axis=1)
     a = np.take_along_axis(bad, longest[:, None], 1)[:, 0]
     b = np.take_along_axis(nxt, longest[:, None], 1)[:, 0]
+    if every_edge is not None and every_edge.any():
+        all3 = faces[every_edge]
+        a = np.concatenate([a, all3.ravel()])
+        b = np.concatenate([b, all3[:, [1, 2, 0]].ravel()])
     marked = np.unique(np.minimum(a, b) * n + np.maximum(a, b))   # sorted keys of the split edges
     end = np.zeros(n, bool)                                        # ends of split edges
     end[marked // n] = end[marked % n] = True
@@ -255,7 +264,9 @@ def simplify(field: GPUField, verts: np.ndarray, faces: np.ndarray, normals: np.
         over = ec > MARGIN * tolerance
         if not over.any():
             break
-        v, f, new, unchanged = split_edges(v, f, over)
+        # the last few faces off (at creases, where a split of the longest edge halves the error
+        # only every other round) have all three edges split
+        v, f, new, unchanged = split_edges(v, f, over, over if over.sum() < TAIL_SHARE * len(over) else None)
         v[new], n_new = project(field, v[new], step)
         n = np.concatenate([n, n_new])
         ev_new, ec_new = errors(field, v[new], v, f[unchanged.sum():], step)
