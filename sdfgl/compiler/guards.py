@@ -7,13 +7,14 @@ a too. A smooth union or difference adds its blend's support R (beyond it the sm
 is the minimum exactly, sdfgl.compiler.data.blend_lists): a + R and R - a. The generated code tests that bound first (a box distance) and evaluates b only
 where it can matter (:meth:`sdfgl.compiler.emitter.Emitter.guarded`): the field is the same
 number either way, so its exactness, the twin's parity and every consumer of map() stay as
-they are, and only the time changes. The test costs a few operations and a branch, which
-llvmpipe skips for a whole block of pixels when they all lie far from the child. So it is
-written only for a child whose code costs far more: a subtree of ``GUARD_NODES`` nodes or
-more (not counting moves, turns and materials), or one holding a node whose own code is
-costly (``Node.costly``: a text, a polygon of many vertices, a mesh, a fractal, noise, user
-GLSL). An engraved plate's text, for one, is then evaluated only near its letters, not at
-every step of every ray.
+they are, and only the time changes. What the test saves is the loops inside the branch:
+llvmpipe runs the straight code of an ``if`` for every block of pixels, whether or not one
+of them takes it, but a loop ends where no pixel of the block is in it
+(``benchmarks/llvmpipe_branches.py``). So the test is written only for a child holding a
+node whose own code loops (``Node.costly``: a text, a polygon of many vertices, a mesh, a
+fractal, noise, user GLSL); for a subtree of plain primitives it would only add its own cost
+to every call. An engraved plate's text, for one, is then searched only near its letters, not
+at every step of every ray.
 
 Inside the branch the value above which the result ignores the child still holds, so a
 node that can stop its search there does (:func:`cap_target`): a text's search for its
@@ -31,27 +32,24 @@ import numpy as np
 
 from ..nodes.base import IMPLICIT, Node, level_factor
 
-GUARD_NODES = 8   # a subtree of this many nodes (besides moves, turns, materials) is worth its box test
 MAX_FACTOR = 2.0  # the largest level factor whose box bound is worth testing
 PAD = 1e-5        # the box grows by this share of its size and distance from the origin (float32 rounding)
 
 
 def worth_guarding(node: Node) -> bool:
-    """Whether ``node``'s code costs far more than a box test and its box bounds its field
-    well: a distance bound (not an implicit field) with constant parameters, finite bounds
-    and a level factor of at most ``MAX_FACTOR`` (a field divided by more, as a strong
-    displacement's is, lies below its box distance nearly everywhere the test would run).
-    Moves, turns and materials do not count as nodes: their code is a few operations."""
+    """Whether ``node`` holds code that loops (a ``costly`` node) and its box bounds its
+    field well: a distance bound (not an implicit field) with constant parameters, finite
+    bounds and a level factor of at most ``MAX_FACTOR`` (a field divided by more, as a strong
+    displacement's is, lies below its box distance nearly everywhere the test would run)."""
     if node.exactness == IMPLICIT or node.live_params():
         return False
     lo, hi = node.bounds
     if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi))) or level_factor(node) > MAX_FACTOR:
         return False
-    count, stack = 0, [node]
+    stack = [node]
     while stack:
         n = stack.pop()
-        count += n.distance_keeping() is None
-        if n.costly or count >= GUARD_NODES:
+        if n.costly:
             return True
         stack.extend(n.children)
     return False
