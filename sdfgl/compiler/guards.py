@@ -31,6 +31,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..nodes.base import IMPLICIT, Node, level_factor
+from ..nodes.traverse import cached
 
 MAX_FACTOR = 2.0  # the largest level factor whose box bound is worth testing
 PAD = 1e-5        # the box grows by this share of its size and distance from the origin (float32 rounding)
@@ -46,12 +47,16 @@ def worth_guarding(node: Node) -> bool:
     lo, hi = node.bounds
     if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi))) or level_factor(node) > MAX_FACTOR:
         return False
-    stack = [node]
-    while stack:
-        n = stack.pop()
-        if n.costly:
+    return cached(node, "_loops", _loops_below)
+
+
+def _loops_below(n: Node) -> bool:
+    """Whether ``n`` or a node under it is ``costly`` (from its children's cached values)."""
+    if n.costly:
+        return True
+    for c in n.children:
+        if c.__dict__["_loops"]:
             return True
-        stack.extend(n.children)
     return False
 
 

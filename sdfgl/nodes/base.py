@@ -490,7 +490,7 @@ def fluent(*names: str) -> Callable[[FluentT], FluentT]:
 
 
 CACHES = ("_m_", "_key", "_token", "_depth", "_bounds_cache", "_live_cache", "_detail", "_dag", "_grid", "_kids", "_level",
-           "_seq", "_fields", "_facts")
+           "_seq", "_fields", "_facts", "_loops")
 
 
 def _detail_below(n: Node) -> bool:
