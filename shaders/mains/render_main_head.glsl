@@ -60,18 +60,28 @@ vec3 hitNormal(vec3 ro, vec3 rd, Hit h) {
 #endif
 }
 
+// One shadeSurface() call for the ground and the scene alike: llvmpipe runs the straight code
+// of both sides of a branch for every block of pixels, so a second call would cost every
+// pixel a second shading. Tiles the coarse pass proved empty meet only the ground: no
+// material of the scene there.
 vec3 radiance(vec3 ro, vec3 rd, Hit h) {
     if (h.t < 0.0) return background(rd);
     vec3 pos = ro + rd * h.t;
     vec3 nor = hitNormal(ro, rd, h);
-#ifdef GROUND
-    if (h.ground) {
-        vec3 col = shadeSurface(pos, nor, rd, defaultSurface(groundAlbedo(pos)), h.t);
-        float fog = 1.0 - exp(-h.t / (SCENE_SCALE * 40.0));
-        return mix(col, background(rd), fog);
-    }
+#if defined(GROUND) && defined(EMPTY_TILES)
+    Surface s = defaultSurface(groundAlbedo(pos));
+#elif defined(GROUND)
+    Surface s;  // (WebGL: no ?: on structs)
+    if (h.ground) s = defaultSurface(groundAlbedo(pos));
+    else s = sceneSurface(pos);
+#else
+    Surface s = sceneSurface(pos);
 #endif
-    return shadeSurface(pos, nor, rd, sceneSurface(pos), h.t);
+    vec3 col = shadeSurface(pos, nor, rd, s, h.t);
+#ifdef GROUND
+    if (h.ground) col = mix(col, background(rd), 1.0 - exp(-h.t / (SCENE_SCALE * 40.0)));
+#endif
+    return col;
 }
 
 // One sample as (linear colour, coverage). With ALPHA a miss is transparent and the
