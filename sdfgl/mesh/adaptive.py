@@ -42,14 +42,15 @@ parts left to clear.
 Time, against the uniform marching-cubes export at 2^22 samples (tolerance 0.05 of its cell;
 ``python -c "from sdfgl.mesh.bench import run_adaptive; print(run_adaptive(rounds=5)[0])"``,
 medians of interleaved runs on 2 shared CPU cores with llvmpipe, so within about 20 %): the CSG
-part 0.23 s against 0.125 s (1.8x, 8 208 triangles, 2.3 % of the uniform mesh), the demo scene
-0.23 s against 0.091 s (2.6x, 27 448 triangles, 15.9 %), both within 0.95 tolerances at face
+part 0.117 s against 0.075 s (1.6x, 8 788 triangles, 2.4 % of the uniform mesh), the demo scene
+0.107 s against 0.048 s (2.2x, 27 610 triangles, 16.0 %), both within 0.95 tolerances at face
 centres. The uniform export uses both cores (the GPU's sampling beside numpy); most of this
-pipeline is one: dual contouring of the coarse lattice about 80 ms on the CSG part, pyfqmr
-about 55 ms, the split rounds about 30 ms. The demo scene's coarse lattice leaves a third of
-its faces more than a tolerance off (curved parts), so its collapses leave 10 710 triangles
-and nine split rounds bring them to 27 448; splitting all three edges of the faces off by
-more than two tolerances saved one round and no time measurably. At this tolerance the cell is capped by ``COARSEST`` at 63.5 tolerances, so
+pipeline is one: on the demo scene dual contouring of the coarse lattice about 35 ms, pyfqmr
+about 20 ms, meshoptimizer 10 ms, the split rounds about 40 ms (profiled with cProfile). The
+demo scene's coarse lattice leaves a third of its faces more than a tolerance off (curved
+parts), so its collapses leave 10 702 triangles and six split rounds bring them to 27 610;
+splitting all three edges of every face off by more than two tolerances saved one round and
+no time measurably. At this tolerance the cell is capped by ``COARSEST`` at 63.5 tolerances, so
 ``STEP_PER_TOLERANCE`` above that changes nothing; pyfqmr at 15 or 25 passes instead of 40 was
 no faster within the noise.
 """
