@@ -113,14 +113,16 @@ def test_gpu_projection_moves_points_onto_the_surface():
     d = np.random.default_rng(2).normal(size=(300, 3))
     d /= np.linalg.norm(d, axis=1, keepdims=True)
     r = np.random.default_rng(3).uniform(0.97, 1.03, (300, 1))  # up to 0.3 cell of 0.1 off
-    move, normal = f.project(d * r, 1e-3, 1e-5, 0.05, 4)
+    move, normal, value = f.project(d * r, 1e-3, 1e-5, 0.05, 4)
     assert np.abs(np.linalg.norm(d * r + move, axis=1) - 1).max() < 2e-5
     assert np.allclose(normal, d, atol=1e-3)
+    assert np.allclose(value, s.distance(d * r + move), atol=2e-6)  # the field where each point ends
     # each step moves at most max_move; no step leaves the point where it is
-    move, _ = f.project(d * 1.3, 1e-3, 1e-5, 0.05, 2)
+    move, _, value = f.project(d * 1.3, 1e-3, 1e-5, 0.05, 2)
     assert np.allclose(np.linalg.norm(move, axis=1), 0.1, atol=1e-5)
-    move, normal = f.project(d * r, 1e-3, 1e-5, 0.05, 0)
-    assert not move.any() and np.allclose(normal, d, atol=1e-3)
+    assert np.allclose(value, 0.2, atol=1e-5)
+    move, normal, value = f.project(d * r, 1e-3, 1e-5, 0.05, 0)
+    assert not move.any() and np.allclose(normal, d, atol=1e-3) and np.allclose(value, r[:, 0] - 1, atol=1e-6)
     before = f.point_samples
     f.project(d[:1], 1e-3, 1e-5, 0.05, 4)  # on the surface already: one gradient, 5 map() calls
     assert f.point_samples - before == 5

@@ -198,3 +198,6 @@ def test_a_fin_left_by_the_simplifier_is_dropped_and_nothing_else():
     # (0 1 2) and (1 0 2) are one triangle wound both ways; (3 4 5) twice the same way is not a fin
     assert without_fins(fin).tolist() == [[7, 8, 9], [3, 4, 5], [4, 5, 3], [6, 5, 4]]
     assert without_fins(fin[:0]).shape == (0, 3)
+    # indices past 2^21 take the row-wise path; the same faces go
+    far = 1 << 21
+    assert (without_fins(fin + far) - far).tolist() == without_fins(fin).tolist()

@@ -153,8 +153,12 @@ def without_fins(faces: np.ndarray) -> np.ndarray:
     a = rolled[:, 1:].min(axis=1)
     b = rolled[:, 1:].max(axis=1)
     forward = rolled[:, 1] < rolled[:, 2]
-    key = np.stack([rolled[:, 0], a, b], 1)
-    _, inverse, counts = np.unique(key, axis=0, return_inverse=True, return_counts=True)
+    n = int(faces.max()) + 1
+    if n < 1 << 21:  # the triple as one int64 key: a 1-D unique sorts numbers, not rows
+        _, inverse, counts = np.unique((rolled[:, 0] * n + a) * n + b, return_inverse=True, return_counts=True)
+    else:
+        _, inverse, counts = np.unique(np.stack([rolled[:, 0], a, b], 1), axis=0, return_inverse=True,
+                                       return_counts=True)
     inverse = inverse.ravel()
     pairs = counts[inverse] == 2
     if not pairs.any():
@@ -180,14 +184,12 @@ def closed(faces: np.ndarray) -> bool:
     return bool(np.all(directed[at] == reverse))
 
 
-def errors(field: GPUField, points: np.ndarray, verts: np.ndarray, faces: np.ndarray,
-           step: float) -> tuple[np.ndarray, np.ndarray]:
-    """(|f| at ``points``, distance estimate |f| / |grad f| at the centres of ``faces``), both
-    from the GPU field in one draw (gradients 0.02 cell wide; a gradient longer than 1 counts as
-    1, so the estimate never falls below |f|)."""
-    k = len(points)
-    f, g, _ = field.gradient_bend(np.concatenate([points, verts[faces].mean(axis=1)]), 0.02 * step)
-    return np.abs(f[:k]), np.abs(f[k:]) / np.clip(np.linalg.norm(g[k:], axis=1), 1e-6, 1.0)
+def face_errors(field: GPUField, verts: np.ndarray, faces: np.ndarray, step: float) -> np.ndarray:
+    """Distance estimate |f| / |grad f| at the centres of ``faces``, from the GPU field
+    (gradients 0.02 cell wide; a gradient longer than 1 counts as 1, so the estimate never falls
+    below |f|)."""
+    f, g, _ = field.gradient_bend(verts[faces].mean(axis=1), 0.02 * step)
+    return np.abs(f) / np.clip(np.linalg.norm(g, axis=1), 1e-6, 1.0)
 
 
 def split_edges(verts: np.ndarray, faces: np.ndarray, faces_to_split: np.ndarray,
@@ -259,8 +261,8 @@ def simplify(field: GPUField, verts: np.ndarray, faces: np.ndarray, normals: np.
         remap = np.zeros(len(v), np.int64)
         remap[used] = np.arange(len(used))
         v, f = v[used], remap[flat]
-    v, n = project(field, v, step)
-    ev, ec = errors(field, v, v, f, step)
+    v, n, ev = project(field, v, step)  # ev: |f| at the vertices, measured where they end
+    ec = face_errors(field, v, f, step)
     for _ in range(SPLIT_ROUNDS):  # only new vertices and faces are measured again
         over = ec > MARGIN * tolerance
         if not over.any():
@@ -268,9 +270,9 @@ def simplify(field: GPUField, verts: np.ndarray, faces: np.ndarray, normals: np.
         # the last few faces off (at creases, where a split of the longest edge halves the error
         # only every other round) have all three edges split
         v, f, new, unchanged = split_edges(v, f, over, over if over.sum() < TAIL_SHARE * len(over) else None)
-        v[new], n_new = project(field, v[new], step)
+        v[new], n_new, ev_new = project(field, v[new], step)
         n = np.concatenate([n, n_new])
-        ev_new, ec_new = errors(field, v[new], v, f[unchanged.sum():], step)
+        ec_new = face_errors(field, v, f[unchanged.sum():], step)
         ev, ec = np.concatenate([ev, ev_new]), np.concatenate([ec[unchanged], ec_new])
     v, f, n = clean(v, f, n)
     return v, f, n, float(max(ev.max(initial=0.0), ec.max(initial=0.0)))

@@ -140,7 +140,7 @@ def _extract(scene: Node, lat: Lattice, mode: str, show: bool):
         from .extract_dc import dual_contour
         verts, faces = dual_contour(parts, lat, field)
     t1 = time.perf_counter()
-    verts, normals = project(field, verts, lat.step)
+    verts, normals, _ = project(field, verts, lat.step)
     if mode != "mc":  # march() leaves no degenerate or repeated triangles and no unused vertex
         verts, faces, normals = clean(verts, faces, normals)
     return verts, faces, normals, field, [t1 - t0, time.perf_counter() - t1]

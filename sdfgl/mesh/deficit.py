@@ -38,7 +38,7 @@ def volume_error(field: GPUField, verts: np.ndarray, faces: np.ndarray, step: fl
     mids = (v + np.roll(v, -1, axis=1)) / 2  # (F, 3 edges, 3)
     # one Newton step from a midpoint moves it by -f grad / |grad|^2: its length is the gap
     # (the projection's program, which the mesh has compiled already)
-    move, normal = field.project(mids.reshape(-1, 3), 0.05 * step, 0.0, step, 1)
+    move, normal, _ = field.project(mids.reshape(-1, 3), 0.05 * step, 0.0, step, 1)
     gap = -np.einsum("ij,ij->i", move, normal).reshape(-1, 3).mean(axis=1)
     # a point outside the solid (gap > 0) under a triangle is mesh volume the solid lacks
     return float(np.sum(area * gap) * (len(faces) / max(len(pick), 1)) / volume)

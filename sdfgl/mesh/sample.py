@@ -145,15 +145,16 @@ class GPUField:
         return v[:, 3].astype(np.float64), v[:, :3].astype(np.float64), b[:, 0].astype(np.float64)
 
     def project(self, points: np.ndarray, eps: float, tolerance: float, max_move: float,
-                iterations: int) -> tuple[np.ndarray, np.ndarray]:
+                iterations: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Newton steps onto the surface, all in one draw (shaders/mains/mesh_project_main.glsl):
-        (move to add to each point (N, 3) float64, unit gradient at the moved point (N, 3)). Each
+        (move to add to each point (N, 3) float64, unit gradient at the moved point (N, 3), the
+        field there (N,)). Each
         step moves a point by -f grad / |grad|^2, at most ``max_move``; a point stops when
         |f| <= ``tolerance`` or after ``iterations`` steps; gradients are differences ``eps`` wide."""
         move, normal = self._at_points("mesh_project", points, 4, 2, uEps=float(eps), uTol=float(tolerance),
                                      uMaxMove=float(max_move), uIterations=int(iterations))
         self.point_samples += 5 * int(move[:, 3].sum())
-        return move[:, :3].astype(np.float64), normal[:, :3].astype(np.float64)
+        return move[:, :3].astype(np.float64), normal[:, :3].astype(np.float64), normal[:, 3].astype(np.float64)
 
     def colors(self, points: np.ndarray) -> np.ndarray:
         """The scene's colour field (linear RGB in 0..1, float32 (N, 3)) at points."""
