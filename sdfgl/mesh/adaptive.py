@@ -42,8 +42,8 @@ parts left to clear.
 Time, against the uniform marching-cubes export at 2^22 samples (tolerance 0.05 of its cell;
 ``python -c "from sdfgl.mesh.bench import run_adaptive; print(run_adaptive(rounds=5)[0])"``,
 medians of interleaved runs on 2 shared CPU cores with llvmpipe, so within about 20 %): the CSG
-part 0.117 s against 0.075 s (1.6x, 8 788 triangles, 2.4 % of the uniform mesh), the demo scene
-0.107 s against 0.048 s (2.2x, 27 610 triangles, 16.0 %), both within 0.95 tolerances at face
+part 0.120 s against 0.064 s (1.9x, 8 788 triangles, 2.4 % of the uniform mesh), the demo scene
+0.105 s against 0.049 s (2.2x, 27 610 triangles, 16.0 %), both within 0.95 tolerances at face
 centres. The uniform export uses both cores (the GPU's sampling beside numpy); most of this
 pipeline is one: on the demo scene dual contouring of the coarse lattice about 35 ms, pyfqmr
 about 20 ms, meshoptimizer 10 ms, the split rounds about 40 ms (profiled with cProfile). The
