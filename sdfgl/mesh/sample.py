@@ -148,9 +148,9 @@ class GPUField:
                 iterations: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Newton steps onto the surface, all in one draw (shaders/mains/mesh_project_main.glsl):
         (move to add to each point (N, 3) float64, unit gradient at the moved point (N, 3), the
-        field there (N,)). Each
-        step moves a point by -f grad / |grad|^2, at most ``max_move``; a point stops when
-        |f| <= ``tolerance`` or after ``iterations`` steps; gradients are differences ``eps`` wide."""
+        field there (N,)). Each step moves a point by -f grad / |grad|^2, at most ``max_move``; a
+        point stops when |f| <= ``tolerance`` or after ``iterations`` steps; gradients are
+        differences ``eps`` wide."""
         move, normal = self._at_points("mesh_project", points, 4, 2, uEps=float(eps), uTol=float(tolerance),
                                      uMaxMove=float(max_move), uIterations=int(iterations))
         self.point_samples += 5 * int(move[:, 3].sum())
