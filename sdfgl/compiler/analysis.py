@@ -210,8 +210,7 @@ def shared_subtrees(scene: Node, use_grids: bool | str = True) -> set:
                 continue  # its inside is counted once; the function holds it
         grid = n.data_union() if use_grids else None
         if grid is not None:  # instances are data: only their types' code and the other children
-            inside = {id(c) for c in grid.children}
-            stack.extend(c for c in n.children if id(c) not in inside)
+            stack.extend(grid.rest)
             stack.extend(t.inner for t in grid.types if t.slots is None)
             continue
         stack.extend(n.children)

@@ -157,14 +157,18 @@ def boxes_of(nodes: Sequence["Node"]) -> np.ndarray:
     read, the others made by class in batches where it can (:meth:`Node.batch_bounds`), else one
     by one. A batch's box is cached (a read-only row) only on a node known to hold no live
     parameter, so a live parameter's box is always its current one."""
+    hits = [c.__dict__.get("_bounds_cache") for c in nodes]
+    missing = [i for i, hit in enumerate(hits) if hit is None]
+    if not missing:
+        return np.array(hits) if hits else np.empty((0, 2, 3))
     out = np.empty((len(nodes), 2, 3))
+    if len(missing) < len(nodes):
+        have = np.ones(len(nodes), dtype=bool)
+        have[missing] = False
+        out[have] = [hit for hit in hits if hit is not None]
     todo: dict[type, list[int]] = {}
-    for i, c in enumerate(nodes):
-        hit = c.__dict__.get("_bounds_cache")
-        if hit is not None:
-            out[i] = hit
-        else:
-            todo.setdefault(type(c), []).append(i)
+    for i in missing:
+        todo.setdefault(type(nodes[i]), []).append(i)
     for cls, rows in todo.items():
         group = [nodes[i] for i in rows]
         got = cls.batch_bounds(group) if len(group) >= BATCH else None

@@ -274,10 +274,7 @@ class Union(_Boolean):
         if grid is None:
             return super()._emit(em, p)
         acc = em.grid_union(grid, p)
-        inside = {id(g) for g in grid.children}
-        for c in self._distinct():
-            if id(c) in inside:
-                continue
+        for c in grid.rest:
             d = c.emit(em, p)
             em.narrow_free_way(grid, d)
             acc = self._combine(em, acc, d)
@@ -288,10 +285,8 @@ class Union(_Boolean):
         if grid is None:
             return super()._distance(p)
         d = grid.field(p)  # what the shader computes: the listed instances and the cap
-        inside = {id(g) for g in grid.children}
-        for c in self.children:
-            if id(c) not in inside:
-                d = np.minimum(d, c._distance(p))
+        for c in grid.rest:
+            d = np.minimum(d, c._distance(p))
         return d
 
     @property
@@ -300,9 +295,7 @@ class Union(_Boolean):
         # the grid's cap break it
         grid = self.grid if self._hard else None
         if grid is not None:  # its instances are bounded, not implicit, 1-Lipschitz (checked when built)
-            inside = {id(g) for g in grid.children}
-            rest = [c for c in self.children if id(c) not in inside]
-            return IMPLICIT if any(c.exactness == IMPLICIT for c in rest) else BOUND
+            return IMPLICIT if any(c.exactness == IMPLICIT for c in grid.rest) else BOUND
         if self._hard and all(c.exactness == EXACT for c in self.children):
             return EXACT
         return super().exactness
@@ -312,8 +305,7 @@ class Union(_Boolean):
         grid = self.grid if self._hard else None
         if grid is None:
             return super().lipschitz
-        inside = {id(g) for g in grid.children}
-        return max([1.0] + [c.lipschitz for c in self.children if id(c) not in inside])
+        return max([1.0] + [c.lipschitz for c in grid.rest])
 
     def _idle_above(self, em: "Emitter", acc: str) -> str | None:
         a = acc if em.mode == "dist" else f"{acc}.w"

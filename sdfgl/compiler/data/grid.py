@@ -31,18 +31,21 @@ MAX_DIMS = 64       # cells per axis at most
 # chosen on the growth scene (1024 spheres; see the benchmark and docs/design/big-scenes.md)
 CELL_FACTOR = 0.5  # cell edge / (volume per instance)^(1/3)
 MARGIN = 0.5       # in cells: how near an instance's bounds must come to a cell to be listed
+SHAPE_GROUP = 64   # the fewest children of one shape (cells per axis) listed by vector passes
 
 
 class Grid:
     """The instances of one union, their types and the cell lists over their bounds."""
 
     def __init__(self, children: list[Node], peeled: list[tuple], types: list[InstanceType], single_cell: bool = False,
-                 boxes: np.ndarray | None = None, blend: Blend | None = None) -> None:
+                 boxes: np.ndarray | None = None, blend: Blend | None = None, rest: list[Node] | None = None) -> None:
         """``single_cell`` makes one cell list every instance: a plain data-driven loop
         (the uber-shader the benchmark compares against); ``boxes`` (n, 2, 3) are the
         children's bounds when the caller has them; ``blend`` is a smooth union's (its
-        cells list what the blend needs: sdfgl.compiler.data.blend_lists)."""
+        cells list what the blend needs: sdfgl.compiler.data.blend_lists); ``rest`` are the
+        union's other children, which stay code beside the grid (each once)."""
         self.children, self.types = children, types
+        self.rest: list[Node] = rest or []
         self.peeled = peeled  # (inner, t, R, s, colour) per child
         self.blend = blend
         if boxes is None:
@@ -121,13 +124,66 @@ class Grid:
         return found
 
     def _entries(self) -> tuple[np.ndarray, np.ndarray]:
-        """(cell index, child index) of every list entry, sorted by cell."""
+        """(cell index, child index) of every list entry, sorted by cell, then by child.
+
+        Each entry is one int64 key, cell * n + child, and one sort of the keys orders
+        them. Children of one shape (cells spanned per axis) are listed together, one
+        vector pass per cell offset over all of them in the order of their first cell,
+        so each pass gives an ascending run of keys and the sort merges runs."""
         a, b = self._ranges()
         n = b - a + 1
+        count = len(self.children)
+        first = (a[:, 2] * self.dims[1] + a[:, 1]) * self.dims[0] + a[:, 0]
+        order = np.sort(first * count + np.arange(count)) % count  # by first cell, then by index
+        shape = (n[order] * [1, MAX_DIMS + 1, (MAX_DIMS + 1) ** 2]).sum(axis=1)
+        by_shape = order[np.argsort(shape, kind="stable")]
+        _, starts, sizes = np.unique(np.sort(shape), return_index=True, return_counts=True)
+        keys, rest = [], []
+        for start, size in zip(starts.tolist(), sizes.tolist()):
+            members = by_shape[start:start + size]
+            if size < SHAPE_GROUP or int(n[members[0]].prod()) > size:  # few, or big: entry by entry
+                rest.append(members)
+            else:
+                keys += self._shape_keys(members, a[members], n[members[0]], first[members])
+        if rest:
+            keys.append(self._spread_keys(np.concatenate(rest), a, n))
+        key = np.sort(np.concatenate(keys), kind="stable")
+        cells = key // count
+        return cells, key - cells * count
+
+    def _gaps(self, child: np.ndarray, axis: int, index: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(squared gap from ``child``'s ball centre, squared gap from its box) to the cells
+        ``index`` along ``axis`` (zero inside)."""
+        lo = self.lo[axis] + index * self.cell
+        at = self._ball_at[child, axis]
+        ball = np.maximum(np.maximum(lo - at, at - (lo + self.cell)), 0.0)
+        box = np.maximum(np.maximum(lo - self.his[child, axis], self.los[child, axis] - (lo + self.cell)), 0.0)
+        return ball * ball, box * box
+
+    def _shape_keys(self, child: np.ndarray, a: np.ndarray, n: np.ndarray, first: np.ndarray) -> list[np.ndarray]:
+        """The keys of children that span ``n`` cells per axis from their first cells ``a``."""
+        step = (1, int(self.dims[0]), int(self.dims[0] * self.dims[1]))
+        base = first * len(self.children) + child
+        if self._ball_at is None:  # every cell of the ranges
+            return [base + (jx * step[0] + jy * step[1] + jz * step[2]) * len(self.children)
+                    for jz in range(int(n[2])) for jy in range(int(n[1])) for jx in range(int(n[0]))]
+        gaps = [[self._gaps(child, axis, a[:, axis] + j) for j in range(int(n[axis]))] for axis in range(3)]
+        reach = self._ball_r[child] + self.margin
+        reach2, margin2 = reach * reach, self.margin * self.margin
+        out = []
+        for jz, (bz, xz) in enumerate(gaps[2]):
+            for jy, (by, xy) in enumerate(gaps[1]):
+                for jx, (bx, xx) in enumerate(gaps[0]):
+                    keep = ((bx + by + bz) <= reach2) & ((xx + xy + xz) <= margin2)
+                    out.append(base[keep] + (jx * step[0] + jy * step[1] + jz * step[2]) * len(self.children))
+        return out
+
+    def _spread_keys(self, members: np.ndarray, a: np.ndarray, n: np.ndarray) -> np.ndarray:
+        """The keys of ``members`` of any shapes, entry by entry (few children, or big ones)."""
+        a, n = a[members], n[members]
         counts = n.prod(axis=1)
-        child = np.repeat(np.arange(len(self.children)), counts)
-        start = np.concatenate([[0], np.cumsum(counts)[:-1]])
-        local = np.arange(counts.sum()) - np.repeat(start, counts)
+        child = np.repeat(members, counts)
+        local = np.arange(counts.sum()) - np.repeat(np.cumsum(counts) - counts, counts)
         nx, ny = np.repeat(n[:, 0], counts), np.repeat(n[:, 1], counts)
         x = np.repeat(a[:, 0], counts) + local % nx
         y = np.repeat(a[:, 1], counts) + (local // nx) % ny
@@ -135,9 +191,7 @@ class Grid:
         if self._ball_at is not None:
             keep = self._near_ball(x, y, z, child)
             x, y, z, child = x[keep], y[keep], z[keep], child[keep]
-        cells = (z * self.dims[1] + y) * self.dims[0] + x
-        order = np.argsort(cells, kind="stable")
-        return cells[order], child[order]
+        return ((z * self.dims[1] + y) * self.dims[0] + x) * len(self.children) + child
 
     def _near_ball(self, x: np.ndarray, y: np.ndarray, z: np.ndarray, child: np.ndarray) -> np.ndarray:
         """Whether each instance ``child`` (n,) lies within the margin of cell (x, y, z) by its
@@ -149,12 +203,9 @@ class Grid:
         ball2 = np.zeros(len(child))
         box2 = np.zeros(len(child))
         for axis, index in enumerate((x, y, z)):
-            lo = self.lo[axis] + index * self.cell
-            at = self._ball_at[:, axis][child]
-            g = np.maximum(np.maximum(lo - at, at - (lo + self.cell)), 0.0)
-            ball2 += g * g
-            g = np.maximum(np.maximum(lo - self.his[child, axis], self.los[child, axis] - (lo + self.cell)), 0.0)
-            box2 += g * g
+            ball, box = self._gaps(child, axis, index)
+            ball2 += ball
+            box2 += box
         reach = self._ball_r[child] + self.margin
         return (ball2 <= reach * reach) & (box2 <= self.margin * self.margin)
 
@@ -162,7 +213,7 @@ class Grid:
         """float32 (members, texels, 4): each member's move (grid_record), parameters, colour."""
         sizes = [len(v) for _, v in slot_values(t.inner)] if t.slots is not None else []
         peeled = [self.peeled[i] for i in t.members]
-        rot = np.array([u[2] for u in peeled])
+        rot = np.array([u[2] for u in peeled]) if t.affine else None  # None: no member turns
         move = grid_record.kind(t, rot)
         scale_at, slots_at, color_at, texels = t.layout(sizes, move)
         out = np.zeros((len(t.members), texels * 4), dtype=np.float64)
@@ -174,7 +225,7 @@ class Grid:
         if t.slots is not None:
             pos = slots_at
             for name, size in zip(t.slots, sizes):
-                out[:, pos:pos + size] = np.array([np.ravel(u[0].__dict__[name]) for u in peeled], dtype=np.float64)
+                out[:, pos:pos + size] = _slot_column([u[0].__dict__[name] for u in peeled], size)
                 pos += size
         if t.color_in_record:
             out[:, color_at:color_at + 3] = [u[4] if u[4] is not None else default_color for u in peeled]
@@ -226,6 +277,14 @@ class Grid:
         out = {"Cells": cell_tex.reshape(-1, LIST_WIDTH, 4), "List": lst.reshape(-1, LIST_WIDTH, 4)}
         self._textures[key] = out
         return out
+
+
+def _slot_column(values: list, size: int) -> np.ndarray:
+    """(n, size) float64 of one data slot's values (numbers or arrays of ``size`` numbers)."""
+    try:  # values alike in shape: one conversion
+        return np.array(values, dtype=np.float64).reshape(len(values), size)
+    except ValueError:  # a number beside a one-element array, say
+        return np.array([np.ravel(v) for v in values], dtype=np.float64)
 
 
 def _balls(peeled: list[tuple], boxes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

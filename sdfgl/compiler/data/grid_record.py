@@ -25,8 +25,9 @@ if TYPE_CHECKING:  # pragma: no cover
     from .instances import InstanceType
 
 
-def kind(t: "InstanceType", rotations: np.ndarray) -> str:
-    """The move layout of type ``t`` given its members' rotations ((n, 3, 3))."""
+def kind(t: "InstanceType", rotations: np.ndarray | None) -> str:
+    """The move layout of type ``t`` given its members' rotations ((n, 3, 3); None where
+    the type has neither turned nor scaled members)."""
     if not t.affine or (isinstance(t.inner, Sphere) and not t.scaled and not np.any(t.inner.c)):
         return "translate"
     return "matrix" if float(np.linalg.det(rotations).min()) < 0 else "quat"
@@ -61,7 +62,7 @@ def quaternions(m: np.ndarray) -> np.ndarray:
     return q / np.linalg.norm(q, axis=1, keepdims=True)
 
 
-def encode(move: str, tr: np.ndarray, rot: np.ndarray, scale: np.ndarray) -> np.ndarray:
+def encode(move: str, tr: np.ndarray, rot: np.ndarray | None, scale: np.ndarray) -> np.ndarray:
     """(n, floats(move)): the records' move floats for world = tr + scale * rot @ local."""
     if move == "translate":
         return tr

@@ -181,8 +181,8 @@ class ClassInfo:
 
 def build(children: list[Node], min_children: int | None = None, single_cell: bool = False,
           blend: tuple[float, str] | None = None) -> Grid | None:
-    """A grid for a union's children if at least ``min_children`` (default GRID_MIN) of
-    them are instances (those that are not stay code beside it).
+    """A grid for a union's children (each once) if at least ``min_children`` (default
+    GRID_MIN) of them are instances (those that are not stay code beside it: Grid.rest).
 
     ``blend`` (k, kind) is a smooth union's: then every child must be an instance of one
     type whose field is exact (a blend folds in the union's order, so none can stay code
@@ -278,7 +278,9 @@ def _build(children: list[Node], min_children: int | None, single_cell: bool,
                 or not fits(boxes, wide):
             return None
         return Grid(kept, peeled, list(types.values()), boxes=boxes[rows], blend=wide)
-    return Grid(kept, peeled, list(types.values()), single_cell, boxes[rows])
+    rest = np.ones(len(children), dtype=bool)
+    rest[rows] = False
+    return Grid(kept, peeled, list(types.values()), single_cell, boxes[rows], rest=[children[i] for i in np.flatnonzero(rest)])
 
 
 def _share_color(t: InstanceType, peeled: list[tuple]) -> None:
