@@ -14,7 +14,7 @@ import numpy as np
 
 from ..nodes.base import Node
 from ..nodes.mesh_field import MeshField
-from ..nodes.traverse import FACTS, fact
+from ..nodes.traverse import fact
 from ..settings import Settings
 from .data.instances import pack, unwrap
 from .emitter import CHANNELS
@@ -224,23 +224,8 @@ def material_channels(scene: Node) -> list[str]:
     return [ch for ch in ("surface", "emission") if any(f in names for f in CHANNELS[ch])]
 
 
-def material_fields(n: Node) -> frozenset:
-    """The material fields some Material at or under ``n`` sets (children's cached values);
-    a Material (and only a Material) has a ``fields`` dict."""
-    fields = n.__dict__.get("fields")
-    own = frozenset(fields) if fields else _NONE
-    kids = n.children
-    if not kids:
-        return own
-    below = [f for c in kids if (f := c.__dict__["_fields"])]
-    return own.union(*below) if below else own
-
-
 def one_color(scene: Node, highlight: Node | None) -> bool:
     """True for a scene without any material node (and no highlight): mapColor() is then one
     constant, not another copy of the scene's code."""
     return not fact(scene, "_fields") and highlight is None
 
-
-_NONE: frozenset = frozenset()
-FACTS["_fields"] = material_fields

@@ -13,9 +13,10 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..params import Live, Param, owns_checks
+from . import facts  # noqa: F401 - registers the live parameters, detail and material fields as facts
 from .grid_scope import grid_min_as, grid_min_now
 from .record import Recorded
-from .traverse import FACTS, SHALLOW, WIDE, cached, collector_paused, depth, fact, postorder, run_deep
+from .traverse import SHALLOW, WIDE, cached, collector_paused, depth, fact, postorder, run_deep
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..compiler.emitter import Emitter
@@ -456,16 +457,6 @@ class Node(Recorded, register=False):
         hit = self.__dict__.get("_live_cache")
         return list(hit if hit is not None else fact(self, "_live_cache"))
 
-    def _find_live_params(self) -> tuple["Param", ...]:
-        out: list[Param] = []
-        for v in self.params.values():
-            if isinstance(v, Live):
-                out += [p for p in v.roots() if p not in out]
-        for c in self.children:
-            below = c.__dict__["_live_cache"]
-            if below:
-                out += [p for p in below if p not in out]
-        return tuple(out) if out else ()  # () for most nodes: no object for the garbage collector to track
 
 
 FluentT = TypeVar("FluentT", bound=Callable[..., Any])
@@ -495,19 +486,6 @@ def fluent(*names: str) -> Callable[[FluentT], FluentT]:
 
 CACHES = ("_m_", "_key", "_token", "_depth", "_bounds_cache", "_live_cache", "_detail", "_dag", "_grid", "_kids", "_level",
            "_seq", "_fields", "_facts", "_loops")
-
-
-def _detail_below(n: Node) -> bool:
-    """has_detail of ``n`` from its children's (cached) values."""
-    if n._detail_here():
-        return True
-    for c in n.children:
-        if c.__dict__["_detail"]:
-            return True
-    return False
-
-
-FACTS.update({"_live_cache": Node._find_live_params, "_detail": _detail_below})
 
 
 def level_factor(node: Node) -> float:

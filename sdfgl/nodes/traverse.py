@@ -142,34 +142,36 @@ def _fill(node: "Node", name: str, compute: Callable[["Node"], T]) -> T:
 _MISSING = object()
 
 
-def _depth_of(n: Any) -> int:
-    kids = n.children
-    if len(kids) == 1:  # the most common inner node: a move, a colour, an offset
-        return 1 + kids[0].__dict__["_depth"]
-    return 1 + max([c.__dict__["_depth"] for c in kids], default=0)
+def _depth_of(n: Any, d: dict, kids: Sequence[Any]) -> None:
+    if not kids:
+        d["_depth"] = 1
+    elif len(kids) == 1:  # the most common inner node: a move, a colour, an offset
+        d["_depth"] = 1 + kids[0].__dict__["_depth"]
+    else:
+        d["_depth"] = 1 + max([c.__dict__["_depth"] for c in kids])
 
 
-# Structural facts of a node, each computed from its children's: all of them are filled
-# in one walk (a 10^5-node scene is walked once, not once per fact). Modules add theirs
-# (nodes.base: live parameters, detail; codegen: material fields).
-FACTS: dict[str, Callable[[Any], Any]] = {"_depth": _depth_of}
+# Structural facts of a node, each computed from the node and its children's: all are
+# filled in one walk (a 10^5-node scene is walked once, not once per fact). Each function
+# here is called as f(node, node.__dict__, node.children) and sets its facts in the dict:
+# "_depth" here, nodes.base the live parameters, detail and material fields.
+FACTS: list[Callable[[Any, dict, Sequence[Any]], None]] = [_depth_of]
 
 
 def _fill_facts(n: Any) -> bool:
-    d = n.__dict__
-    for name, compute in FACTS.items():
-        d[name] = compute(n)
+    d, kids = n.__dict__, n.children
+    for fill in FACTS:
+        fill(n, d, kids)
     return True
 
 
 def fact(node: Any, name: str) -> Any:
-    """The structural fact ``name`` (a key of FACTS) of ``node``; the first call fills every
-    fact of every node under it that lacks them, in one walk."""
+    """The structural fact ``name`` of ``node`` (one that a function of FACTS sets); the
+    first call fills every fact of every node under it that lacks them, in one walk."""
     d = node.__dict__
     if "_facts" not in d:
         cached(node, "_facts", _fill_facts)
-    hit = d.get(name, _MISSING)
-    return hit if hit is not _MISSING else cached(node, name, FACTS[name])  # a fact added after the walk
+    return d[name]
 
 
 def depth(node: "Node") -> int:
