@@ -219,10 +219,11 @@ def engraved_plate(engraved: bool) -> tuple[Node, Camera]:
 
 
 def run_phases(quick: bool, size: tuple[int, int] = (320, 240)) -> str:
-    """Where the time of a 10^5-deep chain goes, phase by phase, each in wall and process
-    CPU seconds (CPU is what a loaded machine disturbs least): the Python loop that builds
-    it, bounds, code generation (with the grid build), the driver's compile and link, and
-    the first frame (llvmpipe's code generation); return the markdown table."""
+    """Where the time of a 10^5-deep chain (and, in the full run, a 10^6-step union chain)
+    goes, phase by phase, each in wall and process CPU seconds (CPU is what a loaded machine
+    disturbs least): the Python loop that builds it, bounds, code generation (with the grid
+    build), the driver's compile and link, and the first frame (llvmpipe's code
+    generation); return the markdown table."""
     import gc
 
     from .render import Renderer
@@ -233,6 +234,8 @@ def run_phases(quick: bool, size: tuple[int, int] = (320, 240)) -> str:
         (f"chain of {n} translates", lambda: chain("translate", n)),
         (f"chain of {n} rotates", lambda: chain("rotate", n)),
         ("one node as both operands, 30 levels (2^30 paths)", lambda: dag(30))]
+    if not quick:
+        cases.append(("chain of 1000000 unions, left-deep (s = s OR x)", lambda: chain("union", 10 ** 6)))
     rows = ["| scene | build s (CPU) | bounds s (CPU) | codegen s | link s | first frame s | render CPU s | "
             "total s (CPU) | frame ms |", "|---|---|---|---|---|---|---|---|---|"]
     renderer = Renderer(budget=CacheBudget(programs=None))  # timings hold every variant's programs

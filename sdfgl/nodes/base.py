@@ -178,10 +178,10 @@ def boxes_of(nodes: Sequence["Node"]) -> np.ndarray:
             continue
         out[rows] = got
         got.flags.writeable = False  # its rows, kept as the nodes' boxes, are read-only views
-        for j, c in enumerate(group):
+        for c, box in zip(group, list(got)):  # list(): the row views made in one call
             d = c.__dict__
             if d.get("_live_cache") == ():
-                d["_bounds_cache"] = got[j]
+                d["_bounds_cache"] = box
     return out
 
 

@@ -215,19 +215,27 @@ def distinct_by_key(nodes: Sequence[Node]) -> list[Node]:
 
 def distinct_nodes(nodes: Sequence[Node]) -> list[Node]:
     """``nodes`` without repeats of one object or copies equal (same key) to one before them.
-    Equal nodes have equal boxes, so a key is computed only for a node whose box another
-    shares: none for 10^5 children in as many places."""
+    Equal nodes have equal boxes, so a key is computed only for a node whose box's hash
+    another shares: none for 10^5 children in as many places."""
     ids: set[int] = set()
     kids = [c for c in nodes if not (id(c) in ids or ids.add(id(c)))]
     if len(kids) < 2:
         return kids
-    rows = np.ascontiguousarray(boxes_of(kids).reshape(len(kids), 6))
-    _, inverse, counts = np.unique(rows.view(np.dtype((np.void, 48))).ravel(), return_inverse=True, return_counts=True)
-    shared = counts[inverse.ravel()] > 1
-    if not shared.any():
+    bits = np.ascontiguousarray(boxes_of(kids)).reshape(len(kids), 6).view(np.int64)
+    hashes = (bits * _BOX_MIX).sum(axis=1)  # wraps; equal boxes have equal hashes
+    ordered = np.sort(hashes)
+    if not (ordered[1:] == ordered[:-1]).any():  # the common case: no two alike
         return kids
+    _, inverse, counts = np.unique(hashes, return_inverse=True, return_counts=True)
+    shared = counts[inverse.ravel()] > 1
     keys: set = set()
     return [c for c, alike in zip(kids, shared) if not alike or not (c.key in keys or keys.add(c.key))]
+
+
+_BOX_MIX = np.array([0x9E3779B97F4A7C15, 0xC2B2AE3D27D4EB4F, 0x165667B19E3779F9, 0xD6E8FEB86659FD93,
+                     0xFF51AFD7ED558CCD, 0xC4CEB9FE1A85EC53], dtype=np.uint64).view(np.int64)
+"""Odd 64-bit multipliers (golden-ratio and hash-finaliser constants) that mix a box's six
+float bit patterns into one hash."""
 
 
 class Union(_Boolean):

@@ -131,6 +131,13 @@ def _fill(node: "Node", name: str, compute: Callable[["Node"], T]) -> T:
                     if not below:  # a leaf is computed here, without a stack entry
                         c.__dict__[name] = compute(c)
                         continue
+                    if len(below) == 1:  # so is a move of a leaf (or of a node done): the most common
+                        g = below[0]
+                        if name not in g.__dict__ and not g.children:
+                            g.__dict__[name] = compute(g)
+                        if name in g.__dict__:
+                            c.__dict__[name] = compute(c)
+                            continue
                     stack.append((c, iter(below)))
                     break
             else:
