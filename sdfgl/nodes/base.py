@@ -458,7 +458,6 @@ class Node(Recorded, register=False):
         return list(hit if hit is not None else fact(self, "_live_cache"))
 
 
-
 FluentT = TypeVar("FluentT", bound=Callable[..., Any])
 
 FLUENT: dict[str, Callable[..., Any]] = {}

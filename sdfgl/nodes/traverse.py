@@ -161,7 +161,7 @@ def _depth_of(n: Any, d: dict, kids: Sequence[Any]) -> None:
 # Structural facts of a node, each computed from the node and its children's: all are
 # filled in one walk (a 10^5-node scene is walked once, not once per fact). Each function
 # here is called as f(node, node.__dict__, node.children) and sets its facts in the dict:
-# "_depth" here, nodes.base the live parameters, detail and material fields.
+# "_depth" here, sdfgl.nodes.facts the live parameters, detail and material fields.
 FACTS: list[Callable[[Any, dict, Sequence[Any]], None]] = [_depth_of]
 
 
