@@ -42,17 +42,20 @@ parts left to clear.
 Time, against the uniform marching-cubes export at 2^22 samples (tolerance 0.05 of its cell;
 ``python -c "from sdfgl.mesh.bench import run_adaptive; print(run_adaptive(rounds=5)[0])"``,
 medians of interleaved runs on 2 shared CPU cores with llvmpipe, so within about 20 %): the CSG
-part 0.120 s against 0.064 s (1.9x, 8 788 triangles, 2.4 % of the uniform mesh), the demo scene
-0.105 s against 0.049 s (2.2x, 27 610 triangles, 16.0 %), both within 0.95 tolerances at face
+part 0.117 s against 0.073 s (1.6x, 8 380 triangles, 2.3 % of the uniform mesh), the demo scene
+0.105 s against 0.057 s (1.9x, 27 618 triangles, 16.0 %), both within 0.95 tolerances at face
 centres. The uniform export uses both cores (the GPU's sampling beside numpy); most of this
 pipeline is one: on the demo scene dual contouring of the coarse lattice about 35 ms, pyfqmr
 about 20 ms, meshoptimizer 10 ms, the split rounds about 40 ms (profiled with cProfile). The
 demo scene's coarse lattice leaves a third of its faces more than a tolerance off (curved
-parts), so its collapses leave 10 702 triangles and six split rounds bring them to 27 610;
+parts), so its collapses leave about 10 800 triangles and six split rounds bring them to 27 618;
 splitting all three edges of every face off by more than two tolerances saved one round and
 no time measurably. At this tolerance the cell is capped by ``COARSEST`` at 63.5 tolerances, so
-``STEP_PER_TOLERANCE`` above that changes nothing; pyfqmr at 15 or 25 passes instead of 40 was
-no faster within the noise.
+``STEP_PER_TOLERANCE`` above that changes nothing. pyfqmr with 15 passes instead of 40 took
+31 ms instead of 40 on the CSG part's coarse mesh (39 840 triangles; 12 against 15 ms on the
+demo scene's 19 364), for 0.7 % and 0.5 % more triangles after it and the same count within
+1 % after the splits (medians of 5 calls); 10 passes saved 3 ms more on the CSG part for
+another 1 %.
 """
 from __future__ import annotations
 
@@ -71,7 +74,7 @@ from .topology import clean
 
 STEP_PER_TOLERANCE = 60.0  # the uniform mesh's cell, in tolerances
 QUADRIC_SHARE = 4.0        # collapse threshold: this many tolerances squared of quadric error
-ITERATIONS = 40            # pyfqmr passes; the threshold rises to the cap at the last one
+ITERATIONS = 15            # pyfqmr passes; the threshold rises to the cap at the last one
 AGGRESSIVENESS = 7.0
 FLAT_SHARE = 0.25          # meshoptimizer's error limit after pyfqmr, in tolerances
 RETRIES = 3                # lower caps tried when a simplified mesh is not closed and manifold
