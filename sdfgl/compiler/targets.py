@@ -104,7 +104,8 @@ def march(job: Job) -> None:
 
 
 def shading(job: Job) -> None:
-    """Shadows, AO, the material at a hit, the background, the lights and the ground."""
+    """Shadows, AO, the material at a hit, the background, the lights, the ground and the
+    pixel's gamma encoding."""
     b, settings = job.b, job.settings
     implicit = job.scene.exactness == IMPLICIT
     for code, owner in shadow_code(shadow_kinds(job.rig, settings.shadows, implicit)):
@@ -118,6 +119,7 @@ def shading(job: Job) -> None:
                          metals="surface" in job.channels, positions=job.lights_at), "(look: lights)")
     if settings.ground:
         b.add_file("stages/ground")
+    b.add_file("stages/gamma")
 
 
 def render_main(job: Job) -> None:

@@ -27,7 +27,7 @@ void main() {
 #ifdef FOG_DISTANCE
     col = mix(background(rd), col, exp(-t / FOG_DISTANCE));
 #endif
-    outColor = vec4(pow(clamp(col, 0.0, 1.0), vec3(1.0 / 2.2)), 1.0);
+    outColor = vec4(gammaEncode(col), 1.0);
     outT = t;
     outNormal = vec4(nor, 0.0);
 }

@@ -6,7 +6,7 @@ void main() {
 #ifdef DEBUG_VIEW
     vec3 rd = rayDir(gl_FragCoord.xy);
     Hit h = tracePrimary(ro, rd);
-    outColor = vec4(pow(debugView(ro, rd, h), vec3(1.0 / 2.2)), 1.0);
+    outColor = vec4(gammaEncode(debugView(ro, rd, h)), 1.0);
 #else
 #if AA == 1
     vec3 rd = rayDir(gl_FragCoord.xy);

@@ -109,12 +109,12 @@ vec4 sampleColor(vec3 ro, vec3 rd, Hit h) {
 #endif
 }
 
-// The pixel from its averaged samples: gamma-encoded, straight (un-premultiplied) alpha.
+// The pixel from its averaged samples: gamma-encoded (stages/gamma.glsl), straight (un-premultiplied) alpha.
 vec4 pixelColor(vec4 acc) {
 #ifdef ALPHA
     vec3 straight = acc.a > 0.0 ? acc.rgb / acc.a : vec3(0.0);
-    return vec4(pow(clamp(straight, 0.0, 1.0), vec3(1.0 / 2.2)), acc.a);
+    return vec4(gammaEncode(straight), acc.a);
 #else
-    return vec4(pow(clamp(acc.rgb, 0.0, 1.0), vec3(1.0 / 2.2)), 1.0);
+    return vec4(gammaEncode(acc.rgb), 1.0);
 #endif
 }
