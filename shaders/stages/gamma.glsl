@@ -1,5 +1,5 @@
 // The pixel's gamma encoding, x^(1/2.2) of a linear colour clamped to [0, 1], without pow():
-// llvmpipe evaluates pow() as exp2(log2()) with two polynomials a channel, a quarter of the
+// llvmpipe evaluates pow() as exp2(log2()) with two polynomials a channel, about a third of the
 // time of a pixel of sky. The fit, in x^(1/2), x^(1/4) and their products with x, was found by
 // least squares reweighted towards the largest error over [0, 1] (with points down to 1e-9);
 // it is off by at most 0.05 of an 8-bit level and is 0 at 0 (tests/test_gamma.py measures
