@@ -11,7 +11,7 @@ import importlib.util
 import math
 import statistics
 import time
-from typing import Callable
+from typing import TYPE_CHECKING, Callable
 
 import numpy as np
 
@@ -19,6 +19,9 @@ from .camera import Camera, OrbitCamera
 from .gl.cache import CacheBudget
 from .nodes import booleans, primitives, shapes2d
 from .nodes.base import Node
+
+if TYPE_CHECKING:  # pragma: no cover
+    from .render import Renderer
 
 NO_SHADING = {"shadows": False, "ao": False}
 
@@ -218,14 +221,16 @@ def engraved_plate(engraved: bool) -> tuple[Node, Camera]:
     return plate, OrbitCamera(distance=2.2, yaw=20, pitch=25)
 
 
-def run_phases(quick: bool, size: tuple[int, int] = (320, 240)) -> str:
-    """Where the time of a 10^5-deep chain (and, in the full run, a 10^6-step union chain)
-    goes, phase by phase, each in wall and process CPU seconds (CPU is what a loaded machine
-    disturbs least): the Python loop that builds it, bounds, code generation (with the grid
-    build), the driver's compile and link, and the first frame (llvmpipe's code
-    generation); return the markdown table."""
-    import gc
+FRESH_CHAIN = 10 ** 6
+"""The union chain the full run's phases table builds in a fresh process of its own."""
 
+
+def run_phases(quick: bool, size: tuple[int, int] = (320, 240), fresh: int | None = None) -> str:
+    """Where the time of a 10^5-deep chain (and of a ``fresh``-step union chain in a fresh process,
+    :func:`main`; by default :data:`FRESH_CHAIN` steps in the full run, none in the quick one) goes, phase by phase, each in wall and process CPU seconds (CPU
+    is what a loaded machine disturbs least): the Python loop that builds it, bounds, code
+    generation (with the grid build), the driver's compile and link, and the first frame
+    (llvmpipe's code generation); return the markdown table."""
     from .render import Renderer
     n = 2000 if quick else 10 ** 5
     cases: list[tuple[str, Callable[[], tuple[Node, Camera]]]] = [
@@ -234,30 +239,71 @@ def run_phases(quick: bool, size: tuple[int, int] = (320, 240)) -> str:
         (f"chain of {n} translates", lambda: chain("translate", n)),
         (f"chain of {n} rotates", lambda: chain("rotate", n)),
         ("one node as both operands, 30 levels (2^30 paths)", lambda: dag(30))]
-    if not quick:
-        cases.append(("chain of 1000000 unions, left-deep (s = s OR x)", lambda: chain("union", 10 ** 6)))
     rows = ["| scene | build s (CPU) | bounds s (CPU) | codegen s | link s | first frame s | render CPU s | "
             "total s (CPU) | frame ms |", "|---|---|---|---|---|---|---|---|---|"]
     renderer = Renderer(budget=CacheBudget(programs=None))  # timings hold every variant's programs
     renderer.render(primitives.sphere(1), size=(8, 8))  # the context, outside the figures
-    for name, make in cases:
-        gc.collect()
-        w0, c0 = time.perf_counter(), time.process_time()
-        scene, cam = make()
-        w1, c1 = time.perf_counter(), time.process_time()
-        scene.bounds  # noqa: B018 - the phase being timed
-        w2, c2 = time.perf_counter(), time.process_time()
-        res = renderer.render(scene, cam, size, **NO_SHADING)
-        w3, c3 = time.perf_counter(), time.process_time()
-        t = res.timings
-        frame = renderer.render(scene, cam, size, **NO_SHADING).timings["draw_s"]
-        rows.append(f"| {name} | {w1 - w0:.2f} ({c1 - c0:.2f}) | {w2 - w1:.2f} ({c2 - c1:.2f}) | "
-                    f"{t['codegen_s']:.2f} | {t['compile_s']:.2f} | {t['draw_s']:.2f} | {c3 - c2:.2f} | "
-                    f"{w3 - w0:.2f} ({c3 - c0:.2f}) | {1000 * frame:.1f} |")
-        del scene, res
+    rows += [phases_row(renderer, name, make, size)[0] for name, make in cases]
+    fresh = FRESH_CHAIN if fresh is None and not quick else fresh
+    whole = "" if fresh is None else _fresh_chain(fresh, size, rows)
     return (f"Build and compile phases of deep chains, {size[0]}x{size[1]}, shadows and AO off, one run each "
             "in a fresh scene: wall seconds, process CPU seconds in brackets ('render CPU' covers codegen, "
-            "link and first frame; llvmpipe's threads count).\n\n" + "\n".join(rows))
+            f"link and first frame; llvmpipe's threads count).{whole}\n\n" + "\n".join(rows))
+
+
+def phases_row(renderer: "Renderer", name: str, make: Callable[[], tuple[Node, Camera]],
+               size: tuple[int, int]) -> tuple[str, float]:
+    """One row of the phases table, for the scene ``make()`` builds, drawn by ``renderer``: (the
+    markdown row, the wall seconds from the build to the first frame's end)."""
+    import gc
+    gc.collect()
+    w0, c0 = time.perf_counter(), time.process_time()
+    scene, cam = make()
+    w1, c1 = time.perf_counter(), time.process_time()
+    scene.bounds  # noqa: B018 - the phase being timed
+    w2, c2 = time.perf_counter(), time.process_time()
+    res = renderer.render(scene, cam, size, **NO_SHADING)
+    w3, c3 = time.perf_counter(), time.process_time()
+    t = res.timings
+    frame = renderer.render(scene, cam, size, **NO_SHADING).timings["draw_s"]
+    return (f"| {name} | {w1 - w0:.2f} ({c1 - c0:.2f}) | {w2 - w1:.2f} ({c2 - c1:.2f}) | "
+            f"{t['codegen_s']:.2f} | {t['compile_s']:.2f} | {t['draw_s']:.2f} | {c3 - c2:.2f} | "
+            f"{w3 - w0:.2f} ({c3 - c0:.2f}) | {1000 * frame:.1f} |"), w3 - w0
+
+
+def _fresh_chain(n: int, size: tuple[int, int], rows: list[str]) -> str:
+    """Add the phases row of an n-step union chain built in a fresh process (``python -m
+    sdfgl.bench_big N W H``) to ``rows``; return the sentence on that process's whole run."""
+    import json
+    import subprocess
+    import sys
+    t0 = time.perf_counter()
+    got = subprocess.run([sys.executable, "-m", "sdfgl.bench_big", str(n), str(size[0]), str(size[1])],
+                         capture_output=True, text=True, timeout=900)
+    wall = time.perf_counter() - t0
+    if got.returncode != 0:
+        last = (got.stderr.strip().splitlines() or ["(no message)"])[-1]
+        return f" The chain of {n} unions in a fresh process failed: {last[:160]}."
+    out = json.loads(got.stdout.strip().splitlines()[-1])
+    rows.append(out["row"])
+    return (f" The last row ran in a fresh process of its own: from its start to its exit it took {wall:.2f} s, "
+            f"{wall - out['total_s']:.2f} s of them outside the row (start-up, imports and the GL context before "
+            "the build; after the frame, the interpreter's exit freeing the graph).")
+
+
+def main() -> None:
+    """``python -m sdfgl.bench_big N W H``: the phases row of a chain of N unions, built and drawn
+    at W x H in this process; prints {"row": the markdown row, "total_s": its wall seconds} as JSON."""
+    import json
+    import sys
+
+    from .render import Renderer
+    n, w, h = (int(x) for x in sys.argv[1:4])
+    renderer = Renderer(budget=CacheBudget(programs=None))
+    renderer.render(primitives.sphere(1), size=(8, 8))  # the context, outside the row
+    row, total = phases_row(renderer, f"chain of {n} unions, left-deep (s = s OR x), in a fresh process",
+                            lambda: chain("union", n), (w, h))
+    print(json.dumps({"row": row, "total_s": total}))
 
 
 def _timed(fn: Callable[[], object]) -> tuple[object, float]:
@@ -381,3 +427,7 @@ def run_structures(quick: bool, size: tuple[int, int] = (320, 240), seeds: tuple
     return (f"Acceleration structures, {size[0]}x{size[1]}, shadows and AO off; frames of every "
             "row interleaved; medians. The growth scenes of 16 objects are code under both (fewer than "
             "grid_min). 'CPU' is the process's CPU time per frame (all llvmpipe threads).\n\n" + "\n".join(rows))
+
+
+if __name__ == "__main__":
+    main()
