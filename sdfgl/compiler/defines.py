@@ -1,6 +1,7 @@
 """The #define block of a shader: settings, scene frame, free way; and the lights' positions."""
 from __future__ import annotations
 
+import math
 from typing import Any, Sequence
 
 import numpy as np
@@ -51,6 +52,8 @@ def settings_defines(scene: Node, settings: Settings, origin: np.ndarray, live: 
         d += ["#define SHADOWS", f"#define SHADOWS_{settings.shadows.upper()}"]
     if settings.ao:
         d.append("#define AO")
+        if scene.exactness != IMPLICIT and math.isfinite(scene.lipschitz):  # calcAO's open test (stages/ao.glsl)
+            d.append(f"#define AO_LIPSCHITZ {glsl_float(max(scene.lipschitz, 1.0))}")
     if scene.exactness == IMPLICIT:
         d.append("#define IMPLICIT_FIELD")
     if settings.ground:
