@@ -226,11 +226,12 @@ FRESH_CHAIN = 10 ** 6
 
 
 def run_phases(quick: bool, size: tuple[int, int] = (320, 240), fresh: int | None = None) -> str:
-    """Where the time of a 10^5-deep chain (and of a ``fresh``-step union chain in a fresh process,
-    :func:`main`; by default :data:`FRESH_CHAIN` steps in the full run, none in the quick one) goes, phase by phase, each in wall and process CPU seconds (CPU
-    is what a loaded machine disturbs least): the Python loop that builds it, bounds, code
-    generation (with the grid build), the driver's compile and link, and the first frame
-    (llvmpipe's code generation); return the markdown table."""
+    """Where the time of a 10^5-deep chain (and of a ``fresh``-step union chain in a fresh
+    process, :func:`main`; by default :data:`FRESH_CHAIN` steps in the full run, none in the
+    quick one) goes, phase by phase, each in wall and process CPU seconds (CPU is what a loaded
+    machine disturbs least): the Python loop that builds it, bounds, code generation (with the
+    grid build), the driver's compile and link, and the first frame (llvmpipe's code
+    generation); return the markdown table."""
     from .render import Renderer
     n = 2000 if quick else 10 ** 5
     cases: list[tuple[str, Callable[[], tuple[Node, Camera]]]] = [
