@@ -275,17 +275,12 @@ def phases_row(renderer: "Renderer", name: str, make: Callable[[], tuple[Node, C
 def _fresh_chain(n: int, size: tuple[int, int], rows: list[str]) -> str:
     """Add the phases row of an n-step union chain built in a fresh process (``python -m
     sdfgl.bench_big N W H``) to ``rows``; return the sentence on that process's whole run."""
-    import json
-    import subprocess
-    import sys
-    t0 = time.perf_counter()
-    got = subprocess.run([sys.executable, "-m", "sdfgl.bench_big", str(n), str(size[0]), str(size[1])],
-                         capture_output=True, text=True, timeout=900)
-    wall = time.perf_counter() - t0
-    if got.returncode != 0:
-        last = (got.stderr.strip().splitlines() or ["(no message)"])[-1]
-        return f" The chain of {n} unions in a fresh process failed: {last[:160]}."
-    out = json.loads(got.stdout.strip().splitlines()[-1])
+    from .bench_process import fresh_process, last_json, python_module
+    got = fresh_process(python_module("sdfgl.bench_big", n, *size))
+    if isinstance(got, str):
+        return f" The chain of {n} unions in a fresh process {got}."
+    wall, stdout = got
+    out = last_json(stdout)
     rows.append(out["row"])
     return (f" The last row ran in a fresh process of its own: from its start to its exit it took {wall:.2f} s, "
             f"{wall - out['total_s']:.2f} s of them outside the row (start-up, imports and the GL context before "

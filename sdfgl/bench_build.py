@@ -11,10 +11,10 @@ from __future__ import annotations
 
 import json
 import statistics
-import subprocess
 import sys
 import time
 
+from .bench_process import fresh_process, last_json, python_module
 from .extras import installed
 
 KINDS = ("union", "translate")
@@ -23,10 +23,8 @@ TIMEOUT_S = 600
 
 def _seconds(module: str, kind: str, n: int) -> float | str:
     """The build time one fresh process of ``module`` reports, or why it failed."""
-    r = subprocess.run([sys.executable, "-m", module, kind, str(n)], capture_output=True, text=True, timeout=TIMEOUT_S)
-    if r.returncode != 0:
-        return "failed: " + ((r.stderr.strip().splitlines() or ["(no message)"])[-1])[:160]
-    return float(json.loads(r.stdout.strip().splitlines()[-1])["seconds"])
+    got = fresh_process(python_module(module, kind, n), timeout=TIMEOUT_S)
+    return got if isinstance(got, str) else float(last_json(got[1])["seconds"])
 
 
 def run_build(quick: bool) -> str:

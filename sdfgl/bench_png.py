@@ -18,15 +18,14 @@ rows are skipped with a note.
 from __future__ import annotations
 
 import json
-import os
 import statistics
-import subprocess
 import sys
 import tempfile
 import time
 from pathlib import Path
 from typing import Any
 
+from .bench_process import fresh_process, last_json
 from .extras import installed
 from .xdisplay import start_xvfb, stop_xvfb
 
@@ -40,25 +39,10 @@ CACHES = {"cold": {"MESA_SHADER_CACHE_DISABLE": "true"},
 """Mesa's on-disk shader cache for each kind of run (TMP: the run's own temporary folder)."""
 
 
-def _timed(cmd: list[str], env: dict[str, str] | None = None) -> tuple[float, str] | str:
-    """(wall seconds from start to exit, stdout) of ``cmd``, or why it failed."""
-    t0 = time.perf_counter()
-    r = subprocess.run(cmd, capture_output=True, text=True, timeout=TIMEOUT_S, env={**os.environ, **(env or {})})
-    wall = time.perf_counter() - t0
-    if r.returncode != 0:
-        last = (r.stderr.strip().splitlines() or ["(no message)"])[-1]
-        return f"failed: {last[:160]}"
-    return wall, r.stdout
-
-
 def _sdfgl_cli() -> list[str]:
     """The ``sdfgl`` command of this interpreter."""
     beside = Path(sys.executable).with_name("sdfgl")
     return [str(beside)] if beside.exists() else [sys.executable, "-m", "sdfgl"]
-
-
-def _last_json(stdout: str) -> dict[str, Any]:
-    return json.loads(stdout.strip().splitlines()[-1])
 
 
 def run_png(quick: bool) -> tuple[str, dict[str, Any]]:
@@ -90,13 +74,13 @@ def run_png(quick: bool) -> tuple[str, dict[str, Any]]:
                 rounds = sizes["rounds"] + (1 if cache == "warm" else 0)  # a warm cache's first round fills it
                 for r in range(rounds):
                     for name, (cmd, env, key) in jobs.items():
-                        got = _timed(cmd, {**env, **cache_env})
+                        got = fresh_process(cmd, {**env, **cache_env}, TIMEOUT_S)
                         if isinstance(got, str):
                             notes.append(f"{name} {got}")
                         elif not (cache == "warm" and r == 0):
                             wall, stdout = got
                             runs.setdefault(f"{name} {cache}", []).append(
-                                float(_last_json(stdout)[key]) if key else wall)
+                                float(last_json(stdout)[key]) if key else wall)
         finally:
             if xvfb is not None:
                 stop_xvfb(xvfb)

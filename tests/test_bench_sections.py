@@ -60,3 +60,10 @@ def test_model_rows_and_the_hand_written_shader():
     assert set(variants) == {"generated", "generated, no coarse pass", "whole shader written by hand"}
     assert _number(variants["whole shader written by hand"][3]) == 1.0
     assert all(_number(r[4]) < 5 for r in variants.values())  # % of pixels off the generated image
+
+
+def test_build_rows_against_distforge():
+    from sdfgl.bench_build import run_build
+    rows = _rows(run_build(True), "| chain | sdfgl")
+    assert [r[0] for r in rows] == ["10000 steps of union", "10000 steps of translate"]
+    assert all(_number(r[1]) > 0 for r in rows)
