@@ -53,7 +53,7 @@ def settings_defines(scene: Node, settings: Settings, origin: np.ndarray, live: 
     if settings.ao:
         d.append("#define AO")
         if scene.exactness != IMPLICIT and math.isfinite(scene.lipschitz):  # calcAO's open test (stages/ao.glsl)
-            d.append(f"#define AO_LIPSCHITZ {glsl_float(max(scene.lipschitz, 1.0))}")
+            d.append(f"#define AO_LIPSCHITZ {lipschitz_value(scene)}")
     if scene.exactness == IMPLICIT:
         d.append("#define IMPLICIT_FIELD")
     if settings.ground:
@@ -112,7 +112,12 @@ def coarse_defines(scene: Node, tile: int) -> list[str]:
     (a cone advances by the field's value over it); none where there is no coarse pass."""
     if not tile:
         return []
-    return [f"#define COARSE_TILE {tile}", f"#define LIPSCHITZ {glsl_float(max(scene.lipschitz, 1.0))}"]
+    return [f"#define COARSE_TILE {tile}", f"#define LIPSCHITZ {lipschitz_value(scene)}"]
+
+
+def lipschitz_value(scene: Node) -> str:
+    """The scene's Lipschitz factor as the shaders' tests use it (never below 1), in GLSL."""
+    return glsl_float(max(scene.lipschitz, 1.0))
 
 
 def light_positions(rig: Sequence[Any], org: np.ndarray, origins: OriginOffsets | None) -> dict[int, str]:
